@@ -1,0 +1,27 @@
+"""tennis-stroke: Youn's double-pendulum tennis stroke with a ball collision, fast and verified.
+
+Public API
+----------
+:func:`strike`, :func:`strike_batch`
+    One stroke or many (compiled path, parallel).
+:class:`SolverSettings`
+    Method and tolerances of the compiled solver.
+:func:`resolve_params`, :data:`PARAMETERS`, :data:`READINGS`
+    Model parameters with units, and the readings of the paper's ambiguities.
+:mod:`tennis_stroke.reference`
+    The independent scipy ``solve_ivp`` path on the same equations.
+"""
+
+from ._cache import configure_numba_cache
+
+configure_numba_cache()
+
+from .params import PARAMETERS, READINGS, ParameterError, resolve_params  # noqa: E402
+from .stroke import STATUS_NAMES, SolverSettings, strike, strike_batch  # noqa: E402
+
+__version__ = "0.1.0"
+
+__all__ = [
+    "PARAMETERS", "READINGS", "STATUS_NAMES", "ParameterError", "SolverSettings",
+    "__version__", "resolve_params", "strike", "strike_batch",
+]

@@ -1,0 +1,337 @@
+"""Equations of motion of the driven double pendulum with a ball: the one home of the physics.
+
+Conventions (Youn, Sec. II)
+---------------------------
+* Rod 1 (arm+forearm: mass ``M1``, length ``L1``) pivots at the elbow; rod 2 (hand+racket:
+  ``M2``, ``L2``) pivots at the wrist.  Both are uniform rods: centres at ``h_i = L_i/2``.
+* Angles ``theta`` (rod 1) and ``phi`` (rod 2) are measured from the ``-y`` axis,
+  counter-clockwise positive; ``delta = phi - theta``.  Angular velocities are clockwise
+  positive: ``omega1 = -dtheta/dt``, ``omega2 = -dphi/dt``.  No gravity.
+* The elbow moves with the prescribed velocity of Eq. 13 plus, optionally, the velocity
+  given by the extra force of Eq. 14 acting on a mass ``elbow_force_mass`` (Sec. VI).
+  The pendulum is integrated in the elbow's frame, where the elbow acceleration ``a_E``
+  enters as the fictitious force ``-m a_E`` on every mass (the ``a_x, a_y`` terms of Eq. 7).
+* The ball moves along x.  Its state is ``s = x_b - x_E`` and ``w = v_b - V_x^E`` (position
+  and velocity relative to the elbow).  The hitting point is at ``x_H - x_E = L1 sin(theta)
+  + (h2 + h_H) sin(phi)`` (Eq. 10).  The compression ``s - (x_H - x_E)`` is positive while
+  the ball presses on the strings; the spring pushes the ball towards ``-x`` with
+  ``k * compression`` and the racket towards ``+x`` with the same force (Newton's third
+  law; Eqs. 9-11 as printed have the signs of ball and racket force equal, see
+  ``docs/equations.md``).  One-sidedness is not an ``if`` here: the contact phase starts
+  at zero compression and ends at the separation event.
+
+Two state layouts share the physics of :func:`accelerations`:
+
+* *trig layout* (the compiled path): ``sin(theta), cos(theta), sin(phi), cos(phi), omega1,
+  omega2`` (+ ``s, w`` in contact).  Carrying sines and cosines as states makes the
+  right-hand side polynomial (no transcendental calls), which is what makes the compiled
+  solver fast; angles are recovered with ``atan2`` (range (-180, 180] degrees).
+* *angle layout* (the scipy reference path): ``theta, phi, omega1, omega2, s, w``.
+
+Per-stroke coefficients are packed in a float array ``cf`` (layout ``CF_*``) built by
+:func:`coefficients`; the numba functions below read only ``cf``.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+
+import numpy as np
+from numba import njit
+
+# Trig layout (compiled path).
+SIN_TH, COS_TH, SIN_PH, COS_PH, OMEGA1, OMEGA2, BALL_S, BALL_W = range(8)
+N_SWING, N_CONTACT = 6, 8
+# Angle layout (reference path); OMEGA1/OMEGA2 are not shared with the trig layout.
+A_THETA, A_PHI, A_OMEGA1, A_OMEGA2, A_BALL_S, A_BALL_W = range(6)
+
+# Layout of the per-stroke coefficient array.
+(
+    CF_L1, CF_LH, CF_M1, CF_M2, CF_H1, CF_H2, CF_I1, CF_I2, CF_M11, CF_M22, CF_M12,
+    CF_A1, CF_A2, CF_C1, CF_C2, CF_TAU, CF_C2_OFF, CF_K, CF_MB, CF_COUPLING,
+    CF_VX1, CF_VX2, CF_VY1, CF_VY2, CF_FX, CF_FY, CF_TF, CF_TD,
+    CF_LEAD, CF_VBALL, CF_THETA0, CF_PHI0, CF_FORCE_ON,
+) = range(33)
+N_CF = 33
+
+_COUPLING_FACTOR = {"newton": 1.0, "paper_eq8": 2.0}
+
+#: numba options of every compiled function: cached on disk; numpy's float semantics
+#: (division by zero gives inf/nan, the integrator rejects such steps).
+JIT = {"cache": True, "error_model": "numpy"}
+
+
+def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.ndarray:
+    """Pack resolved parameters and initial angles into per-stroke coefficient rows.
+
+    Parameters
+    ----------
+    params : mapping
+        Output of :func:`tennis_stroke.params.resolve_params` (scalars or arrays).
+    theta0_deg, delta0_deg : array_like
+        Initial angles ``theta(0)`` and ``delta(0) = phi(0) - theta(0)`` (degrees).
+
+    Returns
+    -------
+    ndarray, shape (n_strokes, N_CF)
+        One row per stroke, all arrays broadcast together and flattened (C order).
+    """
+    g = {k: np.asarray(v, dtype=float) for k, v in params.items() if not isinstance(v, str)}
+    th0 = np.radians(np.asarray(theta0_deg, dtype=float))
+    ph0 = th0 + np.radians(np.asarray(delta0_deg, dtype=float))
+    shape = np.broadcast_shapes(th0.shape, ph0.shape, *(v.shape for v in g.values()))
+    h1, h2 = g["L1"] / 2.0, g["L2"] / 2.0
+    psi = np.radians(g["psi_F_deg"])
+    cols = {
+        CF_L1: g["L1"], CF_LH: h2 + g["h_hit"], CF_M1: g["M1"], CF_M2: g["M2"],
+        CF_H1: h1, CF_H2: h2, CF_I1: g["I1_cm"], CF_I2: g["I2_cm"],
+        CF_M11: g["I1_cm"] + g["M1"] * h1**2 + g["M2"] * g["L1"] ** 2,
+        CF_M22: g["I2_cm"] + g["M2"] * h2**2,
+        CF_M12: g["M2"] * h2 * g["L1"],
+        CF_A1: g["M1"] * h1 + g["M2"] * g["L1"], CF_A2: g["M2"] * h2,
+        CF_C1: g["C1"], CF_C2: g["C2"], CF_TAU: g["tau"], CF_C2_OFF: g["C2_off"],
+        CF_K: g["k_contact"], CF_MB: g["ball_mass"],
+        CF_COUPLING: _COUPLING_FACTOR[params["collision_coupling"]],
+        CF_VX1: g["vx_t1"], CF_VX2: g["vx_t2"], CF_VY1: g["vy_t1"], CF_VY2: g["vy_t2"],
+        CF_FX: g["F0"] * np.cos(psi) / g["elbow_force_mass"],
+        CF_FY: g["F0"] * np.sin(psi) / g["elbow_force_mass"],
+        CF_TF: g["t_F"], CF_TD: g["t_d"],
+        CF_LEAD: g["contact_lead"], CF_VBALL: g["ball_speed"],
+        CF_THETA0: th0, CF_PHI0: ph0, CF_FORCE_ON: (g["F0"] != 0.0).astype(float),
+    }
+    out = np.empty((*shape, N_CF))
+    for col, val in cols.items():
+        out[..., col] = val
+    return out.reshape(-1, N_CF)
+
+
+@njit(**JIT)
+def elbow_pulse(t, cf):
+    """Acceleration of the extra elbow force, Eq. 14 divided by ``elbow_force_mass`` (m/s^2)."""
+    u = (t - cf[CF_TF]) / cf[CF_TD]
+    pulse = math.exp(-u * u)
+    return cf[CF_FX] * pulse, cf[CF_FY] * pulse
+
+
+@njit(**JIT)
+def elbow_acceleration(t, cf):
+    """Elbow acceleration ``(a_x, a_y)`` (m/s^2): derivative of Eq. 13 plus the Eq. 14 pulse."""
+    ax = cf[CF_VX1] + 2.0 * cf[CF_VX2] * t
+    ay = cf[CF_VY1] + 2.0 * cf[CF_VY2] * t
+    if cf[CF_FORCE_ON] == 0.0:
+        return ax, ay
+    px, py = elbow_pulse(t, cf)
+    return ax + px, ay + py
+
+
+@njit(**JIT)
+def _pulse_integrals(t, cf):
+    """First and second time integrals from 0 of the Eq. 14 pulse ``exp(-((t-t_F)/t_d)^2)``."""
+    td, tf = cf[CF_TD], cf[CF_TF]
+    root_pi = math.sqrt(math.pi)
+    u, u0 = (t - tf) / td, -tf / td
+    first = 0.5 * root_pi * td * (math.erf(u) - math.erf(u0))
+    antider_u = u * math.erf(u) + math.exp(-u * u) / root_pi
+    antider_0 = u0 * math.erf(u0) + math.exp(-u0 * u0) / root_pi
+    second = 0.5 * root_pi * td * (td * (antider_u - antider_0) - t * math.erf(u0))
+    return first, second
+
+
+@njit(**JIT)
+def elbow_velocity(t, cf):
+    """Elbow velocity ``(V_x, V_y)`` (m/s) at time ``t`` (s), zero at ``t = 0`` (Eq. 13)."""
+    vx = (cf[CF_VX1] + cf[CF_VX2] * t) * t
+    vy = (cf[CF_VY1] + cf[CF_VY2] * t) * t
+    if cf[CF_FORCE_ON] == 0.0:
+        return vx, vy
+    first, _ = _pulse_integrals(t, cf)
+    return vx + cf[CF_FX] * first, vy + cf[CF_FY] * first
+
+
+@njit(**JIT)
+def elbow_position(t, cf):
+    """Elbow position ``(x_E, y_E)`` (m) at time ``t`` (s), the origin at ``t = 0``."""
+    x = (0.5 * cf[CF_VX1] + cf[CF_VX2] * t / 3.0) * t * t
+    y = (0.5 * cf[CF_VY1] + cf[CF_VY2] * t / 3.0) * t * t
+    if cf[CF_FORCE_ON] == 0.0:
+        return x, y
+    _, second = _pulse_integrals(t, cf)
+    return x + cf[CF_FX] * second, y + cf[CF_FY] * second
+
+
+@njit(**JIT)
+def rhs_trig(t, y, cf, c2, contact, dydt):
+    """Right-hand side ``dy/dt`` in the trig layout: Eqs. 6-8 from the Lagrangian.
+
+    Parameters
+    ----------
+    t : float
+        Time (s).
+    y : ndarray, shape (N_SWING,) or (N_CONTACT,)
+        ``sin(theta), cos(theta), sin(phi), cos(phi), omega1, omega2`` (+ ``s, w``).
+    cf : ndarray, shape (N_CF,)
+        Stroke coefficients (:func:`coefficients`).
+    c2 : float
+        Wrist torque in this phase (N m); the phase driver switches it at ``tau``.
+    contact : bool
+        Whether the ball spring acts (constant over a phase; the compiled kernels pass a
+        literal, so each phase compiles to its own branch-free code).
+    dydt : ndarray
+        Output, same length as ``y``.
+
+    Notes
+    -----
+    With ``M11 = I1 + M1 h1^2 + M2 L1^2``, ``M22 = I2 + M2 h2^2``, ``M12 = M2 h2 L1``::
+
+        M11 w1' + M12 cos(phi-theta) w2' = P + P_col
+        M12 cos(phi-theta) w1' + M22 w2' = Q + Q_col
+
+    with P, Q of Eq. 7 and the generalised forces of the ball's force ``F_r`` (+x) on
+    the racket at the hitting point, ``P_col = -F_r L1 cos(theta)``, ``Q_col = -F_r
+    (h2+h_H) cos(phi)``.  Solving gives Eq. 6 with ``S_1, S_2`` equal to half of Eq. 8
+    as printed (``docs/equations.md``; ``collision_coupling="paper_eq8"`` doubles
+    ``F_r``).  The spring force on the ball is ``-k (x_b - x_H)`` (Eqs. 9-11); the ball
+    also feels the fictitious force ``-m_b a_E`` of the elbow frame.
+
+    The elbow acceleration is written out here rather than calling
+    :func:`elbow_acceleration`: a numba call costs as much as this whole function
+    (``tests/test_dynamics.py`` checks the two agree).
+    """
+    st, ct, sp, cp, w1, w2 = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], y[OMEGA1], y[OMEGA2]
+    ax = cf[CF_VX1] + 2.0 * cf[CF_VX2] * t
+    ay = cf[CF_VY1] + 2.0 * cf[CF_VY2] * t
+    if cf[CF_FORCE_ON] != 0.0:
+        px, py = elbow_pulse(t, cf)
+        ax += px
+        ay += py
+    sd = sp * ct - cp * st  # sin(phi - theta)
+    cd = cp * ct + sp * st  # cos(phi - theta)
+    m12 = cf[CF_M12]
+    p = cf[CF_C1] - c2 - m12 * w2 * w2 * sd + cf[CF_A1] * (ax * ct + ay * st)
+    q = c2 + m12 * w1 * w1 * sd + cf[CF_A2] * (ax * cp + ay * sp)
+    if contact:
+        force_on_ball = -cf[CF_K] * (y[BALL_S] - (cf[CF_L1] * st + cf[CF_LH] * sp))
+        force_on_racket = -force_on_ball * cf[CF_COUPLING]
+        p -= force_on_racket * cf[CF_L1] * ct
+        q -= force_on_racket * cf[CF_LH] * cp
+        dydt[BALL_S] = y[BALL_W]
+        dydt[BALL_W] = force_on_ball / cf[CF_MB] - ax
+    m11, m22 = cf[CF_M11], cf[CF_M22]
+    mc = m12 * cd
+    det = m11 * m22 - mc * mc
+    dydt[SIN_TH] = -w1 * ct
+    dydt[COS_TH] = w1 * st
+    dydt[SIN_PH] = -w2 * cp
+    dydt[COS_PH] = w2 * sp
+    dydt[OMEGA1] = (p * m22 - q * mc) / det
+    dydt[OMEGA2] = (q * m11 - p * mc) / det
+
+
+@njit(**JIT)
+def hit_offset(st, sp, cf):
+    """``x_H - x_E``: the hitting point relative to the elbow along x (m), Eq. 10."""
+    return cf[CF_L1] * st + cf[CF_LH] * sp
+
+
+@njit(**JIT)
+def to_trig(y_angles, out):
+    """Angle layout -> trig layout (``out`` of the same length)."""
+    th, ph = y_angles[A_THETA], y_angles[A_PHI]
+    out[SIN_TH], out[COS_TH] = math.sin(th), math.cos(th)
+    out[SIN_PH], out[COS_PH] = math.sin(ph), math.cos(ph)
+    out[OMEGA1], out[OMEGA2] = y_angles[A_OMEGA1], y_angles[A_OMEGA2]
+    if y_angles.size > 4:
+        out[BALL_S], out[BALL_W] = y_angles[A_BALL_S], y_angles[A_BALL_W]
+
+
+@njit(**JIT)
+def rhs_angles(t, y, cf, c2, contact, dydt):
+    """``dy/dt`` in the angle layout (reference path): :func:`rhs_trig` plus the kinematics
+    ``d theta/dt = -omega1``, ``d phi/dt = -omega2``.
+
+    ``y`` has 4 components (free swing) or 6 (contact).
+    """
+    trig = np.empty(y.size + 2)
+    to_trig(y, trig)
+    dtrig = np.empty(y.size + 2)
+    rhs_trig(t, trig, cf, c2, contact, dtrig)
+    dydt[A_THETA] = -y[A_OMEGA1]
+    dydt[A_PHI] = -y[A_OMEGA2]
+    dydt[A_OMEGA1] = dtrig[OMEGA1]
+    dydt[A_OMEGA2] = dtrig[OMEGA2]
+    if contact:
+        dydt[A_BALL_S] = dtrig[BALL_S]
+        dydt[A_BALL_W] = dtrig[BALL_W]
+
+
+@njit(**JIT)
+def approach_rate(st, ct, sp, cp, w1, w2, w, cf):
+    """Rate of change of the compression ``x_b - x_H`` (m/s) for a free ball.
+
+    ``w`` is the ball velocity relative to the elbow (m/s); positive: closing in.
+    """
+    return w + cf[CF_L1] * w1 * ct + cf[CF_LH] * w2 * cp
+
+
+@njit(**JIT)
+def effective_mass(st, ct, sp, cp, cf):
+    """Racket mass felt by the ball at the hitting point along x (kg), ``1/(J M^-1 J^T)``."""
+    j1 = cf[CF_L1] * ct
+    j2 = cf[CF_LH] * cp
+    mc = cf[CF_M12] * (cp * ct + sp * st)
+    m11, m22 = cf[CF_M11], cf[CF_M22]
+    det = m11 * m22 - mc * mc
+    return det / (m22 * j1 * j1 - 2.0 * mc * j1 * j2 + m11 * j2 * j2)
+
+
+@njit(**JIT)
+def mechanical_energy(t, y, cf, contact):
+    """Kinetic energy of both rods and the ball plus the spring energy, lab frame (J).
+
+    ``y`` in the angle layout; the ball counts only in ``contact``.
+    """
+    th, ph, w1, w2 = y[A_THETA], y[A_PHI], y[A_OMEGA1], y[A_OMEGA2]
+    vex, vey = elbow_velocity(t, cf)
+    l1, h1, h2 = cf[CF_L1], cf[CF_H1], cf[CF_H2]
+    v1x = vex - h1 * w1 * math.cos(th)
+    v1y = vey - h1 * w1 * math.sin(th)
+    v2x = vex - l1 * w1 * math.cos(th) - h2 * w2 * math.cos(ph)
+    v2y = vey - l1 * w1 * math.sin(th) - h2 * w2 * math.sin(ph)
+    energy = 0.5 * (cf[CF_M1] * (v1x * v1x + v1y * v1y) + cf[CF_I1] * w1 * w1)
+    energy += 0.5 * (cf[CF_M2] * (v2x * v2x + v2y * v2y) + cf[CF_I2] * w2 * w2)
+    if contact:
+        vb = y[A_BALL_W] + vex
+        c = y[A_BALL_S] - hit_offset(math.sin(th), math.sin(ph), cf)
+        energy += 0.5 * cf[CF_MB] * vb * vb + 0.5 * cf[CF_K] * c * c
+    return energy
+
+
+@njit(**JIT)
+def input_power(t, y, cf, c2, contact):
+    """Power delivered by the joint torques and by the elbow drive (W), angle layout.
+
+    The torques give ``C1 w1 + C2 (w2 - w1)``; the elbow pushes the pendulum with the
+    joint force ``F_E = M1 a1 + M2 a2 - F_r x`` (accelerations of the rod centres, lab
+    frame) at the elbow velocity ``V_E``.  Its time integral equals the change of
+    :func:`mechanical_energy` when the equations of motion are right.
+    """
+    dydt = np.empty(y.size)
+    rhs_angles(t, y, cf, c2, contact, dydt)
+    th, ph, w1, w2 = y[A_THETA], y[A_PHI], y[A_OMEGA1], y[A_OMEGA2]
+    dw1, dw2 = dydt[A_OMEGA1], dydt[A_OMEGA2]
+    ax, ay = elbow_acceleration(t, cf)
+    vex, vey = elbow_velocity(t, cf)
+    st, ct, sp, cp = math.sin(th), math.cos(th), math.sin(ph), math.cos(ph)
+    l1, h1, h2 = cf[CF_L1], cf[CF_H1], cf[CF_H2]
+    # d/dt of (-h w cos, -h w sin): -h w' (cos, sin) - h w^2 (sin, -cos)
+    a1x = ax - h1 * (dw1 * ct + w1 * w1 * st)
+    a1y = ay - h1 * (dw1 * st - w1 * w1 * ct)
+    a2x = ax - l1 * (dw1 * ct + w1 * w1 * st) - h2 * (dw2 * cp + w2 * w2 * sp)
+    a2y = ay - l1 * (dw1 * st - w1 * w1 * ct) - h2 * (dw2 * sp - w2 * w2 * cp)
+    fex = cf[CF_M1] * a1x + cf[CF_M2] * a2x
+    fey = cf[CF_M1] * a1y + cf[CF_M2] * a2y
+    if contact:
+        compression_m = y[A_BALL_S] - hit_offset(st, sp, cf)
+        fex -= cf[CF_K] * compression_m * cf[CF_COUPLING]
+    return cf[CF_C1] * w1 + c2 * (w2 - w1) + fex * vex + fey * vey

@@ -1,0 +1,241 @@
+"""Model parameters and the readings of the paper's ambiguities, validated, with units.
+
+Every number of the model has one entry in :data:`PARAMETERS` (name, SI unit, default,
+bounds, meaning).  Every point where the paper can be read in more than one way has one
+entry in :data:`READINGS`, whose first choice is the project's default and whose
+``literal`` choice is the paper read word for word.  The evidence behind each default is in
+``docs/assumptions.md``.
+
+Values may be scalars or numpy arrays that broadcast against each other (one value per
+stroke); :func:`resolve_params` validates them and fills the derived quantities
+(moments of inertia, contact lead, elbow-force mass).
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass
+
+import numpy as np
+
+
+class ParameterError(ValueError):
+    """A parameter or option has a bad name or value (message is one line)."""
+
+
+@dataclass(frozen=True)
+class ParamSpec:
+    """One numeric model parameter.
+
+    ``lower``/``upper`` are bounds (``None``: unbounded); ``strict`` makes ``lower``
+    exclusive.  ``derived`` parameters default to a value computed from the others
+    (see :func:`resolve_params`) but may be overridden on purpose.
+    """
+
+    name: str
+    default: float | None
+    unit: str
+    description: str
+    lower: float | None = None
+    upper: float | None = None
+    strict: bool = False
+    derived: bool = False
+
+
+def _p(*args, **kwargs) -> ParamSpec:
+    return ParamSpec(*args, **kwargs)
+
+
+#: The model parameters, in SI units (angles in degrees only where the name says ``_deg``).
+PARAMETERS: dict[str, ParamSpec] = {
+    s.name: s
+    for s in [
+        _p("L1", 0.3, "m", "length of rod 1 (arm+forearm, elbow to wrist)", 0, 5, True),
+        _p("M1", 2.0, "kg", "mass of rod 1", 0, 100, True),
+        _p("L2", 0.7, "m", "length of rod 2 (hand+racket)", 0, 5, True),
+        _p("M2", 0.3, "kg", "mass of rod 2", 0, 100, True),
+        _p("I1_cm", None, "kg m2", "moment of inertia of rod 1 about its centre", 0,
+           None, True, derived=True),
+        _p("I2_cm", None, "kg m2", "moment of inertia of rod 2 about its centre", 0,
+           None, True, derived=True),
+        _p("C1", 25.0, "N m", "elbow torque on rod 1 (clockwise positive)"),
+        _p("C2", 2.5, "N m", "wrist torque on rod 2 (clockwise positive)"),
+        _p("tau", 0.0, "s", "delay after which C2 switches on (Sec. V)", 0, 10),
+        _p("C2_off", 0.5, "s", "time at which C2 switches off (paper: '0.5 ms')", 0, 10),
+        _p("h_hit", 0.15, "m", "hitting point beyond the centre of rod 2 (h_H)", -5, 5),
+        _p("ball_mass", 0.057, "kg", "ball mass (not stated in the paper)", 0, 10, True),
+        _p("ball_speed", 5.0, "m/s", "incoming ball speed along +x", 0, 100),
+        _p("k_contact", 19000.0, "N/m", "ball-racket spring constant", 0, 1e12, True),
+        _p("contact_lead", None, "s", "time from contact start to phi = 0 (t0 - t_c)", 0,
+           1, derived=True),
+        _p("vx_t1", -33.0, "m/s2", "elbow velocity vx = vx_t1 t + vx_t2 t^2 (Eq. 13)"),
+        _p("vx_t2", 69.0, "m/s3", "elbow velocity, quadratic x coefficient (Eq. 13)"),
+        _p("vy_t1", -42.0, "m/s2", "elbow velocity vy = vy_t1 t + vy_t2 t^2 (Eq. 13)"),
+        _p("vy_t2", 174.0, "m/s3", "elbow velocity, quadratic y coefficient (Eq. 13)"),
+        _p("F0", 0.0, "N", "amplitude of the extra elbow force (Eq. 14)", 0, 1e4),
+        _p("psi_F_deg", 0.0, "degree", "direction of the extra elbow force from +x, ccw"),
+        _p("t_F", 0.185, "s", "centre time of the extra elbow force (tau_H + tau_F)", 0, 10),
+        _p("t_d", 0.05, "s", "width of the extra elbow force pulse (Eq. 14)", 0, 10, True),
+        _p("elbow_force_mass", None, "kg", "mass the extra elbow force accelerates", 0,
+           None, True, derived=True),
+    ]
+}
+
+
+@dataclass(frozen=True)
+class Reading:
+    """One ambiguity of the paper: the named choices, the default and the literal one."""
+
+    name: str
+    choices: tuple[str, ...]
+    default: str
+    literal: str
+    description: str
+
+
+#: The readings of the paper's ambiguities.  Defaults are chosen by evidence
+#: (docs/assumptions.md); ``literal`` is the paper read word for word.
+READINGS: dict[str, Reading] = {
+    r.name: r
+    for r in [
+        Reading("inertia", ("uniform_rod", "paper_text"), "uniform_rod", "paper_text",
+                "I_cm of each rod: M L^2/12 (uniform rod) or M L^2/2 (Sec. III text)"),
+        Reading("contact_lead_rule", ("half_period", "quarter_period", "zero"),
+                "half_period", "half_period",
+                "contact starts T/2, T/4 or 0 before phi = 0, T from Eq. 12"),
+        Reading("collision_coupling", ("newton", "paper_eq8"), "newton", "paper_eq8",
+                "ball force on the racket: Newton's third law (Lagrangian) or Eq. 8 as "
+                "printed (twice the Lagrangian terms)"),
+    ]
+}
+
+
+def _as_float_array(name: str, value: object) -> np.ndarray:
+    try:
+        arr = np.asarray(value, dtype=float)
+    except (TypeError, ValueError):
+        raise ParameterError(f"parameter {name!r} must be a number, got {value!r}") from None
+    if not np.all(np.isfinite(arr)):
+        raise ParameterError(f"parameter {name!r} must be finite, got {value!r}")
+    return arr
+
+
+def _check_bounds(spec: ParamSpec, arr: np.ndarray) -> None:
+    lo, hi = spec.lower, spec.upper
+    if lo is not None and (np.any(arr <= lo) if spec.strict else np.any(arr < lo)):
+        rel = ">" if spec.strict else ">="
+        raise ParameterError(
+            f"parameter {spec.name!r} must be {rel} {lo:g} {spec.unit}, got {_show(arr)}"
+        )
+    if hi is not None and np.any(arr > hi):
+        raise ParameterError(
+            f"parameter {spec.name!r} must be <= {hi:g} {spec.unit}, got {_show(arr)}"
+        )
+
+
+def _show(arr: np.ndarray) -> str:
+    return f"{float(arr):g}" if arr.ndim == 0 else f"values in [{arr.min():g}, {arr.max():g}]"
+
+
+def parse_value(name: str, text: str) -> float | str:
+    """Parse a ``--set KEY=VALUE`` value: a float for parameters, a choice for readings."""
+    if name in READINGS:
+        return text
+    if name not in PARAMETERS:
+        raise ParameterError(f"unknown parameter {name!r} (known: {', '.join(known_names())})")
+    try:
+        value = float(text)
+    except ValueError:
+        raise ParameterError(f"parameter {name!r} must be a number, got {text!r}") from None
+    return value
+
+
+def known_names() -> list[str]:
+    """All names accepted by :func:`resolve_params`."""
+    return [*PARAMETERS, *READINGS]
+
+
+def two_body_period(ball_mass, racket_mass, k_contact):
+    """Period ``T`` of the ball-racket oscillator, Eq. 12: ``2 pi sqrt(mu/k)`` (s).
+
+    ``mu = m_b M2 / (m_b + M2)`` is the reduced mass; the contact of two free bodies
+    lasts ``T/2``.
+    """
+    mu = ball_mass * racket_mass / (ball_mass + racket_mass)
+    return 2.0 * math.pi * np.sqrt(mu / k_contact)
+
+
+_LEAD_FRACTION = {"half_period": 0.5, "quarter_period": 0.25, "zero": 0.0}
+
+
+def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, object]:
+    """Validate parameters and readings and fill in the derived quantities.
+
+    Parameters
+    ----------
+    overrides : mapping, optional
+        Parameter values (scalars or arrays that broadcast together) and reading choices
+        (strings) that replace the defaults.
+
+    Returns
+    -------
+    dict
+        Every parameter of :data:`PARAMETERS` (float or ndarray, SI units) and every
+        reading of :data:`READINGS` (str).  Derived values: ``I1_cm = f M1 L1^2`` and
+        ``I2_cm = f M2 L2^2`` with ``f = 1/12`` (``uniform_rod``) or ``1/2``
+        (``paper_text``); ``contact_lead`` = the fraction of ``T`` (Eq. 12) set by
+        ``contact_lead_rule``; ``elbow_force_mass = M1 + M2``.
+
+    Raises
+    ------
+    ParameterError
+        Unknown name, non-numeric, non-finite or out-of-bounds value, unknown choice.
+    """
+    overrides = dict(overrides or {})
+    out: dict[str, object] = {}
+    for name, reading in READINGS.items():
+        choice = overrides.pop(name, reading.default)
+        if choice not in reading.choices:
+            raise ParameterError(
+                f"reading {name!r} must be one of {', '.join(reading.choices)}, got {choice!r}"
+            )
+        out[name] = choice
+    unknown = [k for k in overrides if k not in PARAMETERS]
+    if unknown:
+        raise ParameterError(
+            f"unknown parameter {unknown[0]!r} (known: {', '.join(known_names())})"
+        )
+    for name, spec in PARAMETERS.items():
+        if name in overrides:
+            arr = _as_float_array(name, overrides[name])
+            _check_bounds(spec, arr)
+            out[name] = _plain(arr)
+        else:
+            out[name] = spec.default
+    factor = 1.0 / 12.0 if out["inertia"] == "uniform_rod" else 0.5
+    if out["I1_cm"] is None:
+        out["I1_cm"] = _plain(factor * np.asarray(out["M1"]) * np.asarray(out["L1"]) ** 2)
+    if out["I2_cm"] is None:
+        out["I2_cm"] = _plain(factor * np.asarray(out["M2"]) * np.asarray(out["L2"]) ** 2)
+    if out["contact_lead"] is None:
+        period = two_body_period(out["ball_mass"], out["M2"], out["k_contact"])
+        out["contact_lead"] = _plain(_LEAD_FRACTION[out["contact_lead_rule"]] * period)
+    if out["elbow_force_mass"] is None:
+        out["elbow_force_mass"] = _plain(np.asarray(out["M1"]) + np.asarray(out["M2"]))
+    try:
+        np.broadcast_shapes(*(np.shape(out[n]) for n in PARAMETERS))
+    except ValueError:
+        raise ParameterError("parameter arrays do not broadcast to one shape") from None
+    return out
+
+
+def _plain(arr: np.ndarray) -> float | np.ndarray:
+    """A 0-d array becomes a Python float (so JSON and netCDF attributes stay plain)."""
+    arr = np.asarray(arr, dtype=float)
+    return float(arr) if arr.ndim == 0 else arr
+
+
+def scalar_params(params: Mapping[str, object]) -> dict[str, object]:
+    """The resolved parameters that are scalars (for file attributes and JSON)."""
+    return {k: v for k, v in params.items() if np.ndim(v) == 0}

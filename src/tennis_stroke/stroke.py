@@ -1,0 +1,386 @@
+"""One stroke, phase by phase, and many strokes in parallel (the compiled path).
+
+A stroke follows the paper's procedure (Sec. II):
+
+1. *Swing*: from rest at ``theta0``, ``phi0 = theta0 + delta0`` at ``t = 0``, integrate the
+   pendulum without the ball until ``phi`` falls through 0 at ``t0`` (event).  The wrist
+   torque switches on at ``tau`` and off at ``C2_off``; each switch ends a phase.
+2. *Contact start*: ``t_c = t0 - contact_lead``.  The state at ``t_c`` is recomputed by one
+   step from the last recorded swing step that starts before ``t_c``.  The ball is put at
+   the hitting point (zero compression) with velocity ``+ball_speed``.
+3. *Contact*: integrate pendulum and ball with the spring until the compression falls
+   through 0 (separation event).  ``v_out`` is the ball's speed towards ``-x`` then.
+4. *Follow-through* (optional): the free swing continues for ``follow_through`` seconds so
+   that ``omega2_max`` covers the whole stroke.
+
+Failures are statuses (:data:`STATUS_NAMES`), never exceptions.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass
+
+import numba
+import numpy as np
+from numba import njit, prange
+
+from .dynamics import (
+    BALL_S, BALL_W, CF_C2, CF_C2_OFF, CF_K, CF_LEAD, CF_MB, CF_PHI0, CF_TAU, CF_THETA0,
+    CF_VBALL, COS_PH, COS_TH, JIT, N_CONTACT, N_SWING, OMEGA1, OMEGA2, SIN_PH, SIN_TH,
+    approach_rate, coefficients, effective_mass, elbow_velocity, hit_offset, rhs_trig,
+)
+from .integrate import (
+    METHODS, N_STATS, PHASE_END, PHASE_FAIL, ST_NFEV, ST_NSTEP, ST_W2MAX, Method,
+    history_find, history_reset, new_workspace, track_peak,
+)
+from .params import ParameterError, resolve_params
+
+MS_TO_KMH = 3.6
+
+# Statuses of a stroke.
+OK, NO_PHI_ZERO, EARLY_CONTACT, NO_APPROACH, NO_RELEASE, STEP_FAILURE, LEAD_TOO_LONG = range(7)
+#: Status codes and their meanings (written to every result file).
+STATUS_NAMES = {
+    OK: "ok",
+    NO_PHI_ZERO: "no_phi_zero",  # phi never reached 0 before t_max
+    EARLY_CONTACT: "early_contact",  # t0 - contact_lead < 0
+    NO_APPROACH: "no_approach",  # at contact start the racket does not approach the ball
+    NO_RELEASE: "no_release",  # the ball was not released before t_max
+    STEP_FAILURE: "step_failure",  # step size underflow, too many steps, non-finite state
+    LEAD_TOO_LONG: "lead_too_long",  # contact_lead spans more swing steps than recorded
+}
+
+# Output columns of the compiled solver.
+(
+    O_STATUS, O_VOUT, O_T_PHI0, O_T_CONTACT, O_T_SEP, O_THETA_PHI0, O_W1_PHI0, O_W2_PHI0,
+    O_THETA_CONTACT, O_W1_CONTACT, O_W2_CONTACT, O_W2_MAX, O_NFEV, O_NSTEP,
+) = range(14)
+N_OUT = 14
+
+#: Result fields: name -> (output column, unit, long name).  The one table of CF metadata.
+RESULT_FIELDS: dict[str, tuple[int, str, str]] = {
+    "status": (O_STATUS, "1", "stroke status code (see attribute flag_meanings)"),
+    "v_out_kmh": (O_VOUT, "km/h", "rebound speed of the ball towards -x"),
+    "t_phi0": (O_T_PHI0, "s", "time at which phi reaches 0 in the free swing (t0)"),
+    "t_contact_start": (O_T_CONTACT, "s", "time at which ball contact starts (t_c)"),
+    "t_separation": (O_T_SEP, "s", "time at which the ball leaves the strings"),
+    "theta_deg_at_phi0": (O_THETA_PHI0, "degree", "rod-1 angle theta at phi = 0"),
+    "omega1_phi0": (O_W1_PHI0, "rad/s", "rod-1 angular velocity at phi = 0"),
+    "omega2_phi0": (O_W2_PHI0, "rad/s", "rod-2 angular velocity at phi = 0"),
+    "theta_deg_contact": (O_THETA_CONTACT, "degree", "rod-1 angle theta at contact start"),
+    "omega1_contact": (O_W1_CONTACT, "rad/s", "rod-1 angular velocity at contact start"),
+    "omega2_contact": (O_W2_CONTACT, "rad/s", "rod-2 angular velocity at contact start"),
+    "omega2_max": (O_W2_MAX, "rad/s", "maximum rod-2 angular velocity over the stroke"),
+    "rhs_evals": (O_NFEV, "1", "right-hand-side evaluations of the stroke"),
+    "steps": (O_NSTEP, "1", "accepted integration steps of the stroke"),
+}
+_DEGREE_FIELDS = ("theta_deg_at_phi0", "theta_deg_contact")
+
+# Layout of the settings array.
+S_RTOL, S_ATOL, S_TMAX, S_FIRST_STEP, S_MAX_STEPS, S_CONTACT_STEPS, S_FOLLOW = range(7)
+
+
+@dataclass(frozen=True)
+class SolverSettings:
+    """Settings of the compiled solver.
+
+    Attributes
+    ----------
+    method : {"DOP853", "DP54"}
+        Embedded Runge-Kutta pair.
+    rtol, atol : float
+        Relative and absolute tolerance of the local error (scaled RMS norm).
+    t_max : float
+        Longest simulated stroke (s); no ``phi = 0`` or no release before it is a status.
+    first_step : float
+        First trial step (s).
+    max_steps : int
+        Largest number of accepted steps per stroke.
+    contact_min_steps : float
+        The contact phase takes steps no longer than (two-body contact duration at the
+        hitting point's effective mass) / ``contact_min_steps``, so no step can jump over
+        the contact.
+    follow_through : float
+        Free swing simulated after separation for ``omega2_max`` (s).
+    history : int
+        Swing steps remembered to restart at the contact start.
+    """
+
+    method: str = "DOP853"
+    rtol: float = 1e-9
+    atol: float = 1e-9
+    t_max: float = 1.0
+    first_step: float = 1e-3
+    max_steps: int = 100_000
+    contact_min_steps: float = 2.0
+    follow_through: float = 0.0
+    history: int = 512
+
+    def __post_init__(self) -> None:
+        if self.method not in METHODS:
+            raise ParameterError(
+                f"solver method must be one of {', '.join(METHODS)}, got {self.method!r}"
+            )
+        for name in ("rtol", "atol", "t_max", "first_step", "contact_min_steps"):
+            value = getattr(self, name)
+            if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
+                raise ParameterError(f"solver setting {name!r} must be > 0, got {value!r}")
+        if not (math.isfinite(self.follow_through) and self.follow_through >= 0):
+            raise ParameterError(
+                f"solver setting 'follow_through' must be >= 0, got {self.follow_through!r}"
+            )
+        for name in ("max_steps", "history"):
+            if int(getattr(self, name)) < 1:
+                raise ParameterError(f"solver setting {name!r} must be >= 1")
+
+    def as_array(self) -> np.ndarray:
+        """The numeric settings in the compiled layout ``S_*``."""
+        return np.array([self.rtol, self.atol, self.t_max, self.first_step,
+                         float(self.max_steps), self.contact_min_steps, self.follow_through])
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain dict (for file attributes and JSON)."""
+        return asdict(self)
+
+
+@njit(**JIT)
+def next_switch(t, cf, t_limit):
+    """First torque switch (``tau`` or ``C2_off``) after ``t`` (s), or ``t_limit``."""
+    nxt = t_limit
+    for s in (cf[CF_TAU], cf[CF_C2_OFF]):
+        if t < s < nxt:
+            nxt = s
+    return nxt
+
+
+@njit(**JIT)
+def wrist_torque(t_a, t_b, cf):
+    """Wrist torque (N m) on an interval ``(t_a, t_b)`` that contains no switch."""
+    mid = 0.5 * (t_a + t_b)
+    return cf[CF_C2] if cf[CF_TAU] <= mid < cf[CF_C2_OFF] else 0.0
+
+
+def _make_runner(integrate, contact):
+    """Compiled loop that runs one phase kind through the torque switches."""
+
+    @njit(**JIT)
+    def run(t, y, f, t_stop, h, h_max, cf, event_on, st, stats, ws, history):
+        while True:
+            t_seg = next_switch(t, cf, t_stop)
+            c2 = wrist_torque(t, t_seg, cf)
+            rhs_trig(t, y, cf, c2, contact, f)
+            stats[ST_NFEV] += 1
+            status, t, h = integrate(t, y, f, t_seg, h, h_max, cf, c2, st[S_RTOL], st[S_ATOL],
+                                     st[S_MAX_STEPS], event_on, stats, ws, history)
+            if status != PHASE_END or t >= t_stop:
+                return status, t, h
+
+    return run
+
+
+def _make_solver(method: Method):
+    """Compiled ``solve_stroke`` and parallel ``solve_batch`` for one method."""
+    run_swing = _make_runner(method.swing, False)
+    run_contact = _make_runner(method.contact, True)
+    swing_step = method.swing_step
+    n_stages = method.n_stages
+
+    @njit(**JIT)
+    def restart_at(t_c, row, cf, y, f, stats, ws):
+        """Swing state at ``t_c`` by one step from a recorded step start (``row``)."""
+        k, _, y_new, tmp = ws
+        t_i, h_i = row[0], row[1]
+        stats[ST_W2MAX] = row[2]
+        for i in range(N_SWING):
+            y[i] = row[3 + i]
+            f[i] = row[3 + N_SWING + i]
+        dt = t_c - t_i
+        if dt > 0.0:
+            swing_step(t_i, y, f, dt, cf, wrist_torque(t_i, t_i + h_i, cf), k,
+                       y_new[:N_SWING], tmp[:N_SWING])
+            stats[ST_NFEV] += n_stages
+            track_peak(y, y_new, f, k[n_stages], dt, stats)
+            y[:] = y_new[:N_SWING]
+
+    @njit(**JIT)
+    def contact(t_c, h, cf, st, out, y, f, stats, ws, history):
+        """Ball contact from ``t_c`` to separation, then the follow-through."""
+        out[O_T_CONTACT] = t_c
+        out[O_THETA_CONTACT] = math.atan2(y[SIN_TH], y[COS_TH])
+        out[O_W1_CONTACT] = y[OMEGA1]
+        out[O_W2_CONTACT] = y[OMEGA2]
+        y[BALL_S] = hit_offset(y[SIN_TH], y[SIN_PH], cf)
+        y[BALL_W] = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
+        if approach_rate(y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], y[OMEGA1], y[OMEGA2],
+                         y[BALL_W], cf) <= 0.0:
+            return NO_APPROACH
+        m_eff = effective_mass(y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], cf)
+        mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
+        h_max = math.pi * math.sqrt(mu / cf[CF_K]) / st[S_CONTACT_STEPS]
+        no_history = history[:1]
+        status, t, h = run_contact(t_c, y, f, st[S_TMAX], min(h, h_max), h_max, cf, True, st,
+                                   stats, ws, no_history)
+        if status == PHASE_FAIL:
+            return STEP_FAILURE
+        if status == PHASE_END:
+            return NO_RELEASE
+        out[O_T_SEP] = t
+        out[O_VOUT] = -MS_TO_KMH * (y[BALL_W] + elbow_velocity(t, cf)[0])
+        if st[S_FOLLOW] > 0.0:
+            status, t, h = run_swing(t, y[:N_SWING], f[:N_SWING], t + st[S_FOLLOW], h, np.inf,
+                                     cf, False, st, stats, ws, no_history)
+            if status == PHASE_FAIL:
+                return STEP_FAILURE
+        out[O_W2_MAX] = stats[ST_W2MAX]
+        return OK
+
+    @njit(**JIT)
+    def solve_stroke(cf, st, out, ws, history, scratch):
+        """Simulate one stroke; write the ``O_*`` columns of ``out``."""
+        out[:] = np.nan
+        y, f, stats = scratch[0], scratch[1], scratch[2, :N_STATS]
+        stats[:] = 0.0
+        y[:] = 0.0
+        th0, ph0 = cf[CF_THETA0], cf[CF_PHI0]
+        y[SIN_TH], y[COS_TH] = math.sin(th0), math.cos(th0)
+        y[SIN_PH], y[COS_PH] = math.sin(ph0), math.cos(ph0)
+        history_reset(history)
+        ys, fs = y[:N_SWING], f[:N_SWING]
+        status, t, h = run_swing(0.0, ys, fs, st[S_TMAX], st[S_FIRST_STEP], np.inf, cf, True,
+                                 st, stats, ws, history)
+        code = OK
+        if status == PHASE_FAIL:
+            code = STEP_FAILURE
+        elif status == PHASE_END:
+            code = NO_PHI_ZERO
+        else:
+            out[O_T_PHI0] = t
+            out[O_THETA_PHI0] = math.atan2(y[SIN_TH], y[COS_TH])
+            out[O_W1_PHI0] = y[OMEGA1]
+            out[O_W2_PHI0] = y[OMEGA2]
+            t_c = t - cf[CF_LEAD]
+            row = history_find(history, t_c)
+            if t_c < 0.0:
+                code = EARLY_CONTACT
+            elif row < 0:
+                code = LEAD_TOO_LONG
+            else:
+                restart_at(t_c, history[row], cf, ys, fs, stats, ws)
+                code = contact(t_c, h, cf, st, out, y, f, stats, ws, history)
+        out[O_STATUS] = code
+        out[O_NFEV] = stats[ST_NFEV]
+        out[O_NSTEP] = stats[ST_NSTEP]
+
+    @njit(parallel=True, **JIT)
+    def solve_batch(cf_rows, st, n_chunks, history_capacity):
+        """Solve every stroke (row of ``cf_rows``) in parallel chunks: ``(n, N_OUT)``."""
+        n = cf_rows.shape[0]
+        out = np.empty((n, N_OUT))
+        for c in prange(n_chunks):
+            ws, history = new_workspace(history_capacity)
+            scratch = np.zeros((3, N_CONTACT))
+            for i in range(c * n // n_chunks, (c + 1) * n // n_chunks):
+                solve_stroke(cf_rows[i], st, out[i], ws, history, scratch)
+        return out
+
+    return solve_batch
+
+
+#: The compiled batch solver of each method.
+SOLVERS = {name: _make_solver(method) for name, method in METHODS.items()}
+
+
+#: Strokes per call of the compiled batch when a progress bar is shown.
+PROGRESS_BLOCK = 8192
+
+
+def solve_coefficients(cf_rows: np.ndarray, settings: SolverSettings | None = None,
+                       threads: int | None = None, progress: bool = False) -> np.ndarray:
+    """Run the compiled solver on prepared coefficient rows; returns ``(n, N_OUT)``.
+
+    Parameters
+    ----------
+    cf_rows : ndarray, shape (n, N_CF)
+        From :func:`tennis_stroke.dynamics.coefficients`.
+    settings : SolverSettings, optional
+    threads : int, optional
+        Threads to use (default: numba's default, all cores).
+    progress : bool
+        Show a tqdm progress bar (in blocks of :data:`PROGRESS_BLOCK` strokes).
+    """
+    settings = settings or SolverSettings()
+    solve_batch = SOLVERS[settings.method]
+    st = settings.as_array()
+    if threads is not None:
+        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
+    n_threads = numba.get_num_threads()
+    n = cf_rows.shape[0]
+    if not progress or n <= PROGRESS_BLOCK:
+        return solve_batch(cf_rows, st, min(max(n, 1), 4 * n_threads), settings.history)
+    from tqdm import tqdm
+
+    out = np.empty((n, N_OUT))
+    with tqdm(total=n, unit="stroke", leave=False) as bar:
+        for a in range(0, n, PROGRESS_BLOCK):
+            b = min(a + PROGRESS_BLOCK, n)
+            out[a:b] = solve_batch(cf_rows[a:b], st, 4 * n_threads, settings.history)
+            bar.update(b - a)
+    return out
+
+
+def results_from_output(out: np.ndarray, shape: tuple[int, ...]) -> dict[str, np.ndarray]:
+    """Named result arrays of ``shape`` from compiled output rows (angles in degrees)."""
+    res = {}
+    for name, (col, _, _) in RESULT_FIELDS.items():
+        values = out[:, col].reshape(shape)
+        if name in ("status", "rhs_evals", "steps"):
+            values = values.astype(np.int64)
+        elif name in _DEGREE_FIELDS:
+            values = np.degrees(values)
+        res[name] = values
+    return res
+
+
+def strike_batch(theta0_deg, delta0_deg, params: Mapping[str, object] | None = None,
+                 settings: SolverSettings | None = None, threads: int | None = None,
+                 progress: bool = False) -> dict[str, np.ndarray]:
+    """Simulate many strokes; every input broadcasts against the others.
+
+    Parameters
+    ----------
+    theta0_deg, delta0_deg : array_like
+        Initial angles ``theta(0)`` and ``delta(0) = phi(0) - theta(0)`` (degrees).
+    params : mapping, optional
+        Parameter overrides (scalars or arrays) and readings; see
+        :func:`tennis_stroke.params.resolve_params`.
+    settings : SolverSettings, optional
+    threads : int, optional
+    progress : bool
+
+    Returns
+    -------
+    dict of ndarray
+        The fields of :data:`RESULT_FIELDS`, each of the broadcast shape.
+    """
+    resolved = resolve_params(params)
+    th = np.asarray(theta0_deg, dtype=float)
+    de = np.asarray(delta0_deg, dtype=float)
+    for name, arr in (("theta0", th), ("delta0", de)):
+        if not np.all(np.isfinite(arr)):
+            raise ParameterError(f"initial angle {name!r} must be finite")
+    shape = np.broadcast_shapes(th.shape, de.shape,
+                                *(np.shape(v) for v in resolved.values() if not isinstance(v, str)))
+    cf_rows = coefficients(resolved, th, de)
+    out = solve_coefficients(cf_rows, settings, threads, progress)
+    return results_from_output(out, shape)
+
+
+def strike(theta0_deg: float, delta0_deg: float, params: Mapping[str, object] | None = None,
+           settings: SolverSettings | None = None) -> dict[str, object]:
+    """Simulate one stroke; returns the result fields as Python scalars plus ``status_name``."""
+    res = strike_batch(theta0_deg, delta0_deg, params, settings, threads=1)
+    out: dict[str, object] = {k: v.item() for k, v in res.items()}
+    out["status_name"] = STATUS_NAMES[out["status"]]
+    return out
