@@ -1,11 +1,13 @@
 """Generate ``src/tennis_stroke/_kernels.py``: unrolled Runge-Kutta kernels from tableau data.
 
-The Butcher tableaux of Dormand-Prince 5(4) and 8(5,3) (read from scipy's ``RK45`` and
-``DOP853`` classes) are written out as straight-line code, one function per method and
-phase (free swing: 6 states; contact: 8 states, both with ``rhs_trig``).  Zero
-coefficients disappear and every loop has a constant length, which makes a step about
-twice as fast as loops over padded tableau arrays.  The output is committed; the test
-suite checks that it is up to date.
+The Butcher tableaux of Dormand-Prince 5(4) and 8(5,3) (scipy's ``RK45`` and ``DOP853``
+classes carry the published coefficients) are written out as straight-line code on
+tuples, one set of functions per method and phase (free swing: 6 integrated components;
+contact: 8), all calling :func:`tennis_stroke.dynamics.rhs_trig`.  States are tuples, not
+arrays, so numba passes them by value (no reference counting per call) and LLVM keeps
+them in registers; zero coefficients disappear.  This makes a step several times faster
+than loops over padded tableau arrays.  The output is committed; a test checks that it is
+up to date.
 
 Usage: ``python tools/generate_kernels.py [--check]``
 """
@@ -17,100 +19,117 @@ from pathlib import Path
 
 from scipy.integrate import DOP853, RK45
 
-TARGET = Path(__file__).resolve().parents[1] / "src" / "tennis_stroke" / "_kernels.py"
-PHASES = {"swing": ("False", 6), "contact": ("True", 8)}
+ROOT = Path(__file__).resolve().parents[1]
+TARGET = ROOT / "src" / "tennis_stroke" / "_kernels.py"
+N_STATE = 8  # trig layout with the ball; see tennis_stroke.dynamics
+PHASES = {"swing": (6, "False"), "contact": (8, "True")}
 
 
-def _combo(coeffs, rows: range, fmt: str = "k[{j}, i]") -> str:
-    terms = [f"{float(coeffs[j])!r} * {fmt.format(j=j)}" for j in rows if coeffs[j] != 0.0]
+def _combo(coeffs, rows, var: str, i: int) -> str:
+    terms = [f"{float(coeffs[j])!r} * {var}{j}[{i}]" for j in rows if coeffs[j] != 0.0]
     return " + ".join(terms) if terms else "0.0"
 
 
-def _method(name: str, cls) -> list[str]:
-    n_stages = cls.n_stages
-    a_rows = list(cls.A)
-    c = list(cls.C)
-    extra = name == "dop853"
-    if extra:
-        a_rows += [cls.B] + list(cls.A_EXTRA)  # stage n_stages is f(t+h, y_new) (FSAL)
-        c += [1.0] + list(cls.C_EXTRA)
-    e5 = cls.E5 if extra else cls.E
-    out: list[str] = []
-    for phase, (contact, n) in PHASES.items():
-        out += [
-            "",
-            "",
-            "@njit(**JIT)",
-            f"def step_{name}_{phase}(t, y, f0, h, cf, c2, k, y_new, tmp):",
-            f'    """One {name.upper()} step of the {phase} phase; k[{n_stages}] = f(t+h, y_new)."""',
-            f"    for i in range({n}):",
-            "        k[0, i] = f0[i]",
-        ]
-        for s in range(1, n_stages):
-            out += [
-                f"    for i in range({n}):",
-                f"        tmp[i] = y[i] + h * ({_combo(a_rows[s], range(s))})",
-                f"    rhs_trig(t + {float(c[s])!r} * h, tmp, cf, c2, {contact}, k[{s}])",
-            ]
-        out += [
-            f"    for i in range({n}):",
-            f"        y_new[i] = y[i] + h * ({_combo(cls.B, range(n_stages))})",
-            f"    rhs_trig(t + h, y_new, cf, c2, {contact}, k[{n_stages}])",
-            "",
-            "",
-            "@njit(**JIT)",
-            f"def error_{name}_{phase}(k, h, y, y_new, rtol, atol):",
-            '    """Scaled RMS norm of the local error estimate (scipy\'s formula)."""',
-            "    e5 = 0.0",
-            *(["    e3 = 0.0"] if extra else []),
-            f"    for i in range({n}):",
-            "        scale = atol + rtol * max(abs(y[i]), abs(y_new[i]))",
-            f"        d5 = ({_combo(e5, range(n_stages + 1))}) / scale",
-            "        e5 += d5 * d5",
-        ]
-        if extra:
-            out += [
-                f"        d3 = ({_combo(cls.E3, range(n_stages + 1))}) / scale",
-                "        e3 += d3 * d3",
-                "    if e5 == 0.0:",
-                "        return 0.0",
-                f"    return abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * {n})",
-            ]
-        else:
-            out += [f"    return abs(h) * math.sqrt(e5 / {n})"]
-        out += [
-            "",
-            "",
-            "@njit(**JIT)",
-            f"def dense_{name}_{phase}(t, y, y_new, h, cf, c2, k, z, tmp):",
-            '    """Dense-output coefficients of the step just taken, into z[0..6]."""',
-        ]
-        if extra:
-            for s in range(n_stages + 1, n_stages + 1 + len(cls.C_EXTRA)):
-                out += [
-                    f"    for i in range({n}):",
-                    f"        tmp[i] = y[i] + h * ({_combo(a_rows[s], range(s))})",
-                    f"    rhs_trig(t + {float(c[s])!r} * h, tmp, cf, c2, {contact}, k[{s}])",
-                ]
-            out += [
-                f"    for i in range({n}):",
-                "        dy = y_new[i] - y[i]",
-                "        z[0, i] = dy",
-                "        z[1, i] = h * k[0, i] - dy",
-                f"        z[2, i] = 2.0 * dy - h * (k[{n_stages}, i] + k[0, i])",
-            ]
-            for row in range(cls.D.shape[0]):
-                out.append(f"        z[{3 + row}, i] = h * ({_combo(cls.D[row], range(16))})")
-        else:
-            out.append(f"    for i in range({n}):")
-            for col in range(cls.P.shape[1]):
-                out.append(
-                    f"        z[{3 + col}, i] = h * ({_combo(cls.P[:, col], range(n_stages + 1))})"
-                )
+def _state(n: int, expr) -> str:
+    """Tuple of ``N_STATE`` components: ``expr(i)`` for the first ``n``, ``y[i]`` after."""
+    return "(" + ", ".join(expr(i) if i < n else f"y[{i}]" for i in range(N_STATE)) + ")"
+
+
+def _stages(a, c, first: int, last: int, n: int, contact: str) -> list[str]:
+    out = []
+    for s in range(first, last):
+        arg = _state(n, lambda i, s=s: f"y[{i}] + h * ({_combo(a[s], range(s), 'k', i)})")
+        out.append(f"    k{s} = rhs_trig(t + {float(c[s])!r} * h, {arg}, cf, c2, {contact})")
     return out
 
 
+def _tableau(cls, extra: bool):
+    a = [list(r) for r in cls.A]
+    c = list(cls.C)
+    if extra:  # stage n_stages is f(t+h, y_new) (FSAL), then the dense-output stages
+        a += [list(cls.B)] + [list(r) for r in cls.A_EXTRA]
+        c += [1.0] + list(cls.C_EXTRA)
+    return a, c
+
+
+def _method(name: str, cls) -> list[str]:
+    extra = name == "dop853"
+    ns = cls.n_stages
+    a, c = _tableau(cls, extra)
+    e5 = cls.E5 if extra else cls.E
+    out: list[str] = []
+    for phase, (n, contact) in PHASES.items():
+        y_new = _state(n, lambda i: f"y[{i}] + h * ({_combo(cls.B, range(ns), 'k', i)})")
+        out += ["", "", "@njit(**JIT_FAST)",
+                f"def step_{name}_{phase}(t, y, f0, h, cf, c2, rtol, atol):",
+                f'    """{name.upper()} step, {phase} phase: ``(y_new, f(t+h, y_new), error norm)``."""',
+                "    k0 = f0"]
+        out += _stages(a, c, 1, ns, n, contact)
+        out += [f"    y_new = {y_new}",
+                f"    k{ns} = rhs_trig(t + h, y_new, cf, c2, {contact})",
+                "    e5 = 0.0"]
+        if extra:
+            out.append("    e3 = 0.0")
+        for i in range(n):
+            out += [f"    scale = atol + rtol * max(abs(y[{i}]), abs(y_new[{i}]))",
+                    f"    d = ({_combo(e5, range(ns + 1), 'k', i)}) / scale",
+                    "    e5 += d * d"]
+            if extra:
+                out += [f"    d = ({_combo(cls.E3, range(ns + 1), 'k', i)}) / scale",
+                        "    e3 += d * d"]
+        if extra:
+            out += ["    if e5 == 0.0:", f"        return y_new, k{ns}, 0.0",
+                    f"    return y_new, k{ns}, abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * {n})"]
+        else:
+            out.append(f"    return y_new, k{ns}, abs(h) * math.sqrt(e5 / {n})")
+        out += ["", "", "@njit(**JIT_FAST)",
+                f"def dense_{name}_{phase}(t, y, f0, h, cf, c2, y_new, f_new):",
+                '    """Dense-output coefficients of the step ``y -> y_new`` (stages recomputed)."""',
+                "    k0 = f0"]
+        out += _stages(a, c, 1, ns, n, contact)
+        out.append(f"    k{ns} = f_new")
+        zero = "0.0"
+        if extra:
+            out += _stages(a, c, ns + 1, ns + 1 + len(cls.C_EXTRA), n, contact)
+            rows = [
+                lambda i: f"y_new[{i}] - y[{i}]",
+                lambda i: f"h * k0[{i}] - (y_new[{i}] - y[{i}])",
+                lambda i: f"2.0 * (y_new[{i}] - y[{i}]) - h * (k{ns}[{i}] + k0[{i}])",
+            ] + [
+                lambda i, r=r: f"h * ({_combo(cls.D[r], range(16), 'k', i)})"
+                for r in range(cls.D.shape[0])
+            ]
+        else:
+            rows = [lambda i, col=col: f"h * ({_combo(cls.P[:, col], range(ns + 1), 'k', i)})"
+                    for col in range(cls.P.shape[1])]
+        tuples = ["(" + ", ".join(row(i) if i < n else zero for i in range(N_STATE)) + ")"
+                  for row in rows]
+        out.append("    return (" + ",\n            ".join(tuples) + ")")
+    return out
+
+
+def _dense_evals() -> list[str]:
+    dp54 = ", ".join(
+        f"y[{i}] + x * (z[0][{i}] + x * (z[1][{i}] + x * (z[2][{i}] + x * z[3][{i}])))"
+        for i in range(N_STATE))
+    dop853 = []
+    for i in range(N_STATE):
+        acc = f"z[6][{i}] * x"
+        for m in range(5, -1, -1):
+            acc = f"({acc} + z[{m}][{i}]) * {'u' if m % 2 else 'x'}"
+        dop853.append(f"y[{i}] + {acc}")
+    return ["", "", "@njit(**JIT_FAST)", "def dense_eval_dp54(x, y, z):",
+            '    """Shampine\'s 4th-order interpolant at the fraction ``x`` of the step."""',
+            f"    return ({dp54})", "", "", "@njit(**JIT_FAST)", "def dense_eval_dop853(x, y, z):",
+            '    """The 7th-order DOP853 interpolant at the fraction ``x`` of the step."""',
+            "    u = 1.0 - x", "    return (" + ",\n            ".join(dop853) + ")"]
+
+
 def render() -> str:
+    sys.path.insert(0, str(ROOT / "src"))
+    from tennis_stroke.dynamics import N_CF  # noqa: PLC0415
+
+    cf = ", ".join(f"row[{i}]" for i in range(N_CF))
     lines = [
         '"""Unrolled Runge-Kutta kernels. GENERATED by tools/generate_kernels.py: do not edit."""',
         "",
@@ -118,13 +137,20 @@ def render() -> str:
         "",
         "from numba import njit",
         "",
-        "from .dynamics import JIT, rhs_trig",
+        "from .dynamics import JIT_FAST, rhs_trig",
         "",
         f"N_STAGES = {{'dp54': {RK45.n_stages}, 'dop853': {DOP853.n_stages}}}",
-        f"N_EXTRA = {{'dp54': 0, 'dop853': {len(DOP853.C_EXTRA)}}}",
         f"ERROR_ORDER = {{'dp54': {RK45.error_estimator_order}, "
         f"'dop853': {DOP853.error_estimator_order}}}",
+        f"N_EXTRA = {{'dp54': 0, 'dop853': {len(DOP853.C_EXTRA)}}}",
+        "",
+        "",
+        "@njit(**JIT_FAST)",
+        "def coefficient_tuple(row):",
+        '    """A row of stroke coefficients as a tuple (passed by value, no reference count)."""',
+        f"    return ({cf})",
     ]
+    lines += _dense_evals()
     lines += _method("dp54", RK45)
     lines += _method("dop853", DOP853)
     return "\n".join(lines) + "\n"

@@ -60,6 +60,8 @@ _COUPLING_FACTOR = {"newton": 1.0, "paper_eq8": 2.0}
 #: numba options of every compiled function: cached on disk; numpy's float semantics
 #: (division by zero gives inf/nan, the integrator rejects such steps).
 JIT = {"cache": True, "error_model": "numpy"}
+#: For the hot path: also allow fused multiply-add and multiplication by a reciprocal.
+JIT_FAST = {**JIT, "fastmath": {"contract", "arcp"}}
 
 
 def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.ndarray:
@@ -160,25 +162,28 @@ def elbow_position(t, cf):
     return x + cf[CF_FX] * second, y + cf[CF_FY] * second
 
 
-@njit(**JIT)
-def rhs_trig(t, y, cf, c2, contact, dydt):
+@njit(**JIT_FAST)
+def rhs_trig(t, y, cf, c2, contact):
     """Right-hand side ``dy/dt`` in the trig layout: Eqs. 6-8 from the Lagrangian.
 
     Parameters
     ----------
     t : float
         Time (s).
-    y : ndarray, shape (N_SWING,) or (N_CONTACT,)
-        ``sin(theta), cos(theta), sin(phi), cos(phi), omega1, omega2`` (+ ``s, w``).
-    cf : ndarray, shape (N_CF,)
+    y : tuple of 8 float
+        ``sin(theta), cos(theta), sin(phi), cos(phi), omega1, omega2, s, w``.
+    cf : tuple or ndarray, length N_CF
         Stroke coefficients (:func:`coefficients`).
     c2 : float
         Wrist torque in this phase (N m); the phase driver switches it at ``tau``.
     contact : bool
         Whether the ball spring acts (constant over a phase; the compiled kernels pass a
-        literal, so each phase compiles to its own branch-free code).
-    dydt : ndarray
-        Output, same length as ``y``.
+        literal, so each phase compiles to its own branch-free code).  Outside contact
+        the ball derivatives are 0.
+
+    Returns
+    -------
+    tuple of 8 float
 
     Notes
     -----
@@ -198,7 +203,7 @@ def rhs_trig(t, y, cf, c2, contact, dydt):
     :func:`elbow_acceleration`: a numba call costs as much as this whole function
     (``tests/test_dynamics.py`` checks the two agree).
     """
-    st, ct, sp, cp, w1, w2 = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], y[OMEGA1], y[OMEGA2]
+    st, ct, sp, cp, w1, w2, s, w = y
     ax = cf[CF_VX1] + 2.0 * cf[CF_VX2] * t
     ay = cf[CF_VY1] + 2.0 * cf[CF_VY2] * t
     if cf[CF_FORCE_ON] != 0.0:
@@ -210,22 +215,20 @@ def rhs_trig(t, y, cf, c2, contact, dydt):
     m12 = cf[CF_M12]
     p = cf[CF_C1] - c2 - m12 * w2 * w2 * sd + cf[CF_A1] * (ax * ct + ay * st)
     q = c2 + m12 * w1 * w1 * sd + cf[CF_A2] * (ax * cp + ay * sp)
+    ds = 0.0
+    dw = 0.0
     if contact:
-        force_on_ball = -cf[CF_K] * (y[BALL_S] - (cf[CF_L1] * st + cf[CF_LH] * sp))
+        force_on_ball = -cf[CF_K] * (s - (cf[CF_L1] * st + cf[CF_LH] * sp))
         force_on_racket = -force_on_ball * cf[CF_COUPLING]
         p -= force_on_racket * cf[CF_L1] * ct
         q -= force_on_racket * cf[CF_LH] * cp
-        dydt[BALL_S] = y[BALL_W]
-        dydt[BALL_W] = force_on_ball / cf[CF_MB] - ax
+        ds = w
+        dw = force_on_ball / cf[CF_MB] - ax
     m11, m22 = cf[CF_M11], cf[CF_M22]
     mc = m12 * cd
     det = m11 * m22 - mc * mc
-    dydt[SIN_TH] = -w1 * ct
-    dydt[COS_TH] = w1 * st
-    dydt[SIN_PH] = -w2 * cp
-    dydt[COS_PH] = w2 * sp
-    dydt[OMEGA1] = (p * m22 - q * mc) / det
-    dydt[OMEGA2] = (q * m11 - p * mc) / det
+    return (-w1 * ct, w1 * st, -w2 * cp, w2 * sp, (p * m22 - q * mc) / det,
+            (q * m11 - p * mc) / det, ds, dw)
 
 
 @njit(**JIT)
@@ -235,14 +238,13 @@ def hit_offset(st, sp, cf):
 
 
 @njit(**JIT)
-def to_trig(y_angles, out):
-    """Angle layout -> trig layout (``out`` of the same length)."""
+def to_trig(y_angles):
+    """Angle layout (4 or 6 components) -> trig-layout tuple of 8."""
     th, ph = y_angles[A_THETA], y_angles[A_PHI]
-    out[SIN_TH], out[COS_TH] = math.sin(th), math.cos(th)
-    out[SIN_PH], out[COS_PH] = math.sin(ph), math.cos(ph)
-    out[OMEGA1], out[OMEGA2] = y_angles[A_OMEGA1], y_angles[A_OMEGA2]
-    if y_angles.size > 4:
-        out[BALL_S], out[BALL_W] = y_angles[A_BALL_S], y_angles[A_BALL_W]
+    s = y_angles[A_BALL_S] if y_angles.size > 4 else 0.0
+    w = y_angles[A_BALL_W] if y_angles.size > 4 else 0.0
+    return (math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), y_angles[A_OMEGA1],
+            y_angles[A_OMEGA2], s, w)
 
 
 @njit(**JIT)
@@ -250,19 +252,16 @@ def rhs_angles(t, y, cf, c2, contact, dydt):
     """``dy/dt`` in the angle layout (reference path): :func:`rhs_trig` plus the kinematics
     ``d theta/dt = -omega1``, ``d phi/dt = -omega2``.
 
-    ``y`` has 4 components (free swing) or 6 (contact).
+    ``y`` has 4 components (free swing) or 6 (contact); ``dydt`` is written in place.
     """
-    trig = np.empty(y.size + 2)
-    to_trig(y, trig)
-    dtrig = np.empty(y.size + 2)
-    rhs_trig(t, trig, cf, c2, contact, dtrig)
+    d = rhs_trig(t, to_trig(y), cf, c2, contact)
     dydt[A_THETA] = -y[A_OMEGA1]
     dydt[A_PHI] = -y[A_OMEGA2]
-    dydt[A_OMEGA1] = dtrig[OMEGA1]
-    dydt[A_OMEGA2] = dtrig[OMEGA2]
-    if contact:
-        dydt[A_BALL_S] = dtrig[BALL_S]
-        dydt[A_BALL_W] = dtrig[BALL_W]
+    dydt[A_OMEGA1] = d[OMEGA1]
+    dydt[A_OMEGA2] = d[OMEGA2]
+    if y.size > 4:
+        dydt[A_BALL_S] = d[BALL_S]
+        dydt[A_BALL_W] = d[BALL_W]
 
 
 @njit(**JIT)

@@ -13,9 +13,9 @@ This module holds the step-size controller and event location, built once per me
 and phase by :func:`make_phase_integrator`.
 
 Contract of a phase integrator ``integrate(t, y, f, t_end, h, h_max, cf, c2, rtol, atol,
-max_steps, event_on, stats, ws, history)``: advance ``(t, y, f)`` in place towards
-``t_end`` (forwards or backwards) without crossing it, with a constant wrist torque
-``c2``.  With ``event_on``, the phase's terminal event (free swing: ``phi`` falls through
+max_steps, event_on, stats, history) -> (status, t, y, f, h)``: advance the state tuple
+``y`` (and ``f = dy/dt``) from ``t`` towards ``t_end`` (forwards or backwards) without
+crossing it, with a constant wrist torque ``c2``.  With ``event_on``, the phase's terminal event (free swing: ``phi`` falls through
 0; contact: the compression falls through 0) is located by root finding (Illinois) on the
 dense output, and ``y`` is the dense output there.  Discontinuities never occur inside a
 phase: the caller ends a phase at every switch and starts a new one.
@@ -30,9 +30,7 @@ import numpy as np
 from numba import njit
 
 from . import _kernels
-from .dynamics import (
-    BALL_S, COS_PH, JIT, N_CONTACT, N_SWING, OMEGA2, SIN_PH, SIN_TH, hit_offset,
-)
+from .dynamics import BALL_S, COS_PH, JIT, N_CONTACT, OMEGA2, SIN_PH, SIN_TH, hit_offset
 
 #: Step-size controller constants (Hairer & Wanner; scipy uses the same).
 SAFETY = 0.9
@@ -40,6 +38,7 @@ MIN_FACTOR = 0.2
 MAX_FACTOR = 10.0
 #: Steps shorter than this many ulps of ``t`` count as a failure.
 MIN_STEP_ULPS = 10.0
+EPS = float(np.finfo(float).eps)
 #: Width of the final bracket of an event root, as a fraction of the step.
 EVENT_XTOL = 4.0 * np.finfo(float).eps
 EVENT_MAX_ITER = 60
@@ -49,35 +48,11 @@ PHASE_END, PHASE_EVENT, PHASE_FAIL = 0, 1, 2
 ST_NFEV, ST_NSTEP, ST_NREJECT, ST_W2MAX = 0, 1, 2, 3
 N_STATS = 4
 #: Columns of a history row: start time, step, running max of omega2 before the step,
-#: then ``y`` and ``f`` of the swing at the start.
-HISTORY_COLS = 3 + 2 * N_SWING
-DENSE_ROWS = 7
-MAX_STAGES = 16
+#: then the state ``y`` and ``f`` at the start.
+HISTORY_COLS = 3 + 2 * N_CONTACT
 
 #: Order of each method's propagated solution.
 ORDERS = {"DP54": 5, "DOP853": 8}
-
-
-@njit(**JIT)
-def dense_eval_dp54(x, y, z, out):
-    """Shampine's 4th-order interpolant at the fraction ``x`` of the step."""
-    for i in range(y.size):
-        out[i] = y[i] + x * (z[3, i] + x * (z[4, i] + x * (z[5, i] + x * z[6, i])))
-
-
-@njit(**JIT)
-def dense_eval_dop853(x, y, z, out):
-    """The 7th-order DOP853 interpolant at the fraction ``x`` of the step."""
-    u = 1.0 - x
-    for i in range(y.size):
-        acc = z[6, i] * x
-        acc = (acc + z[5, i]) * u
-        acc = (acc + z[4, i]) * x
-        acc = (acc + z[3, i]) * u
-        acc = (acc + z[2, i]) * x
-        acc = (acc + z[1, i]) * u
-        acc = (acc + z[0, i]) * x
-        out[i] = y[i] + acc
 
 
 @njit(**JIT)
@@ -105,13 +80,13 @@ def contact_event_crossed(y0, y1, cf):
 
 
 @njit(**JIT)
-def track_peak(y0, y1, f0, f1, h, stats):
-    """Update the running maximum of omega2 with a step's end and any peak inside it.
+def peak_omega2(y0, y1, f0, f1, h, best):
+    """Running maximum of omega2 updated with a step ``y0 -> y1`` of size ``h``.
 
-    Where ``d omega2/dt`` falls through zero inside the step, the peak of the cubic
-    Hermite interpolant of ``omega2`` counts too.
+    The step's end counts, and where ``d omega2/dt`` falls through zero inside the step,
+    the peak of the cubic Hermite interpolant of ``omega2`` too.
     """
-    best = max(stats[ST_W2MAX], y1[OMEGA2])
+    best = max(best, y1[OMEGA2])
     d0, d1 = h * f0[OMEGA2], h * f1[OMEGA2]
     if d0 > 0.0 and d1 < 0.0:
         p0, p1 = y0[OMEGA2], y1[OMEGA2]
@@ -128,21 +103,15 @@ def track_peak(y0, y1, f0, f1, h, stats):
                 x = (-qb + root) / (2.0 * qa)
         if 0.0 <= x <= 1.0:
             best = max(best, p0 + x * (d0 + x * (b + x * c)))
-    stats[ST_W2MAX] = best
+    return best
 
 
 @njit(**JIT)
-def record_step(t, step, y, f, stats, history):
-    """Append a swing step's start to the ring ``history`` (``capacity + 1`` rows)."""
-    capacity = history.shape[0] - 1
-    if capacity > 0:
-        count = int(history[capacity, 0])
-        row = history[count % capacity]
-        row[0], row[1], row[2] = t, step, stats[ST_W2MAX]
-        for i in range(N_SWING):
-            row[3 + i] = y[i]
-            row[3 + N_SWING + i] = f[i]
-        history[capacity, 0] = count + 1
+def history_state(row):
+    """``(t, step, omega2 max before, y, f)`` of a history row, states as tuples."""
+    y = (row[3], row[4], row[5], row[6], row[7], row[8], row[9], row[10])
+    f = (row[11], row[12], row[13], row[14], row[15], row[16], row[17], row[18])
+    return row[0], row[1], row[2], y, f
 
 
 @njit(**JIT)
@@ -162,26 +131,17 @@ def history_find(history, t):
     return -1
 
 
-@njit(**JIT)
-def new_workspace(history_capacity):
-    """Work arrays ``(k, z, y_new, tmp)`` for one thread and an empty step history."""
-    ws = (np.zeros((MAX_STAGES, N_CONTACT)), np.zeros((DENSE_ROWS, N_CONTACT)),
-          np.zeros(N_CONTACT), np.zeros(N_CONTACT))
-    return ws, np.zeros((history_capacity + 1, HISTORY_COLS))
-
-
-def make_phase_integrator(step, error, dense, dense_eval, event_value, event_crossed,
-                          n_state: int, n_stages: int, n_extra: int, error_order: int):
+def make_phase_integrator(step, dense, dense_eval, event_value, event_crossed,
+                          n_stages: int, n_extra: int, error_order: int):
     """Build the compiled integrator of one (method, phase); see the module contract."""
     exponent = -1.0 / (error_order + 1)
 
     @njit(**JIT)
-    def locate(y, z, cf, tmp):
+    def locate(y, z, cf):
         """Fraction of the step where the event value falls through 0 (Illinois)."""
         lo, hi = 0.0, 1.0
         glo = event_value(y, cf)
-        dense_eval(1.0, y, z, tmp)
-        ghi = event_value(tmp, cf)
+        ghi = event_value(dense_eval(1.0, y, z), cf)
         side = 0
         for _ in range(EVENT_MAX_ITER):
             if hi - lo <= EVENT_XTOL:
@@ -189,8 +149,7 @@ def make_phase_integrator(step, error, dense, dense_eval, event_value, event_cro
             x = lo + (hi - lo) * glo / (glo - ghi)
             if not lo < x < hi:
                 x = 0.5 * (lo + hi)
-            dense_eval(x, y, z, tmp)
-            gx = event_value(tmp, cf)
+            gx = event_value(dense_eval(x, y, z), cf)
             if gx > 0.0:
                 lo, glo = x, gx
                 if side == 1:
@@ -207,27 +166,29 @@ def make_phase_integrator(step, error, dense, dense_eval, event_value, event_cro
 
     @njit(**JIT)
     def integrate(t, y, f, t_end, h, h_max, cf, c2, rtol, atol, max_steps, event_on,
-                  stats, ws, history):
-        k, z, y_new, tmp = ws
-        y_new = y_new[:n_state]
-        tmp = tmp[:n_state]
+                  stats, history):
+        # Counters live in locals and reach ``stats`` on return: array accesses inside
+        # the loop would cost reference counting per step.
+        nfev, nstep, nreject, w2max = stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], \
+            stats[ST_W2MAX]
+        capacity = history.shape[0] - 1
+        count = int(history[capacity, 0]) if capacity > 0 else 0
         direction = 1.0 if t_end >= t else -1.0
         h = min(abs(h), h_max)
         rejected = False
+        status = PHASE_END
         while direction * (t_end - t) > 0.0:
-            if stats[ST_NSTEP] >= max_steps:
-                return PHASE_FAIL, t, h
-            if h < MIN_STEP_ULPS * abs(np.nextafter(t, t + direction) - t):
-                return PHASE_FAIL, t, h
+            if nstep >= max_steps or h < MIN_STEP_ULPS * EPS * max(abs(t), 1e-300):
+                status = PHASE_FAIL
+                break
             dt = h * direction
             last = direction * (t + dt - t_end) >= 0.0
             if last:
                 dt = t_end - t
-            step(t, y, f, dt, cf, c2, k, y_new, tmp)
-            stats[ST_NFEV] += n_stages
-            err = error(k, dt, y, y_new, rtol, atol)
+            y_new, f_new, err = step(t, y, f, dt, cf, c2, rtol, atol)
+            nfev += n_stages
             if not err <= 1.0:  # also NaN
-                stats[ST_NREJECT] += 1
+                nreject += 1
                 h = abs(dt) * (max(MIN_FACTOR, SAFETY * err**exponent) if err < np.inf
                                else MIN_FACTOR)
                 rejected = True
@@ -235,23 +196,34 @@ def make_phase_integrator(step, error, dense, dense_eval, event_value, event_cro
             factor = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err**exponent)
             h_next = min(abs(dt) * (min(1.0, factor) if rejected else factor), h_max)
             rejected = False
-            f_new = k[n_stages, :n_state]
-            record_step(t, dt, y, f, stats, history)
-            stats[ST_NSTEP] += 1
+            if capacity > 0:
+                r = count % capacity
+                history[r, 0], history[r, 1], history[r, 2] = t, dt, w2max
+                for i in range(N_CONTACT):
+                    history[r, 3 + i] = y[i]
+                    history[r, 3 + N_CONTACT + i] = f[i]
+                count += 1
+            nstep += 1
             if event_on and event_crossed(y, y_new, cf):
-                dense(t, y, y_new, dt, cf, c2, k, z, tmp)
-                stats[ST_NFEV] += n_extra
-                x = locate(y, z, cf, tmp)
-                dense_eval(x, y, z, tmp)
-                y[:] = tmp
-                stats[ST_W2MAX] = max(stats[ST_W2MAX], y[OMEGA2])
-                return PHASE_EVENT, t + x * dt, h_next
-            track_peak(y, y_new, f, f_new, dt, stats)
-            y[:] = y_new
-            f[:] = f_new
+                z = dense(t, y, f, dt, cf, c2, y_new, f_new)
+                nfev += n_stages - 1 + n_extra
+                x = locate(y, z, cf)
+                y = dense_eval(x, y, z)
+                w2max = max(w2max, y[OMEGA2])
+                t += x * dt
+                f = f_new
+                h = h_next
+                status = PHASE_EVENT
+                break
+            w2max = peak_omega2(y, y_new, f, f_new, dt, w2max)
+            y, f = y_new, f_new
             t = t_end if last else t + dt
             h = h_next
-        return PHASE_END, t, h
+        stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], stats[ST_W2MAX] = \
+            nfev, nstep, nreject, w2max
+        if capacity > 0:
+            history[capacity, 0] = count
+        return status, t, y, f, h
 
     return integrate
 
@@ -270,16 +242,15 @@ def _build(name: str) -> Method:
     key = name.lower()
     n_stages, n_extra = _kernels.N_STAGES[key], _kernels.N_EXTRA[key]
     order = _kernels.ERROR_ORDER[key]
-    dense_eval = dense_eval_dp54 if key == "dp54" else dense_eval_dop853
+    dense_eval = getattr(_kernels, f"dense_eval_{key}")
     phases = {}
-    for phase, n, value, crossed in (
-        ("swing", N_SWING, swing_event_value, swing_event_crossed),
-        ("contact", N_CONTACT, contact_event_value, contact_event_crossed),
+    for phase, value, crossed in (
+        ("swing", swing_event_value, swing_event_crossed),
+        ("contact", contact_event_value, contact_event_crossed),
     ):
         phases[phase] = make_phase_integrator(
-            getattr(_kernels, f"step_{key}_{phase}"), getattr(_kernels, f"error_{key}_{phase}"),
-            getattr(_kernels, f"dense_{key}_{phase}"), dense_eval, value, crossed, n,
-            n_stages, n_extra, order)
+            getattr(_kernels, f"step_{key}_{phase}"), getattr(_kernels, f"dense_{key}_{phase}"),
+            dense_eval, value, crossed, n_stages, n_extra, order)
     return Method(name, phases["swing"], phases["contact"],
                   getattr(_kernels, f"step_{key}_swing"), n_stages)
 

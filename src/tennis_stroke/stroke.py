@@ -26,14 +26,15 @@ import numba
 import numpy as np
 from numba import njit, prange
 
+from ._kernels import coefficient_tuple
 from .dynamics import (
-    BALL_S, BALL_W, CF_C2, CF_C2_OFF, CF_K, CF_LEAD, CF_MB, CF_PHI0, CF_TAU, CF_THETA0,
-    CF_VBALL, COS_PH, COS_TH, JIT, N_CONTACT, N_SWING, OMEGA1, OMEGA2, SIN_PH, SIN_TH,
-    approach_rate, coefficients, effective_mass, elbow_velocity, hit_offset, rhs_trig,
+    BALL_W, CF_C2, CF_C2_OFF, CF_K, CF_LEAD, CF_MB, CF_PHI0, CF_TAU, CF_THETA0, CF_VBALL,
+    COS_PH, COS_TH, JIT, OMEGA1, OMEGA2, SIN_PH, SIN_TH, approach_rate, coefficients,
+    effective_mass, elbow_velocity, hit_offset, rhs_trig,
 )
 from .integrate import (
-    METHODS, N_STATS, PHASE_END, PHASE_FAIL, ST_NFEV, ST_NSTEP, ST_W2MAX, Method,
-    history_find, history_reset, new_workspace, track_peak,
+    HISTORY_COLS, METHODS, N_STATS, PHASE_END, PHASE_FAIL, ST_NFEV, ST_NSTEP, ST_W2MAX,
+    Method, history_find, history_reset, history_state, peak_omega2,
 )
 from .params import ParameterError, resolve_params
 
@@ -166,62 +167,60 @@ def _make_runner(integrate, contact):
     """Compiled loop that runs one phase kind through the torque switches."""
 
     @njit(**JIT)
-    def run(t, y, f, t_stop, h, h_max, cf, event_on, st, stats, ws, history):
+    def run(t, y, t_stop, h, h_max, cf, event_on, st, stats, history):
         while True:
             t_seg = next_switch(t, cf, t_stop)
             c2 = wrist_torque(t, t_seg, cf)
-            rhs_trig(t, y, cf, c2, contact, f)
+            f = rhs_trig(t, y, cf, c2, contact)
             stats[ST_NFEV] += 1
-            status, t, h = integrate(t, y, f, t_seg, h, h_max, cf, c2, st[S_RTOL], st[S_ATOL],
-                                     st[S_MAX_STEPS], event_on, stats, ws, history)
+            status, t, y, f, h = integrate(t, y, f, t_seg, h, h_max, cf, c2, st[S_RTOL],
+                                           st[S_ATOL], st[S_MAX_STEPS], event_on, stats,
+                                           history)
             if status != PHASE_END or t >= t_stop:
-                return status, t, h
+                return status, t, y, h
 
     return run
 
 
 def _make_solver(method: Method):
-    """Compiled ``solve_stroke`` and parallel ``solve_batch`` for one method."""
+    """Compiled parallel ``solve_batch`` for one method."""
     run_swing = _make_runner(method.swing, False)
     run_contact = _make_runner(method.contact, True)
     swing_step = method.swing_step
     n_stages = method.n_stages
 
     @njit(**JIT)
-    def restart_at(t_c, row, cf, y, f, stats, ws):
+    def restart_at(t_c, row, cf, st, stats):
         """Swing state at ``t_c`` by one step from a recorded step start (``row``)."""
-        k, _, y_new, tmp = ws
-        t_i, h_i = row[0], row[1]
-        stats[ST_W2MAX] = row[2]
-        for i in range(N_SWING):
-            y[i] = row[3 + i]
-            f[i] = row[3 + N_SWING + i]
+        t_i, h_i, w2max, y, f = history_state(row)
+        stats[ST_W2MAX] = w2max
         dt = t_c - t_i
-        if dt > 0.0:
-            swing_step(t_i, y, f, dt, cf, wrist_torque(t_i, t_i + h_i, cf), k,
-                       y_new[:N_SWING], tmp[:N_SWING])
-            stats[ST_NFEV] += n_stages
-            track_peak(y, y_new, f, k[n_stages], dt, stats)
-            y[:] = y_new[:N_SWING]
+        if dt <= 0.0:
+            return y
+        y_new, f_new, _ = swing_step(t_i, y, f, dt, cf, wrist_torque(t_i, t_i + h_i, cf),
+                                     st[S_RTOL], st[S_ATOL])
+        stats[ST_NFEV] += n_stages
+        stats[ST_W2MAX] = peak_omega2(y, y_new, f, f_new, dt, w2max)
+        return y_new
 
     @njit(**JIT)
-    def contact(t_c, h, cf, st, out, y, f, stats, ws, history):
+    def contact(t_c, y, h, cf, st, out, stats, history):
         """Ball contact from ``t_c`` to separation, then the follow-through."""
+        st_, ct, sp, cp, w1, w2 = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], y[OMEGA1], y[OMEGA2]
         out[O_T_CONTACT] = t_c
-        out[O_THETA_CONTACT] = math.atan2(y[SIN_TH], y[COS_TH])
-        out[O_W1_CONTACT] = y[OMEGA1]
-        out[O_W2_CONTACT] = y[OMEGA2]
-        y[BALL_S] = hit_offset(y[SIN_TH], y[SIN_PH], cf)
-        y[BALL_W] = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
-        if approach_rate(y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], y[OMEGA1], y[OMEGA2],
-                         y[BALL_W], cf) <= 0.0:
+        out[O_THETA_CONTACT] = math.atan2(st_, ct)
+        out[O_W1_CONTACT] = w1
+        out[O_W2_CONTACT] = w2
+        w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
+        if approach_rate(st_, ct, sp, cp, w1, w2, w, cf) <= 0.0:
             return NO_APPROACH
-        m_eff = effective_mass(y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], cf)
+        y = (st_, ct, sp, cp, w1, w2, hit_offset(st_, sp, cf), w)
+        m_eff = effective_mass(st_, ct, sp, cp, cf)
         mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
         h_max = math.pi * math.sqrt(mu / cf[CF_K]) / st[S_CONTACT_STEPS]
         no_history = history[:1]
-        status, t, h = run_contact(t_c, y, f, st[S_TMAX], min(h, h_max), h_max, cf, True, st,
-                                   stats, ws, no_history)
+        status, t, y, h = run_contact(t_c, y, st[S_TMAX], min(h, h_max), h_max, cf, True, st,
+                                      stats, no_history)
         if status == PHASE_FAIL:
             return STEP_FAILURE
         if status == PHASE_END:
@@ -229,27 +228,24 @@ def _make_solver(method: Method):
         out[O_T_SEP] = t
         out[O_VOUT] = -MS_TO_KMH * (y[BALL_W] + elbow_velocity(t, cf)[0])
         if st[S_FOLLOW] > 0.0:
-            status, t, h = run_swing(t, y[:N_SWING], f[:N_SWING], t + st[S_FOLLOW], h, np.inf,
-                                     cf, False, st, stats, ws, no_history)
+            status, t, y, h = run_swing(t, y, t + st[S_FOLLOW], h, np.inf, cf, False, st,
+                                        stats, no_history)
             if status == PHASE_FAIL:
                 return STEP_FAILURE
         out[O_W2_MAX] = stats[ST_W2MAX]
         return OK
 
     @njit(**JIT)
-    def solve_stroke(cf, st, out, ws, history, scratch):
+    def solve_stroke(cf_row, st, out, history, stats):
         """Simulate one stroke; write the ``O_*`` columns of ``out``."""
+        cf = coefficient_tuple(cf_row)
         out[:] = np.nan
-        y, f, stats = scratch[0], scratch[1], scratch[2, :N_STATS]
         stats[:] = 0.0
-        y[:] = 0.0
         th0, ph0 = cf[CF_THETA0], cf[CF_PHI0]
-        y[SIN_TH], y[COS_TH] = math.sin(th0), math.cos(th0)
-        y[SIN_PH], y[COS_PH] = math.sin(ph0), math.cos(ph0)
+        y = (math.sin(th0), math.cos(th0), math.sin(ph0), math.cos(ph0), 0.0, 0.0, 0.0, 0.0)
         history_reset(history)
-        ys, fs = y[:N_SWING], f[:N_SWING]
-        status, t, h = run_swing(0.0, ys, fs, st[S_TMAX], st[S_FIRST_STEP], np.inf, cf, True,
-                                 st, stats, ws, history)
+        status, t, y, h = run_swing(0.0, y, st[S_TMAX], st[S_FIRST_STEP], np.inf, cf, True,
+                                    st, stats, history)
         code = OK
         if status == PHASE_FAIL:
             code = STEP_FAILURE
@@ -267,8 +263,8 @@ def _make_solver(method: Method):
             elif row < 0:
                 code = LEAD_TOO_LONG
             else:
-                restart_at(t_c, history[row], cf, ys, fs, stats, ws)
-                code = contact(t_c, h, cf, st, out, y, f, stats, ws, history)
+                y = restart_at(t_c, history[row], cf, st, stats)
+                code = contact(t_c, y, h, cf, st, out, stats, history)
         out[O_STATUS] = code
         out[O_NFEV] = stats[ST_NFEV]
         out[O_NSTEP] = stats[ST_NSTEP]
@@ -279,10 +275,10 @@ def _make_solver(method: Method):
         n = cf_rows.shape[0]
         out = np.empty((n, N_OUT))
         for c in prange(n_chunks):
-            ws, history = new_workspace(history_capacity)
-            scratch = np.zeros((3, N_CONTACT))
+            history = np.zeros((history_capacity + 1, HISTORY_COLS))
+            stats = np.zeros(N_STATS)
             for i in range(c * n // n_chunks, (c + 1) * n // n_chunks):
-                solve_stroke(cf_rows[i], st, out[i], ws, history, scratch)
+                solve_stroke(cf_rows[i], st, out[i], history, stats)
         return out
 
     return solve_batch
