@@ -14,6 +14,7 @@ Usage: ``python tools/generate_kernels.py [--check]``
 
 from __future__ import annotations
 
+import importlib.util
 import sys
 from pathlib import Path
 
@@ -84,7 +85,7 @@ def _method(name: str, cls) -> list[str]:
             out.append(f"    return y_new, k{ns}, abs(h) * math.sqrt(e5 / {n})")
         out += ["", "", "@njit(**JIT_FAST)",
                 f"def dense_{name}_{phase}(t, y, f0, h, cf, c2, y_new, f_new):",
-                '    """Dense-output coefficients of the step ``y -> y_new`` (stages recomputed)."""',
+                '    """Dense-output coefficients (7 rows) of the step ``y -> y_new``."""',
                 "    k0 = f0"]
         out += _stages(a, c, 1, ns, n, contact)
         out.append(f"    k{ns} = f_new")
@@ -99,9 +100,10 @@ def _method(name: str, cls) -> list[str]:
                 lambda i, r=r: f"h * ({_combo(cls.D[r], range(16), 'k', i)})"
                 for r in range(cls.D.shape[0])
             ]
-        else:
+        else:  # padded to the 7 rows of DOP853, so both methods return one type
             rows = [lambda i, col=col: f"h * ({_combo(cls.P[:, col], range(ns + 1), 'k', i)})"
                     for col in range(cls.P.shape[1])]
+            rows += [lambda i: zero] * (7 - len(rows))
         tuples = ["(" + ", ".join(row(i) if i < n else zero for i in range(N_STATE)) + ")"
                   for row in rows]
         out.append("    return (" + ",\n            ".join(tuples) + ")")
@@ -126,8 +128,10 @@ def _dense_evals() -> list[str]:
 
 
 def render() -> str:
-    sys.path.insert(0, str(ROOT / "src"))
-    from tennis_stroke.dynamics import N_CF  # noqa: PLC0415
+    spec = importlib.util.spec_from_file_location("dynamics", TARGET.with_name("dynamics.py"))
+    dynamics = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(dynamics)  # the layout only; not the package (it imports us)
+    N_CF = dynamics.N_CF  # noqa: N806
 
     cf = ", ".join(f"row[{i}]" for i in range(N_CF))
     lines = [
@@ -139,10 +143,10 @@ def render() -> str:
         "",
         "from .dynamics import JIT_FAST, rhs_trig",
         "",
-        f"N_STAGES = {{'dp54': {RK45.n_stages}, 'dop853': {DOP853.n_stages}}}",
-        f"ERROR_ORDER = {{'dp54': {RK45.error_estimator_order}, "
-        f"'dop853': {DOP853.error_estimator_order}}}",
-        f"N_EXTRA = {{'dp54': 0, 'dop853': {len(DOP853.C_EXTRA)}}}",
+        "# Indexed by method id (0: DP54, 1: DOP853).",
+        f"N_STAGES_BY_ID = ({RK45.n_stages}, {DOP853.n_stages})",
+        f"N_EXTRA_BY_ID = (0, {len(DOP853.C_EXTRA)})",
+        f"ERROR_ORDER_BY_ID = ({RK45.error_estimator_order}, {DOP853.error_estimator_order})",
         "",
         "",
         "@njit(**JIT_FAST)",

@@ -9,8 +9,9 @@ Two methods, both explicit, adaptive, with local extrapolation and scipy's error
 
 The tableaux are data (scipy's ``RK45``/``DOP853`` coefficients), turned into
 straight-line kernels by ``tools/generate_kernels.py`` (:mod:`tennis_stroke._kernels`).
-This module holds the step-size controller and event location, built once per method
-and phase by :func:`make_phase_integrator`.
+This module holds the dispatch to those kernels, the step-size controller and event
+location.  Methods and phases are runtime integers, not closures: numba caches
+module-level functions on disk, but recompiles closures in every new process.
 
 Contract of a phase integrator ``integrate(t, y, f, t_end, h, h_max, cf, c2, rtol, atol,
 max_steps, event_on, stats, history) -> (status, t, y, f, h)``: advance the state tuple
@@ -24,8 +25,6 @@ phase: the caller ends a phase at every switch and starts a new one.
 from __future__ import annotations
 
 import math
-from typing import NamedTuple
-
 import numpy as np
 from numba import njit
 
@@ -51,7 +50,9 @@ N_STATS = 4
 #: then the state ``y`` and ``f`` at the start.
 HISTORY_COLS = 3 + 2 * N_CONTACT
 
-#: Order of each method's propagated solution.
+#: Method ids (runtime integers of the compiled code) and orders of the solution.
+METHOD_DP54, METHOD_DOP853 = 0, 1
+METHOD_IDS = {"DP54": METHOD_DP54, "DOP853": METHOD_DOP853}
 ORDERS = {"DP54": 5, "DOP853": 8}
 
 
@@ -131,129 +132,180 @@ def history_find(history, t):
     return -1
 
 
-def make_phase_integrator(step, dense, dense_eval, event_value, event_crossed,
-                          n_stages: int, n_extra: int, error_order: int):
-    """Build the compiled integrator of one (method, phase); see the module contract."""
-    exponent = -1.0 / (error_order + 1)
+@njit(**JIT)
+def rk_step(method, contact, t, y, f, h, cf, c2, rtol, atol):
+    """One step of ``method`` in the swing or contact phase: ``(y_new, f_new, error norm)``."""
+    if method == METHOD_DP54:
+        if contact:
+            return _kernels.step_dp54_contact(t, y, f, h, cf, c2, rtol, atol)
+        return _kernels.step_dp54_swing(t, y, f, h, cf, c2, rtol, atol)
+    if contact:
+        return _kernels.step_dop853_contact(t, y, f, h, cf, c2, rtol, atol)
+    return _kernels.step_dop853_swing(t, y, f, h, cf, c2, rtol, atol)
 
-    @njit(**JIT)
-    def locate(y, z, cf):
-        """Fraction of the step where the event value falls through 0 (Illinois)."""
-        lo, hi = 0.0, 1.0
-        glo = event_value(y, cf)
-        ghi = event_value(dense_eval(1.0, y, z), cf)
-        side = 0
-        for _ in range(EVENT_MAX_ITER):
-            if hi - lo <= EVENT_XTOL:
+
+@njit(**JIT)
+def dense_coefficients(method, contact, t, y, f, h, cf, c2, y_new, f_new):
+    """Dense-output coefficients (7 rows) of the step ``y -> y_new``."""
+    if method == METHOD_DP54:
+        if contact:
+            return _kernels.dense_dp54_contact(t, y, f, h, cf, c2, y_new, f_new)
+        return _kernels.dense_dp54_swing(t, y, f, h, cf, c2, y_new, f_new)
+    if contact:
+        return _kernels.dense_dop853_contact(t, y, f, h, cf, c2, y_new, f_new)
+    return _kernels.dense_dop853_swing(t, y, f, h, cf, c2, y_new, f_new)
+
+
+@njit(**JIT)
+def dense_value(method, x, y, z):
+    """State at the fraction ``x`` of the step from its dense-output coefficients ``z``."""
+    if method == METHOD_DP54:
+        return _kernels.dense_eval_dp54(x, y, z)
+    return _kernels.dense_eval_dop853(x, y, z)
+
+
+@njit(**JIT)
+def event_value(contact, y, cf):
+    """The phase's event function: ``sin(phi)`` (swing) or the compression (contact)."""
+    if contact:
+        return contact_event_value(y, cf)
+    return swing_event_value(y, cf)
+
+
+@njit(**JIT)
+def event_crossed(contact, y0, y1, cf):
+    """Whether the phase's event happened during the step ``y0 -> y1``."""
+    if contact:
+        return contact_event_crossed(y0, y1, cf)
+    return swing_event_crossed(y0, y1, cf)
+
+
+@njit(**JIT)
+def locate_event(method, contact, y, z, cf):
+    """Fraction of the step where the event value falls through 0 (Illinois method)."""
+    lo, hi = 0.0, 1.0
+    glo = event_value(contact, y, cf)
+    ghi = event_value(contact, dense_value(method, 1.0, y, z), cf)
+    side = 0
+    for _ in range(EVENT_MAX_ITER):
+        if hi - lo <= EVENT_XTOL:
+            break
+        x = lo + (hi - lo) * glo / (glo - ghi)
+        if not lo < x < hi:
+            x = 0.5 * (lo + hi)
+        gx = event_value(contact, dense_value(method, x, y, z), cf)
+        if gx > 0.0:
+            lo, glo = x, gx
+            if side == 1:
+                ghi *= 0.5
+            side = 1
+        else:
+            hi, ghi = x, gx
+            if side == -1:
+                glo *= 0.5
+            side = -1
+            if gx == 0.0:
                 break
-            x = lo + (hi - lo) * glo / (glo - ghi)
-            if not lo < x < hi:
-                x = 0.5 * (lo + hi)
-            gx = event_value(dense_eval(x, y, z), cf)
-            if gx > 0.0:
-                lo, glo = x, gx
-                if side == 1:
-                    ghi *= 0.5
-                side = 1
-            else:
-                hi, ghi = x, gx
-                if side == -1:
-                    glo *= 0.5
-                side = -1
-                if gx == 0.0:
-                    break
-        return hi
+    return hi
 
-    @njit(**JIT)
-    def integrate(t, y, f, t_end, h, h_max, cf, c2, rtol, atol, max_steps, event_on,
-                  stats, history):
-        # Counters live in locals and reach ``stats`` on return: array accesses inside
-        # the loop would cost reference counting per step.
-        nfev, nstep, nreject, w2max = stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], \
-            stats[ST_W2MAX]
-        capacity = history.shape[0] - 1
-        count = int(history[capacity, 0]) if capacity > 0 else 0
-        direction = 1.0 if t_end >= t else -1.0
-        h = min(abs(h), h_max)
+
+@njit(**JIT)
+def integrate_phase(method, contact, t, y, f, t_end, h, h_max, cf, c2, rtol, atol, max_steps,
+                    event_on, stats, history):
+    """Advance ``(t, y, f)`` towards ``t_end`` within one phase; see the module contract.
+
+    Parameters
+    ----------
+    method : int
+        ``METHOD_DP54`` or ``METHOD_DOP853``.
+    contact : bool
+        Phase kind: free swing (6 integrated components, event ``phi = 0``) or contact
+        (8 components, event separation).
+    t : float
+        Start time (s).
+    y, f : tuple of 8 float
+        State and ``rhs_trig(t, y)``.
+    t_end : float
+        End of the phase (s).
+    h, h_max : float
+        Proposed and largest step magnitude (s).
+    cf : tuple
+        Stroke coefficients.
+    c2 : float
+        Wrist torque during the phase (N m).
+    rtol, atol : float
+        Tolerances of the scaled RMS error norm.
+    max_steps : float
+        Largest total number of accepted steps (``stats[ST_NSTEP]``).
+    event_on : bool
+        Stop at the phase's event.
+    stats : ndarray, shape (N_STATS,)
+        Counters (evaluations, steps, rejections, running max of omega2), updated.
+    history : ndarray, shape (capacity + 1, HISTORY_COLS)
+        Ring of accepted step starts (see :func:`history_find`); capacity 0 records none.
+
+    Returns
+    -------
+    status, t, y, f, h
+        ``PHASE_END``/``PHASE_EVENT``/``PHASE_FAIL``, time reached, state and derivative
+        there, proposed next step.
+    """
+    n_stages = _kernels.N_STAGES_BY_ID[method]
+    n_extra = _kernels.N_EXTRA_BY_ID[method]
+    exponent = -1.0 / (_kernels.ERROR_ORDER_BY_ID[method] + 1)
+    # Counters live in locals and reach ``stats`` on return.
+    nfev, nstep = stats[ST_NFEV], stats[ST_NSTEP]
+    nreject, w2max = stats[ST_NREJECT], stats[ST_W2MAX]
+    capacity = history.shape[0] - 1
+    count = int(history[capacity, 0]) if capacity > 0 else 0
+    direction = 1.0 if t_end >= t else -1.0
+    h = min(abs(h), h_max)
+    rejected = False
+    status = PHASE_END
+    while direction * (t_end - t) > 0.0:
+        if nstep >= max_steps or h < MIN_STEP_ULPS * EPS * max(abs(t), 1e-300):
+            status = PHASE_FAIL
+            break
+        dt = h * direction
+        last = direction * (t + dt - t_end) >= 0.0
+        if last:
+            dt = t_end - t
+        y_new, f_new, err = rk_step(method, contact, t, y, f, dt, cf, c2, rtol, atol)
+        nfev += n_stages
+        if not err <= 1.0:  # also NaN
+            nreject += 1
+            h = abs(dt) * (max(MIN_FACTOR, SAFETY * err**exponent) if err < np.inf
+                           else MIN_FACTOR)
+            rejected = True
+            continue
+        factor = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err**exponent)
+        h_next = min(abs(dt) * (min(1.0, factor) if rejected else factor), h_max)
         rejected = False
-        status = PHASE_END
-        while direction * (t_end - t) > 0.0:
-            if nstep >= max_steps or h < MIN_STEP_ULPS * EPS * max(abs(t), 1e-300):
-                status = PHASE_FAIL
-                break
-            dt = h * direction
-            last = direction * (t + dt - t_end) >= 0.0
-            if last:
-                dt = t_end - t
-            y_new, f_new, err = step(t, y, f, dt, cf, c2, rtol, atol)
-            nfev += n_stages
-            if not err <= 1.0:  # also NaN
-                nreject += 1
-                h = abs(dt) * (max(MIN_FACTOR, SAFETY * err**exponent) if err < np.inf
-                               else MIN_FACTOR)
-                rejected = True
-                continue
-            factor = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err**exponent)
-            h_next = min(abs(dt) * (min(1.0, factor) if rejected else factor), h_max)
-            rejected = False
-            if capacity > 0:
-                r = count % capacity
-                history[r, 0], history[r, 1], history[r, 2] = t, dt, w2max
-                for i in range(N_CONTACT):
-                    history[r, 3 + i] = y[i]
-                    history[r, 3 + N_CONTACT + i] = f[i]
-                count += 1
-            nstep += 1
-            if event_on and event_crossed(y, y_new, cf):
-                z = dense(t, y, f, dt, cf, c2, y_new, f_new)
-                nfev += n_stages - 1 + n_extra
-                x = locate(y, z, cf)
-                y = dense_eval(x, y, z)
-                w2max = max(w2max, y[OMEGA2])
-                t += x * dt
-                f = f_new
-                h = h_next
-                status = PHASE_EVENT
-                break
-            w2max = peak_omega2(y, y_new, f, f_new, dt, w2max)
-            y, f = y_new, f_new
-            t = t_end if last else t + dt
-            h = h_next
-        stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], stats[ST_W2MAX] = \
-            nfev, nstep, nreject, w2max
         if capacity > 0:
-            history[capacity, 0] = count
-        return status, t, y, f, h
-
-    return integrate
-
-
-class Method(NamedTuple):
-    """The compiled pieces of one method: a phase integrator per phase and the raw step."""
-
-    name: str
-    swing: object
-    contact: object
-    swing_step: object
-    n_stages: int
-
-
-def _build(name: str) -> Method:
-    key = name.lower()
-    n_stages, n_extra = _kernels.N_STAGES[key], _kernels.N_EXTRA[key]
-    order = _kernels.ERROR_ORDER[key]
-    dense_eval = getattr(_kernels, f"dense_eval_{key}")
-    phases = {}
-    for phase, value, crossed in (
-        ("swing", swing_event_value, swing_event_crossed),
-        ("contact", contact_event_value, contact_event_crossed),
-    ):
-        phases[phase] = make_phase_integrator(
-            getattr(_kernels, f"step_{key}_{phase}"), getattr(_kernels, f"dense_{key}_{phase}"),
-            dense_eval, value, crossed, n_stages, n_extra, order)
-    return Method(name, phases["swing"], phases["contact"],
-                  getattr(_kernels, f"step_{key}_swing"), n_stages)
-
-
-#: The compiled methods by name.
-METHODS: dict[str, Method] = {name: _build(name) for name in ORDERS}
+            r = count % capacity
+            history[r, 0], history[r, 1], history[r, 2] = t, dt, w2max
+            for i in range(N_CONTACT):
+                history[r, 3 + i] = y[i]
+                history[r, 3 + N_CONTACT + i] = f[i]
+            count += 1
+        nstep += 1
+        if event_on and event_crossed(contact, y, y_new, cf):
+            z = dense_coefficients(method, contact, t, y, f, dt, cf, c2, y_new, f_new)
+            nfev += n_stages - 1 + n_extra
+            x = locate_event(method, contact, y, z, cf)
+            y = dense_value(method, x, y, z)
+            w2max = max(w2max, y[OMEGA2])
+            t += x * dt
+            f = f_new
+            h = h_next
+            status = PHASE_EVENT
+            break
+        w2max = peak_omega2(y, y_new, f, f_new, dt, w2max)
+        y, f = y_new, f_new
+        t = t_end if last else t + dt
+        h = h_next
+    stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], stats[ST_W2MAX] = \
+        nfev, nstep, nreject, w2max
+    if capacity > 0:
+        history[capacity, 0] = count
+    return status, t, y, f, h

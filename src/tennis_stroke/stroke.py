@@ -26,15 +26,15 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import coefficient_tuple
+from ._kernels import N_STAGES_BY_ID, coefficient_tuple
 from .dynamics import (
     BALL_W, CF_C2, CF_C2_OFF, CF_K, CF_LEAD, CF_MB, CF_PHI0, CF_TAU, CF_THETA0, CF_VBALL,
     COS_PH, COS_TH, JIT, OMEGA1, OMEGA2, SIN_PH, SIN_TH, approach_rate, coefficients,
     effective_mass, elbow_velocity, hit_offset, rhs_trig,
 )
 from .integrate import (
-    HISTORY_COLS, METHODS, N_STATS, PHASE_END, PHASE_FAIL, ST_NFEV, ST_NSTEP, ST_W2MAX,
-    Method, history_find, history_reset, history_state, peak_omega2,
+    HISTORY_COLS, METHOD_IDS, N_STATS, PHASE_END, PHASE_FAIL, ST_NFEV, ST_NSTEP, ST_W2MAX,
+    history_find, history_reset, history_state, integrate_phase, peak_omega2, rk_step,
 )
 from .params import ParameterError, resolve_params
 
@@ -113,16 +113,16 @@ class SolverSettings:
     rtol: float = 1e-9
     atol: float = 1e-9
     t_max: float = 1.0
-    first_step: float = 1e-3
+    first_step: float = 0.02
     max_steps: int = 100_000
     contact_min_steps: float = 2.0
     follow_through: float = 0.0
     history: int = 512
 
     def __post_init__(self) -> None:
-        if self.method not in METHODS:
+        if self.method not in METHOD_IDS:
             raise ParameterError(
-                f"solver method must be one of {', '.join(METHODS)}, got {self.method!r}"
+                f"solver method must be one of {', '.join(METHOD_IDS)}, got {self.method!r}"
             )
         for name in ("rtol", "atol", "t_max", "first_step", "contact_min_steps"):
             value = getattr(self, name)
@@ -163,129 +163,116 @@ def wrist_torque(t_a, t_b, cf):
     return cf[CF_C2] if cf[CF_TAU] <= mid < cf[CF_C2_OFF] else 0.0
 
 
-def _make_runner(integrate, contact):
-    """Compiled loop that runs one phase kind through the torque switches."""
-
-    @njit(**JIT)
-    def run(t, y, t_stop, h, h_max, cf, event_on, st, stats, history):
-        while True:
-            t_seg = next_switch(t, cf, t_stop)
-            c2 = wrist_torque(t, t_seg, cf)
-            f = rhs_trig(t, y, cf, c2, contact)
-            stats[ST_NFEV] += 1
-            status, t, y, f, h = integrate(t, y, f, t_seg, h, h_max, cf, c2, st[S_RTOL],
-                                           st[S_ATOL], st[S_MAX_STEPS], event_on, stats,
-                                           history)
-            if status != PHASE_END or t >= t_stop:
-                return status, t, y, h
-
-    return run
+@njit(**JIT)
+def run_phases(method, contact, t, y, t_stop, h, h_max, cf, event_on, st, stats, history):
+    """Integrate one phase kind through the torque switches until an event or ``t_stop``."""
+    while True:
+        t_seg = next_switch(t, cf, t_stop)
+        c2 = wrist_torque(t, t_seg, cf)
+        f = rhs_trig(t, y, cf, c2, contact)
+        stats[ST_NFEV] += 1
+        status, t, y, f, h = integrate_phase(method, contact, t, y, f, t_seg, h, h_max, cf, c2,
+                                             st[S_RTOL], st[S_ATOL], st[S_MAX_STEPS],
+                                             event_on, stats, history)
+        if status != PHASE_END or t >= t_stop:
+            return status, t, y, h
 
 
-def _make_solver(method: Method):
-    """Compiled parallel ``solve_batch`` for one method."""
-    run_swing = _make_runner(method.swing, False)
-    run_contact = _make_runner(method.contact, True)
-    swing_step = method.swing_step
-    n_stages = method.n_stages
+@njit(**JIT)
+def restart_at(method, t_c, row, cf, st, stats):
+    """Swing state at ``t_c`` by one step from a recorded step start (``row``)."""
+    t_i, h_i, w2max, y, f = history_state(row)
+    stats[ST_W2MAX] = w2max
+    dt = t_c - t_i
+    if dt <= 0.0:
+        return y
+    y_new, f_new, _ = rk_step(method, False, t_i, y, f, dt, cf,
+                              wrist_torque(t_i, t_i + h_i, cf), st[S_RTOL], st[S_ATOL])
+    stats[ST_NFEV] += N_STAGES_BY_ID[method]
+    stats[ST_W2MAX] = peak_omega2(y, y_new, f, f_new, dt, w2max)
+    return y_new
 
-    @njit(**JIT)
-    def restart_at(t_c, row, cf, st, stats):
-        """Swing state at ``t_c`` by one step from a recorded step start (``row``)."""
-        t_i, h_i, w2max, y, f = history_state(row)
-        stats[ST_W2MAX] = w2max
-        dt = t_c - t_i
-        if dt <= 0.0:
-            return y
-        y_new, f_new, _ = swing_step(t_i, y, f, dt, cf, wrist_torque(t_i, t_i + h_i, cf),
-                                     st[S_RTOL], st[S_ATOL])
-        stats[ST_NFEV] += n_stages
-        stats[ST_W2MAX] = peak_omega2(y, y_new, f, f_new, dt, w2max)
-        return y_new
 
-    @njit(**JIT)
-    def contact(t_c, y, h, cf, st, out, stats, history):
-        """Ball contact from ``t_c`` to separation, then the follow-through."""
-        st_, ct, sp, cp, w1, w2 = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], y[OMEGA1], y[OMEGA2]
-        out[O_T_CONTACT] = t_c
-        out[O_THETA_CONTACT] = math.atan2(st_, ct)
-        out[O_W1_CONTACT] = w1
-        out[O_W2_CONTACT] = w2
-        w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
-        if approach_rate(st_, ct, sp, cp, w1, w2, w, cf) <= 0.0:
-            return NO_APPROACH
-        y = (st_, ct, sp, cp, w1, w2, hit_offset(st_, sp, cf), w)
-        m_eff = effective_mass(st_, ct, sp, cp, cf)
-        mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
-        h_max = math.pi * math.sqrt(mu / cf[CF_K]) / st[S_CONTACT_STEPS]
-        no_history = history[:1]
-        status, t, y, h = run_contact(t_c, y, st[S_TMAX], min(h, h_max), h_max, cf, True, st,
-                                      stats, no_history)
+@njit(**JIT)
+def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
+    """Ball contact from ``t_c`` to separation, then the follow-through; returns a status."""
+    s_th, c_th, s_ph, c_ph = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH]
+    w1, w2 = y[OMEGA1], y[OMEGA2]
+    out[O_T_CONTACT] = t_c
+    out[O_THETA_CONTACT] = math.atan2(s_th, c_th)
+    out[O_W1_CONTACT] = w1
+    out[O_W2_CONTACT] = w2
+    w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
+    if approach_rate(s_th, c_th, s_ph, c_ph, w1, w2, w, cf) <= 0.0:
+        return NO_APPROACH
+    y = (s_th, c_th, s_ph, c_ph, w1, w2, hit_offset(s_th, s_ph, cf), w)
+    m_eff = effective_mass(s_th, c_th, s_ph, c_ph, cf)
+    mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
+    h_max = math.pi * math.sqrt(mu / cf[CF_K]) / st[S_CONTACT_STEPS]
+    no_history = history[:1]
+    status, t, y, h = run_phases(method, True, t_c, y, st[S_TMAX], min(h, h_max), h_max, cf,
+                                 True, st, stats, no_history)
+    if status == PHASE_FAIL:
+        return STEP_FAILURE
+    if status == PHASE_END:
+        return NO_RELEASE
+    out[O_T_SEP] = t
+    out[O_VOUT] = -MS_TO_KMH * (y[BALL_W] + elbow_velocity(t, cf)[0])
+    if st[S_FOLLOW] > 0.0:
+        status, t, y, h = run_phases(method, False, t, y, t + st[S_FOLLOW], h, np.inf, cf,
+                                     False, st, stats, no_history)
         if status == PHASE_FAIL:
             return STEP_FAILURE
-        if status == PHASE_END:
-            return NO_RELEASE
-        out[O_T_SEP] = t
-        out[O_VOUT] = -MS_TO_KMH * (y[BALL_W] + elbow_velocity(t, cf)[0])
-        if st[S_FOLLOW] > 0.0:
-            status, t, y, h = run_swing(t, y, t + st[S_FOLLOW], h, np.inf, cf, False, st,
-                                        stats, no_history)
-            if status == PHASE_FAIL:
-                return STEP_FAILURE
-        out[O_W2_MAX] = stats[ST_W2MAX]
-        return OK
+    out[O_W2_MAX] = stats[ST_W2MAX]
+    return OK
 
-    @njit(**JIT)
-    def solve_stroke(cf_row, st, out, history, stats):
-        """Simulate one stroke; write the ``O_*`` columns of ``out``."""
-        cf = coefficient_tuple(cf_row)
-        out[:] = np.nan
-        stats[:] = 0.0
-        th0, ph0 = cf[CF_THETA0], cf[CF_PHI0]
-        y = (math.sin(th0), math.cos(th0), math.sin(ph0), math.cos(ph0), 0.0, 0.0, 0.0, 0.0)
-        history_reset(history)
-        status, t, y, h = run_swing(0.0, y, st[S_TMAX], st[S_FIRST_STEP], np.inf, cf, True,
-                                    st, stats, history)
-        code = OK
-        if status == PHASE_FAIL:
-            code = STEP_FAILURE
-        elif status == PHASE_END:
-            code = NO_PHI_ZERO
+
+@njit(**JIT)
+def solve_stroke(method, cf_row, st, out, history, stats):
+    """Simulate one stroke (coefficient row ``cf_row``); write the ``O_*`` columns of ``out``."""
+    cf = coefficient_tuple(cf_row)
+    out[:] = np.nan
+    stats[:] = 0.0
+    th0, ph0 = cf[CF_THETA0], cf[CF_PHI0]
+    y = (math.sin(th0), math.cos(th0), math.sin(ph0), math.cos(ph0), 0.0, 0.0, 0.0, 0.0)
+    history_reset(history)
+    status, t, y, h = run_phases(method, False, 0.0, y, st[S_TMAX], st[S_FIRST_STEP], np.inf,
+                                 cf, True, st, stats, history)
+    code = OK
+    if status == PHASE_FAIL:
+        code = STEP_FAILURE
+    elif status == PHASE_END:
+        code = NO_PHI_ZERO
+    else:
+        out[O_T_PHI0] = t
+        out[O_THETA_PHI0] = math.atan2(y[SIN_TH], y[COS_TH])
+        out[O_W1_PHI0] = y[OMEGA1]
+        out[O_W2_PHI0] = y[OMEGA2]
+        t_c = t - cf[CF_LEAD]
+        row = history_find(history, t_c)
+        if t_c < 0.0:
+            code = EARLY_CONTACT
+        elif row < 0:
+            code = LEAD_TOO_LONG
         else:
-            out[O_T_PHI0] = t
-            out[O_THETA_PHI0] = math.atan2(y[SIN_TH], y[COS_TH])
-            out[O_W1_PHI0] = y[OMEGA1]
-            out[O_W2_PHI0] = y[OMEGA2]
-            t_c = t - cf[CF_LEAD]
-            row = history_find(history, t_c)
-            if t_c < 0.0:
-                code = EARLY_CONTACT
-            elif row < 0:
-                code = LEAD_TOO_LONG
-            else:
-                y = restart_at(t_c, history[row], cf, st, stats)
-                code = contact(t_c, y, h, cf, st, out, stats, history)
-        out[O_STATUS] = code
-        out[O_NFEV] = stats[ST_NFEV]
-        out[O_NSTEP] = stats[ST_NSTEP]
-
-    @njit(parallel=True, **JIT)
-    def solve_batch(cf_rows, st, n_chunks, history_capacity):
-        """Solve every stroke (row of ``cf_rows``) in parallel chunks: ``(n, N_OUT)``."""
-        n = cf_rows.shape[0]
-        out = np.empty((n, N_OUT))
-        for c in prange(n_chunks):
-            history = np.zeros((history_capacity + 1, HISTORY_COLS))
-            stats = np.zeros(N_STATS)
-            for i in range(c * n // n_chunks, (c + 1) * n // n_chunks):
-                solve_stroke(cf_rows[i], st, out[i], history, stats)
-        return out
-
-    return solve_batch
+            y = restart_at(method, t_c, history[row], cf, st, stats)
+            code = contact_phase(method, t_c, y, h, cf, st, out, stats, history)
+    out[O_STATUS] = code
+    out[O_NFEV] = stats[ST_NFEV]
+    out[O_NSTEP] = stats[ST_NSTEP]
 
 
-#: The compiled batch solver of each method.
-SOLVERS = {name: _make_solver(method) for name, method in METHODS.items()}
+@njit(parallel=True, **JIT)
+def solve_batch(method, cf_rows, st, n_chunks, history_capacity):
+    """Solve every stroke (row of ``cf_rows``) in parallel chunks: ``(n, N_OUT)``."""
+    n = cf_rows.shape[0]
+    out = np.empty((n, N_OUT))
+    for c in prange(n_chunks):
+        history = np.zeros((history_capacity + 1, HISTORY_COLS))
+        stats = np.zeros(N_STATS)
+        for i in range(c * n // n_chunks, (c + 1) * n // n_chunks):
+            solve_stroke(method, cf_rows[i], st, out[i], history, stats)
+    return out
 
 
 #: Strokes per call of the compiled batch when a progress bar is shown.
@@ -307,21 +294,22 @@ def solve_coefficients(cf_rows: np.ndarray, settings: SolverSettings | None = No
         Show a tqdm progress bar (in blocks of :data:`PROGRESS_BLOCK` strokes).
     """
     settings = settings or SolverSettings()
-    solve_batch = SOLVERS[settings.method]
+    method = METHOD_IDS[settings.method]
     st = settings.as_array()
     if threads is not None:
         numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
     n_threads = numba.get_num_threads()
     n = cf_rows.shape[0]
     if not progress or n <= PROGRESS_BLOCK:
-        return solve_batch(cf_rows, st, min(max(n, 1), 4 * n_threads), settings.history)
+        return solve_batch(method, cf_rows, st, min(max(n, 1), 4 * n_threads),
+                           settings.history)
     from tqdm import tqdm
 
     out = np.empty((n, N_OUT))
     with tqdm(total=n, unit="stroke", leave=False) as bar:
         for a in range(0, n, PROGRESS_BLOCK):
             b = min(a + PROGRESS_BLOCK, n)
-            out[a:b] = solve_batch(cf_rows[a:b], st, 4 * n_threads, settings.history)
+            out[a:b] = solve_batch(method, cf_rows[a:b], st, 4 * n_threads, settings.history)
             bar.update(b - a)
     return out
 

@@ -1,0 +1,177 @@
+"""The ``tennis-stroke`` command: one stroke (``strike``) or a grid of strokes (``sweep``).
+
+Bad input ends with one line ``tennis-stroke: error: ...`` on stderr and exit status 2,
+before any output file is created.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+import time
+from collections.abc import Sequence
+
+import numpy as np
+
+EXIT_USAGE = 2
+
+
+class _Parser(argparse.ArgumentParser):
+    """argparse with a one-line error (no usage dump) and exit status 2."""
+
+    def error(self, message: str) -> None:  # noqa: D102
+        _fail(message)
+
+
+def _fail(message: str) -> None:
+    sys.stderr.write(f"tennis-stroke: error: {message}\n")
+    raise SystemExit(EXIT_USAGE)
+
+
+def _parse_set(items: Sequence[str]) -> dict[str, object]:
+    from .params import parse_value
+
+    out: dict[str, object] = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        if not sep or not key:
+            raise ValueError(f"--set expects KEY=VALUE, got {item!r}")
+        out[key.strip()] = parse_value(key.strip(), value.strip())
+    return out
+
+
+def parse_range(text: str, name: str) -> np.ndarray:
+    """``START:STOP:NUM`` -> ``numpy.linspace(START, STOP, NUM)`` (degrees)."""
+    parts = text.split(":")
+    if len(parts) != 3:
+        raise ValueError(f"--{name} expects START:STOP:NUM, got {text!r}")
+    try:
+        start, stop = float(parts[0]), float(parts[1])
+        num = int(parts[2])
+    except ValueError:
+        raise ValueError(f"--{name} expects numbers START:STOP:NUM, got {text!r}") from None
+    if not (math.isfinite(start) and math.isfinite(stop)):
+        raise ValueError(f"--{name} START and STOP must be finite, got {text!r}")
+    if num < 1:
+        raise ValueError(f"--{name} NUM must be >= 1, got {num}")
+    return np.linspace(start, stop, num)
+
+
+def angle(text: str) -> float:
+    value = float(text)
+    if not math.isfinite(value):
+        raise argparse.ArgumentTypeError(f"angle must be finite, got {text!r}")
+    return value
+
+
+def build_parser() -> argparse.ArgumentParser:
+    parser = _Parser(prog="tennis-stroke", description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+
+    def common(p: argparse.ArgumentParser) -> None:
+        p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
+                       help="override a model parameter (SI units) or a reading")
+        p.add_argument("--method", default="DOP853", help="DOP853 (default) or DP54")
+        p.add_argument("--rtol", type=float, default=None, help="relative tolerance")
+        p.add_argument("--atol", type=float, default=None, help="absolute tolerance")
+
+    strike = sub.add_parser("strike", help="simulate one stroke")
+    strike.add_argument("--theta0", type=angle, required=True, metavar="DEG")
+    strike.add_argument("--delta0", type=angle, required=True, metavar="DEG")
+    strike.add_argument("--json", action="store_true", help="print one JSON object")
+    common(strike)
+
+    sweep = sub.add_parser("sweep", help="simulate a (theta0, delta0) grid into netCDF")
+    sweep.add_argument("--theta0", required=True, metavar="START:STOP:NUM")
+    sweep.add_argument("--delta0", required=True, metavar="START:STOP:NUM")
+    sweep.add_argument("--out", required=True, metavar="FILE.nc")
+    sweep.add_argument("--threads", type=int, default=None, help="threads (default: all)")
+    sweep.add_argument("--no-progress", action="store_true", help="no progress bar")
+    common(sweep)
+    return parser
+
+
+def _settings(args: argparse.Namespace):
+    from .stroke import SolverSettings
+
+    kwargs = {"method": args.method}
+    if args.rtol is not None:
+        kwargs["rtol"] = args.rtol
+    if args.atol is not None:
+        kwargs["atol"] = args.atol
+    return SolverSettings(**kwargs)
+
+
+def _strike(args: argparse.Namespace) -> int:
+    from .params import resolve_params, scalar_params
+    from .stroke import strike
+
+    overrides = _parse_set(args.set)
+    params = resolve_params(overrides)
+    settings = _settings(args)
+    result = strike(args.theta0, args.delta0, overrides, settings)
+    if args.json:
+        fields = {"status": result["status_name"], "status_code": result["status"]}
+        fields.update((k, v) for k, v in result.items() if k not in ("status", "status_name"))
+        payload = {
+            "params": {"theta0_deg": args.theta0, "delta0_deg": args.delta0,
+                       **scalar_params(params)},
+            "solver": settings.as_dict(),
+            "result": {k: None if isinstance(v, float) and math.isnan(v) else v
+                       for k, v in fields.items()},
+        }
+        print(json.dumps(payload, indent=2))
+        return 0
+    from .stroke import RESULT_FIELDS
+
+    print(f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
+          f"{result['status_name']}")
+    for name, (_, units, long_name) in RESULT_FIELDS.items():
+        if name != "status":
+            print(f"  {name:18s} {result[name]:14.6f} {units:7s} {long_name}")
+    return 0
+
+
+def _sweep(args: argparse.Namespace) -> int:
+    from .io import check_writable, result_dataset, write_netcdf
+    from .params import resolve_params
+    from .stroke import strike_batch
+
+    theta0 = parse_range(args.theta0, "theta0")
+    delta0 = parse_range(args.delta0, "delta0")
+    overrides = _parse_set(args.set)
+    params = resolve_params(overrides)
+    settings = _settings(args)
+    if args.threads is not None and args.threads < 1:
+        raise ValueError(f"--threads must be >= 1, got {args.threads}")
+    out = check_writable(args.out)
+    start = time.perf_counter()
+    results = strike_batch(theta0[:, None], delta0[None, :], overrides, settings,
+                           threads=args.threads,
+                           progress=not args.no_progress and sys.stderr.isatty())
+    wall = time.perf_counter() - start
+    ds = result_dataset(results, {"theta0": theta0, "delta0": delta0}, params, settings,
+                        {"wall_time_s": wall, "command": " ".join(sys.argv)})
+    write_netcdf(ds, out)
+    n_ok = int((results["status"] == 0).sum())
+    print(f"{out}: {results['status'].size} strokes ({n_ok} ok) in {wall:.2f} s")
+    return 0
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Entry point of the ``tennis-stroke`` console script."""
+    args = build_parser().parse_args(argv)
+    from .io import OutputError
+    from .params import ParameterError
+
+    try:
+        return _strike(args) if args.command == "strike" else _sweep(args)
+    except (ParameterError, OutputError, ValueError) as exc:
+        _fail(str(exc))
+    return EXIT_USAGE
+
+
+if __name__ == "__main__":
+    sys.exit(main())

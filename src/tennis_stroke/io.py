@@ -1,0 +1,153 @@
+"""Result files: xarray datasets with CF attributes and provenance, written atomically.
+
+Every variable and coordinate gets ``units`` and ``long_name`` from one table
+(:data:`tennis_stroke.stroke.RESULT_FIELDS` for stroke results, :data:`COORDINATES` for
+the grid axes).  Global attributes record the resolved parameters, the readings, the
+solver settings, the package version and the git commit.  Files are written under a
+temporary name and renamed, so a final name never holds a truncated file.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import subprocess
+import tempfile
+from collections.abc import Mapping
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .params import PARAMETERS, READINGS, scalar_params
+from .stroke import RESULT_FIELDS, STATUS_NAMES, SolverSettings
+
+#: Grid coordinates: name -> (units, long_name).
+COORDINATES: dict[str, tuple[str, str]] = {
+    "theta0": ("degree", "initial rod-1 angle theta(0) from -y"),
+    "delta0": ("degree", "initial angle delta(0) = phi(0) - theta(0) between the rods"),
+}
+#: File name of a result variable when it differs from the result field name.
+VARIABLE_NAMES = {"v_out_kmh": "v_out"}
+
+
+class OutputError(OSError):
+    """The output file cannot be written (message is one line)."""
+
+
+def git_commit() -> str:
+    """Commit of the source tree this package runs from, or ``"unknown"``."""
+    try:
+        out = subprocess.run(
+            ["git", "rev-parse", "HEAD"], cwd=Path(__file__).parent, capture_output=True,
+            text=True, timeout=5, check=True)
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=Path(__file__).parent, capture_output=True, text=True, timeout=5, check=True)
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
+
+
+def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[str, object]:
+    """Global attributes: parameters (``param_*`` with units), readings, solver, versions."""
+    from . import __version__
+
+    attrs: dict[str, object] = {
+        "Conventions": "CF-1.10",
+        "title": "Youn double-pendulum tennis stroke with ball collision",
+        "source": f"tennis-stroke {__version__}",
+        "tennis_stroke_version": __version__,
+        "git_commit": git_commit(),
+        "python_version": platform.python_version(),
+        "numpy_version": np.__version__,
+        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} written by tennis-stroke",
+    }
+    for name, value in scalar_params(params).items():
+        if name in READINGS:
+            attrs[f"reading_{name}"] = str(value)
+        else:
+            attrs[f"param_{name}"] = float(value)
+            attrs[f"param_{name}_units"] = PARAMETERS[name].unit
+    for name, value in settings.as_dict().items():
+        attrs[f"solver_{name}"] = value
+    return attrs
+
+
+def result_dataset(results: Mapping[str, np.ndarray], coords: Mapping[str, np.ndarray],
+                   params: Mapping[str, object], settings: SolverSettings,
+                   extra_attrs: Mapping[str, object] | None = None) -> xr.Dataset:
+    """A dataset of stroke results on named grid axes, with CF metadata and provenance.
+
+    Parameters
+    ----------
+    results : mapping of str to ndarray
+        Result fields (:data:`RESULT_FIELDS`) shaped like the grid.
+    coords : mapping of str to 1-D ndarray
+        Grid axes in order (names should be in :data:`COORDINATES` or carry their own
+        ``(values, units, long_name)`` tuple).
+    params : mapping
+        Resolved parameters (scalars become attributes).
+    settings : SolverSettings
+    extra_attrs : mapping, optional
+        More global attributes (e.g. wall time).
+    """
+    dims = list(coords)
+    coord_vars = {}
+    for name, values in coords.items():
+        if isinstance(values, tuple):
+            values, units, long_name = values
+        else:
+            units, long_name = COORDINATES[name]
+        coord_vars[name] = (name, np.asarray(values, dtype=float),
+                            {"units": units, "long_name": long_name})
+    data_vars = {}
+    for field, values in results.items():
+        _, units, long_name = RESULT_FIELDS[field]
+        attrs = {"units": units, "long_name": long_name}
+        if field == "status":
+            attrs["flag_values"] = np.array(sorted(STATUS_NAMES), dtype=np.int64)
+            attrs["flag_meanings"] = " ".join(STATUS_NAMES[k] for k in sorted(STATUS_NAMES))
+        data_vars[VARIABLE_NAMES.get(field, field)] = (dims, np.asarray(values), attrs)
+    ds = xr.Dataset(data_vars, coords=coord_vars)
+    ds.attrs.update(provenance(params, settings))
+    ds.attrs.update(extra_attrs or {})
+    return ds
+
+
+def check_writable(path: str | os.PathLike) -> Path:
+    """Fail early (:class:`OutputError`) if ``path`` cannot be created; return it.
+
+    Creates and removes a temporary file beside ``path``: the only reliable test.
+    """
+    path = Path(path)
+    parent = path.parent
+    if path.is_dir():
+        raise OutputError(f"output path {str(path)!r} is a directory")
+    if not parent.is_dir():
+        raise OutputError(f"output directory {str(parent)!r} does not exist")
+    try:
+        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent)
+    except OSError as exc:
+        raise OutputError(f"cannot write to {str(parent)!r}: {exc.strerror}") from None
+    os.close(fd)
+    os.unlink(tmp)
+    return path
+
+
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename)."""
+    path = check_writable(path)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, engine="netcdf4")
+        os.replace(tmp, path)
+    except OSError as exc:
+        Path(tmp).unlink(missing_ok=True)
+        raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path

@@ -1,0 +1,192 @@
+"""The independent path: the same stroke with :func:`scipy.integrate.solve_ivp`.
+
+It shares only the physics (:func:`tennis_stroke.dynamics.rhs_angles`, which evaluates
+:func:`~tennis_stroke.dynamics.rhs_trig`) with the compiled path; state layout (angles
+instead of sines and cosines), integrator, event location and restart at the contact
+start are scipy's.  The phase splitting is the same (torque switches, ``phi = 0``,
+contact start, separation), so the two paths can be compared stroke by stroke.  It is
+used for verification, for the benchmark baseline and for trajectories to plot.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from .dynamics import (
+    A_BALL_S, A_BALL_W, A_OMEGA1, A_OMEGA2, A_PHI, A_THETA, CF_K, CF_LEAD, CF_MB, CF_PHI0,
+    CF_THETA0, CF_VBALL, approach_rate, coefficients, effective_mass, elbow_velocity,
+    hit_offset, rhs_angles,
+)
+from .params import resolve_params
+from .stroke import (
+    EARLY_CONTACT, MS_TO_KMH, NO_APPROACH, NO_PHI_ZERO, NO_RELEASE, OK, RESULT_FIELDS,
+    STATUS_NAMES, STEP_FAILURE, next_switch, wrist_torque,
+)
+
+
+#: Samples per phase for ``omega2_max`` on the reference path.
+OMEGA2_SAMPLES = 512
+
+
+@dataclass
+class Segment:
+    """One integrated phase: time span, contact flag and scipy's dense solution."""
+
+    t0: float
+    t1: float
+    contact: bool
+    sol: object
+
+
+@dataclass
+class ReferenceStroke:
+    """Result of :func:`solve_stroke`: the result fields and the phases for plotting."""
+
+    result: dict[str, float]
+    segments: list[Segment] = field(default_factory=list)
+
+    def sample(self, times: np.ndarray) -> dict[str, np.ndarray]:
+        """``theta, phi`` (rad), ``omega1, omega2`` (rad/s) of the actual stroke at ``times``.
+
+        The actual stroke is the swing until the contact start, the contact until
+        separation, then the follow-through (if simulated); NaN outside.
+        """
+        times = np.asarray(times, dtype=float)
+        out = {k: np.full(times.shape, np.nan) for k in ("theta", "phi", "omega1", "omega2")}
+        for seg in self.segments:
+            mask = (times >= seg.t0) & (times <= seg.t1)
+            if np.any(mask):
+                y = seg.sol(times[mask])
+                for key, idx in (("theta", A_THETA), ("phi", A_PHI), ("omega1", A_OMEGA1),
+                                 ("omega2", A_OMEGA2)):
+                    out[key][mask] = y[idx]
+        return out
+
+
+def _phase_fun(cf, c2, contact):
+    def fun(t, y):
+        dydt = np.empty_like(y)
+        rhs_angles(t, y, cf, c2, contact, dydt)
+        return dydt
+
+    return fun
+
+
+def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segments):
+    """solve_ivp through the torque switches; returns (t, y, event_hit, nfev, ok)."""
+    nfev = 0
+    while True:
+        t_seg = next_switch(t, cf, t_stop)
+        c2 = wrist_torque(t, t_seg, cf)
+        sol = solve_ivp(_phase_fun(cf, c2, contact), (t, t_seg), y, method=method, rtol=rtol,
+                        atol=atol, events=events, dense_output=True, max_step=max_step)
+        nfev += sol.nfev
+        if sol.status == -1:
+            return t, y, False, nfev, False
+        hit = sol.status == 1
+        t_new = float(sol.t_events[0][0]) if hit else float(sol.t[-1])
+        segments.append(Segment(t, t_new, contact, sol.sol))
+        t, y = t_new, (sol.y_events[0][0] if hit else sol.y[:, -1])
+        if hit or t >= t_stop:
+            return t, y, hit, nfev, True
+
+
+def solve_stroke(theta0_deg: float, delta0_deg: float,
+                 params: Mapping[str, object] | None = None, method: str = "DOP853",
+                 rtol: float = 1e-12, atol: float = 1e-12, t_max: float = 1.0,
+                 contact_min_steps: float = 2.0, follow_through: float = 0.0
+                 ) -> ReferenceStroke:
+    """One stroke with ``solve_ivp``; same phases, statuses and fields as the compiled path.
+
+    Parameters
+    ----------
+    theta0_deg, delta0_deg : float
+        Initial angles (degrees).
+    params : mapping, optional
+        Parameter overrides and readings (scalars only).
+    method : str
+        Any ``solve_ivp`` method name.
+    rtol, atol : float
+        Tolerances passed to ``solve_ivp``.
+    t_max : float
+        Longest simulated stroke (s).
+    contact_min_steps : float
+        The contact phase's ``max_step`` is the two-body contact duration over this.
+    follow_through : float
+        Free swing after separation (s), for ``omega2_max``.
+    """
+    cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
+    res = {name: math.nan for name in RESULT_FIELDS}
+    res["rhs_evals"] = 0
+    ref = ReferenceStroke(res)
+
+    def finish(code):
+        res["status"] = code
+        res["status_name"] = STATUS_NAMES[code]
+        for key in ("theta_deg_at_phi0", "theta_deg_contact"):
+            res[key] = math.degrees(res[key])
+        if code == OK:  # sampled: a check of the compiled peak finder, not a replacement
+            res["omega2_max"] = float(max(
+                np.max(seg.sol(np.linspace(seg.t0, seg.t1, OMEGA2_SAMPLES))[A_OMEGA2])
+                for seg in ref.segments))
+        return ref
+
+    def phi_zero(t, y):
+        return y[A_PHI]
+
+    phi_zero.terminal, phi_zero.direction = True, -1
+    swing = []
+    y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
+    t0, y, hit, nfev, ok = _run(0.0, y0, t_max, cf, False, [phi_zero], method, rtol, atol,
+                                np.inf, swing)
+    res["rhs_evals"] += nfev
+    if not ok:
+        return finish(STEP_FAILURE)
+    if not hit:
+        return finish(NO_PHI_ZERO)
+    res.update(t_phi0=t0, theta_deg_at_phi0=y[A_THETA], omega1_phi0=y[A_OMEGA1],
+               omega2_phi0=y[A_OMEGA2])
+    t_c = t0 - cf[CF_LEAD]
+    if t_c < 0.0:
+        return finish(EARLY_CONTACT)
+    seg = next(s for s in swing if s.t0 <= t_c <= s.t1)
+    yc = seg.sol(t_c)
+    ref.segments = [s for s in swing if s.t0 < t_c]
+    ref.segments[-1] = Segment(ref.segments[-1].t0, t_c, False, ref.segments[-1].sol)
+    res.update(t_contact_start=t_c, theta_deg_contact=yc[A_THETA], omega1_contact=yc[A_OMEGA1],
+               omega2_contact=yc[A_OMEGA2])
+    st, ct, sp, cp = (math.sin(yc[A_THETA]), math.cos(yc[A_THETA]), math.sin(yc[A_PHI]),
+                      math.cos(yc[A_PHI]))
+    w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
+    if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
+        return finish(NO_APPROACH)
+    m_eff = effective_mass(st, ct, sp, cp, cf)
+    mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
+    max_step = math.pi * math.sqrt(mu / cf[CF_K]) / contact_min_steps
+
+    def separation(t, y):
+        return y[A_BALL_S] - hit_offset(math.sin(y[A_THETA]), math.sin(y[A_PHI]), cf)
+
+    separation.terminal, separation.direction = True, -1
+    y = np.array([*yc, hit_offset(st, sp, cf), w])
+    t_sep, y, hit, nfev, ok = _run(t_c, y, t_max, cf, True, [separation], method, rtol, atol,
+                                   max_step, ref.segments)
+    res["rhs_evals"] += nfev
+    if not ok:
+        return finish(STEP_FAILURE)
+    if not hit:
+        return finish(NO_RELEASE)
+    res["t_separation"] = t_sep
+    res["v_out_kmh"] = -MS_TO_KMH * (y[A_BALL_W] + elbow_velocity(t_sep, cf)[0])
+    if follow_through > 0.0:
+        _, _, _, nfev, ok = _run(t_sep, y[:4], t_sep + follow_through, cf, False, None, method,
+                                 rtol, atol, np.inf, ref.segments)
+        res["rhs_evals"] += nfev
+        if not ok:
+            return finish(STEP_FAILURE)
+    return finish(OK)
