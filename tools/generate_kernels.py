@@ -2,8 +2,8 @@
 
 The Butcher tableaux of Dormand-Prince 5(4) and 8(5,3) (scipy's ``RK45`` and ``DOP853``
 classes carry the published coefficients) are written out as straight-line code on
-tuples, one set of functions per method and phase (free swing: 6 integrated components;
-contact: 8), all calling :func:`tennis_stroke.dynamics.rhs_trig`.  States are tuples, not
+tuples, one set of functions per method and phase (free swing: 8 integrated components;
+contact: 10), all calling :func:`tennis_stroke.dynamics.rhs_trig`.  States are tuples, not
 arrays, so numba passes them by value (no reference counting per call) and LLVM keeps
 them in registers; zero coefficients disappear.  This makes a step several times faster
 than loops over padded tableau arrays.  The output is committed; a test checks that it is
@@ -22,8 +22,8 @@ from scipy.integrate import DOP853, RK45
 
 ROOT = Path(__file__).resolve().parents[1]
 TARGET = ROOT / "src" / "tennis_stroke" / "_kernels.py"
-N_STATE = 8  # trig layout with the ball; see tennis_stroke.dynamics
-PHASES = {"swing": (6, "False"), "contact": (8, "True")}
+N_STATE = 10  # trig layout with the ball; see tennis_stroke.dynamics
+PHASES = {"swing": (8, "False"), "contact": (10, "True")}
 
 
 def _combo(coeffs, rows, var: str, i: int) -> str:
@@ -111,7 +111,7 @@ def _method(name: str, cls) -> list[str]:
 
 
 def _dense_evals() -> list[str]:
-    dp54 = ", ".join(
+    dp54 = ",\n            ".join(
         f"y[{i}] + x * (z[0][{i}] + x * (z[1][{i}] + x * (z[2][{i}] + x * z[3][{i}])))"
         for i in range(N_STATE))
     dop853 = []

@@ -23,9 +23,10 @@ Conventions (Youn, Sec. II)
 Two state layouts share the physics of :func:`accelerations`:
 
 * *trig layout* (the compiled path): ``sin(theta), cos(theta), sin(phi), cos(phi), omega1,
-  omega2`` (+ ``s, w`` in contact).  Carrying sines and cosines as states makes the
-  right-hand side polynomial (no transcendental calls), which is what makes the compiled
-  solver fast; angles are recovered with ``atan2`` (range (-180, 180] degrees).
+  omega2, theta, phi`` (+ ``s, w`` in contact).  Carrying sines and cosines as states
+  makes the right-hand side polynomial (no transcendental calls), which is what makes the
+  compiled solver fast; the angles themselves are carried too (unwrapped, and the event
+  ``phi = 0`` is exact even for a step longer than half a turn).
 * *angle layout* (the scipy reference path): ``theta, phi, omega1, omega2, s, w``.
 
 Per-stroke coefficients are packed in a float array ``cf`` (layout ``CF_*``) built by
@@ -41,8 +42,8 @@ import numpy as np
 from numba import njit
 
 # Trig layout (compiled path).
-SIN_TH, COS_TH, SIN_PH, COS_PH, OMEGA1, OMEGA2, BALL_S, BALL_W = range(8)
-N_SWING, N_CONTACT = 6, 8
+SIN_TH, COS_TH, SIN_PH, COS_PH, OMEGA1, OMEGA2, THETA, PHI, BALL_S, BALL_W = range(10)
+N_SWING, N_CONTACT = 8, 10
 # Angle layout (reference path); OMEGA1/OMEGA2 are not shared with the trig layout.
 A_THETA, A_PHI, A_OMEGA1, A_OMEGA2, A_BALL_S, A_BALL_W = range(6)
 
@@ -170,8 +171,8 @@ def rhs_trig(t, y, cf, c2, contact):
     ----------
     t : float
         Time (s).
-    y : tuple of 8 float
-        ``sin(theta), cos(theta), sin(phi), cos(phi), omega1, omega2, s, w``.
+    y : tuple of 10 float
+        ``sin(theta), cos(theta), sin(phi), cos(phi), omega1, omega2, theta, phi, s, w``.
     cf : tuple or ndarray, length N_CF
         Stroke coefficients (:func:`coefficients`).
     c2 : float
@@ -183,7 +184,7 @@ def rhs_trig(t, y, cf, c2, contact):
 
     Returns
     -------
-    tuple of 8 float
+    tuple of 10 float
 
     Notes
     -----
@@ -203,7 +204,7 @@ def rhs_trig(t, y, cf, c2, contact):
     :func:`elbow_acceleration`: a numba call costs as much as this whole function
     (``tests/test_dynamics.py`` checks the two agree).
     """
-    st, ct, sp, cp, w1, w2, s, w = y
+    st, ct, sp, cp, w1, w2, _, _, s, w = y
     ax = cf[CF_VX1] + 2.0 * cf[CF_VX2] * t
     ay = cf[CF_VY1] + 2.0 * cf[CF_VY2] * t
     if cf[CF_FORCE_ON] != 0.0:
@@ -228,7 +229,7 @@ def rhs_trig(t, y, cf, c2, contact):
     mc = m12 * cd
     det = m11 * m22 - mc * mc
     return (-w1 * ct, w1 * st, -w2 * cp, w2 * sp, (p * m22 - q * mc) / det,
-            (q * m11 - p * mc) / det, ds, dw)
+            (q * m11 - p * mc) / det, -w1, -w2, ds, dw)
 
 
 @njit(**JIT)
@@ -239,12 +240,12 @@ def hit_offset(st, sp, cf):
 
 @njit(**JIT)
 def to_trig(y_angles):
-    """Angle layout (4 or 6 components) -> trig-layout tuple of 8."""
+    """Angle layout (4 or 6 components) -> trig-layout tuple of 10."""
     th, ph = y_angles[A_THETA], y_angles[A_PHI]
     s = y_angles[A_BALL_S] if y_angles.size > 4 else 0.0
     w = y_angles[A_BALL_W] if y_angles.size > 4 else 0.0
     return (math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), y_angles[A_OMEGA1],
-            y_angles[A_OMEGA2], s, w)
+            y_angles[A_OMEGA2], th, ph, s, w)
 
 
 @njit(**JIT)

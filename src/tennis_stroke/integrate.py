@@ -29,7 +29,7 @@ import numpy as np
 from numba import njit
 
 from . import _kernels
-from .dynamics import BALL_S, COS_PH, JIT, N_CONTACT, OMEGA2, SIN_PH, SIN_TH, hit_offset
+from .dynamics import BALL_S, JIT, N_CONTACT, OMEGA2, PHI, SIN_PH, SIN_TH, hit_offset
 
 #: Step-size controller constants (Hairer & Wanner; scipy uses the same).
 SAFETY = 0.9
@@ -58,14 +58,14 @@ ORDERS = {"DP54": 5, "DOP853": 8}
 
 @njit(**JIT)
 def swing_event_value(y, cf):
-    """``sin(phi)``: falls through 0 where ``phi`` falls through 0 (with ``cos(phi) > 0``)."""
-    return y[SIN_PH]
+    """``phi`` (rad): the swing ends where it falls through 0."""
+    return y[PHI]
 
 
 @njit(**JIT)
 def swing_event_crossed(y0, y1, cf):
-    """Whether ``phi`` fell through 0 (mod 360 degrees) during the step ``y0 -> y1``."""
-    return y0[SIN_PH] > 0.0 and y1[SIN_PH] <= 0.0 and y0[COS_PH] > 0.0 and y1[COS_PH] > 0.0
+    """Whether ``phi`` fell through 0 during the step ``y0 -> y1``."""
+    return y0[PHI] > 0.0 and y1[PHI] <= 0.0
 
 
 @njit(**JIT)
@@ -110,8 +110,9 @@ def peak_omega2(y0, y1, f0, f1, h, best):
 @njit(**JIT)
 def history_state(row):
     """``(t, step, omega2 max before, y, f)`` of a history row, states as tuples."""
-    y = (row[3], row[4], row[5], row[6], row[7], row[8], row[9], row[10])
-    f = (row[11], row[12], row[13], row[14], row[15], row[16], row[17], row[18])
+    y = (row[3], row[4], row[5], row[6], row[7], row[8], row[9], row[10], row[11], row[12])
+    f = (row[13], row[14], row[15], row[16], row[17], row[18], row[19], row[20], row[21],
+         row[22])
     return row[0], row[1], row[2], y, f
 
 
@@ -219,11 +220,11 @@ def integrate_phase(method, contact, t, y, f, t_end, h, h_max, cf, c2, rtol, ato
     method : int
         ``METHOD_DP54`` or ``METHOD_DOP853``.
     contact : bool
-        Phase kind: free swing (6 integrated components, event ``phi = 0``) or contact
-        (8 components, event separation).
+        Phase kind: free swing (8 integrated components, event ``phi = 0``) or contact
+        (10 components, event separation).
     t : float
         Start time (s).
-    y, f : tuple of 8 float
+    y, f : tuple of 10 float
         State and ``rhs_trig(t, y)``.
     t_end : float
         End of the phase (s).

@@ -1,0 +1,117 @@
+"""The compiled integrator: convergence order, dense output, reversibility, failures."""
+
+import math
+
+import numpy as np
+import pytest
+from conftest import coefficient_row, coefficient_tup
+from scipy.integrate import solve_ivp
+
+from tennis_stroke.dynamics import OMEGA1, OMEGA2, rhs_angles, rhs_trig
+from tennis_stroke.integrate import (
+    HISTORY_COLS, METHOD_IDS, N_STATS, ORDERS, PHASE_END, PHASE_FAIL, dense_coefficients,
+    dense_value, integrate_phase, peak_omega2, rk_step,
+)
+
+T_END = 0.15
+
+
+def _start(theta0=100.0, delta0=40.0):
+    th, ph = math.radians(theta0), math.radians(theta0 + delta0)
+    return (math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), 0.0, 0.0, th, ph, 0.0, 0.0)
+
+
+@pytest.fixture(scope="module")
+def reference_omegas():
+    """omega1, omega2 at T_END from scipy (angle layout) at rtol 1e-13: independent."""
+    cf = coefficient_row(100.0, 40.0)
+
+    def fun(t, y):
+        d = np.empty(4)
+        rhs_angles(t, y, cf, 2.5, False, d)
+        return d
+
+    y0 = [math.radians(100.0), math.radians(140.0), 0.0, 0.0]
+    sol = solve_ivp(fun, (0, T_END), y0, method="DOP853", rtol=1e-13, atol=1e-13)
+    return sol.y[2, -1], sol.y[3, -1]
+
+
+def _fixed_steps(method, n):
+    cf = coefficient_tup(100.0, 40.0)
+    y = _start()
+    f = rhs_trig(0.0, y, cf, 2.5, False)
+    h = T_END / n
+    for i in range(n):
+        y, f, _ = rk_step(METHOD_IDS[method], False, i * h, y, f, h, cf, 2.5, 1e-8, 1e-8)
+    return y
+
+
+@pytest.mark.parametrize("method, steps", [("DP54", (10, 20, 40)), ("DOP853", (6, 9, 14))])
+def test_observed_convergence_order(method, steps, reference_omegas):
+    errors = []
+    for n in steps:
+        y = _fixed_steps(method, n)
+        errors.append(max(abs(y[OMEGA1] - reference_omegas[0]),
+                          abs(y[OMEGA2] - reference_omegas[1])))
+    slope = -np.polyfit(np.log(steps), np.log(errors), 1)[0]
+    assert slope == pytest.approx(ORDERS[method], abs=0.6), (method, errors)
+
+
+#: Order of the dense output (its local error is O(h^(order + 1))).
+DENSE_ORDERS = {"DP54": 4, "DOP853": 7}
+
+
+@pytest.mark.parametrize("method", sorted(METHOD_IDS))
+def test_dense_output_is_consistent_and_of_its_order(method):
+    mid = METHOD_IDS[method]
+    cf = coefficient_tup(100.0, 40.0)
+    y0 = _start()
+    f0 = rhs_trig(0.0, y0, cf, 2.5, False)
+    gaps = []
+    for h in (0.01, 0.005):
+        y1, f1, _ = rk_step(mid, False, 0.0, y0, f0, h, cf, 2.5, 1e-8, 1e-8)
+        z = dense_coefficients(mid, False, 0.0, y0, f0, h, cf, 2.5, y1, f1)
+        assert dense_value(mid, 0.0, y0, z) == pytest.approx(y0, abs=1e-15)
+        assert dense_value(mid, 1.0, y0, z) == pytest.approx(y1, rel=1e-13, abs=1e-13)
+        y_half, _, _ = rk_step(mid, False, 0.0, y0, f0, h / 2, cf, 2.5, 1e-8, 1e-8)
+        interp = dense_value(mid, 0.5, y0, z)
+        gaps.append(max(abs(a - b) for a, b in zip(interp, y_half, strict=True)))
+    assert math.log2(gaps[0] / gaps[1]) == pytest.approx(DENSE_ORDERS[method] + 1, abs=1.0)
+
+
+def test_backward_integration_returns_to_the_start():
+    cf = coefficient_tup(100.0, 40.0)
+    y0 = _start()
+    stats = np.zeros(N_STATS)
+    history = np.zeros((1, HISTORY_COLS))
+    args = (cf, 2.5, 1e-11, 1e-11, 1e6, False, stats, history)
+    f0 = rhs_trig(0.0, y0, cf, 2.5, False)
+    status, t, y1, f1, h = integrate_phase(1, False, 0.0, y0, f0, T_END, 0.01, np.inf, *args)
+    assert status == PHASE_END and t == T_END
+    status, t, y2, _, _ = integrate_phase(1, False, T_END, y1, f1, 0.0, h, np.inf, *args)
+    assert status == PHASE_END and t == 0.0
+    assert y2 == pytest.approx(y0, abs=1e-9)
+
+
+def test_too_many_steps_is_a_failure_status():
+    cf = coefficient_tup(100.0, 40.0)
+    y0 = _start()
+    stats = np.zeros(N_STATS)
+    f0 = rhs_trig(0.0, y0, cf, 2.5, False)
+    status, *_ = integrate_phase(1, False, 0.0, y0, f0, T_END, 0.001, np.inf, cf, 2.5, 1e-9,
+                                 1e-9, 3, False, stats, np.zeros((1, HISTORY_COLS)))
+    assert status == PHASE_FAIL and stats[1] == 3
+
+
+def test_peak_of_omega2_inside_a_step():
+    # omega2(s) = 1 - (s - 0.3)^2 on a step of size 1: peak 1 at s = 0.3.
+    def state(s):
+        return (0, 0, 0, 0, 0, 1 - (s - 0.3) ** 2, 0, 0, 0, 0)
+
+    def deriv(s):
+        return (0, 0, 0, 0, 0, -2 * (s - 0.3), 0, 0, 0, 0)
+
+    best = peak_omega2(state(0.0), state(1.0), deriv(0.0), deriv(1.0), 1.0, -1.0)
+    assert best == pytest.approx(1.0, abs=1e-12)
+    assert peak_omega2(state(0.0), state(0.2), deriv(0.0), deriv(0.2), 0.2, -1.0) == \
+        pytest.approx(state(0.2)[5])

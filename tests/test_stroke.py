@@ -1,0 +1,161 @@
+"""Whole strokes: compiled path against scipy, statuses, the two-body contact, stiff
+contacts, the paper's Fig. 4 strokes."""
+
+import math
+
+import numpy as np
+import pytest
+from conftest import FIG4_A, FIG4_B, coefficient_tup
+
+from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
+from tennis_stroke.dynamics import effective_mass, hit_offset
+from tennis_stroke.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
+from tennis_stroke.reference import solve_stroke
+from tennis_stroke.stroke import S_RTOL, run_phases
+
+TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
+
+
+def _random_cases(n, seed=3):
+    rng = np.random.default_rng(seed)
+    for _ in range(n):
+        params = {
+            "L1": rng.uniform(0.25, 0.45), "M2": rng.uniform(0.2, 0.45),
+            "C2": rng.uniform(0, 8), "tau": rng.choice([0.0, rng.uniform(0, 0.15)]),
+            "k_contact": float(rng.choice([188.0, 2000.0, 19000.0])),
+        }
+        if rng.uniform() < 0.3:
+            params.update(F0=20.0, psi_F_deg=rng.uniform(0, 360), t_F=rng.uniform(0.1, 0.25))
+        yield rng.uniform(60, 120), rng.uniform(0, 90), params
+
+
+@pytest.mark.parametrize("method", ["DOP853", "DP54"])
+def test_compiled_matches_scipy_at_tight_tolerance(method):
+    checked = 0
+    for theta0, delta0, params in _random_cases(12):
+        ours = strike(theta0, delta0, params, SolverSettings(method=method, rtol=1e-12,
+                                                             atol=1e-12, history=8192))
+        ref = solve_stroke(theta0, delta0, params, rtol=1e-12, atol=1e-12).result
+        assert ours["status"] == ref["status"], (theta0, delta0, params)
+        if ours["status"] != 0:
+            continue
+        checked += 1
+        assert ours["v_out_kmh"] == pytest.approx(ref["v_out_kmh"], abs=1e-6)
+        for key in ("t_phi0", "t_contact_start", "t_separation"):
+            assert ours[key] == pytest.approx(ref[key], abs=1e-9)
+        for key in ("theta_deg_at_phi0", "theta_deg_contact"):
+            assert ours[key] == pytest.approx(ref[key], abs=1e-7)
+        for key in ("omega1_contact", "omega2_contact", "omega1_phi0", "omega2_phi0"):
+            assert ours[key] == pytest.approx(ref[key], abs=1e-8)
+        # the compiled peak finder is exact where the reference only samples
+        assert ours["omega2_max"] >= ref["omega2_max"] - 1e-4
+    assert checked >= 8
+
+
+def test_default_settings_are_accurate_and_cheap():
+    theta0 = np.linspace(60, 120, 13)[:, None]
+    delta0 = np.linspace(0, 90, 10)[None, :]
+    ref = strike_batch(theta0, delta0, settings=TIGHT)
+    res = strike_batch(theta0, delta0)
+    assert np.array_equal(res["status"], ref["status"])
+    assert np.nanmax(np.abs(res["v_out_kmh"] - ref["v_out_kmh"])) < 1e-4
+    assert res["rhs_evals"].mean() < 0.5 * ref["rhs_evals"].mean()
+
+
+def test_threads_do_not_change_numbers():
+    theta0 = np.linspace(60, 120, 7)[:, None]
+    delta0 = np.linspace(0, 90, 9)[None, :]
+    one = strike_batch(theta0, delta0, threads=1)
+    two = strike_batch(theta0, delta0, threads=2)
+    for key in one:
+        np.testing.assert_array_equal(one[key], two[key])
+
+
+def test_batch_broadcasts_parameters():
+    res = strike_batch(90.0, 30.0, {"M2": np.array([0.2, 0.3, 0.4])})
+    assert res["v_out_kmh"].shape == (3,)
+    single = strike(90.0, 30.0, {"M2": 0.4})
+    assert res["v_out_kmh"][2] == single["v_out_kmh"]
+
+
+@pytest.mark.parametrize("params, settings, status", [
+    ({}, SolverSettings(t_max=0.05), "no_phi_zero"),
+    ({"contact_lead": 0.5}, SolverSettings(), "early_contact"),
+    ({"k_contact": 188.0, "contact_lead": 0.001}, SolverSettings(t_max=0.2), "no_release"),
+    ({}, SolverSettings(max_steps=3), "step_failure"),
+    ({"contact_lead": 0.15}, SolverSettings(history=2), "lead_too_long"),
+])
+def test_failures_are_statuses(params, settings, status):
+    res = strike(*FIG4_A, params, settings)
+    assert res["status_name"] == status
+    assert math.isnan(res["v_out_kmh"])
+
+
+def test_status_names_cover_codes():
+    assert sorted(STATUS_NAMES) == list(range(len(STATUS_NAMES)))
+
+
+def _isolated_contact(k):
+    """Ball at 5 m/s on the racket at rest (no torques, elbow fixed): two-body contact."""
+    still = {"C1": 0.0, "C2": 0.0, "vx_t1": 0.0, "vx_t2": 0.0, "vy_t1": 0.0, "vy_t2": 0.0,
+             "k_contact": k}
+    cf = coefficient_tup(**still)
+    th, ph = -0.15, 0.05
+    y = (math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), 0.0, 0.0, th, ph,
+         hit_offset(math.sin(th), math.sin(ph), cf), 5.0)
+    m_eff = effective_mass(math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), cf)
+    st = SolverSettings(rtol=1e-12, atol=1e-12).as_array()
+    st[S_RTOL] = 1e-12
+    stats = np.zeros(N_STATS)
+    mu = 0.057 * m_eff / (0.057 + m_eff)
+    h_max = math.pi * math.sqrt(mu / k) / 2
+    status, t, y, _ = run_phases(1, True, 0.0, y, 1.0, h_max, h_max, cf, True, st, stats,
+                                 np.zeros((1, HISTORY_COLS)))
+    assert status == PHASE_EVENT
+    return t, y[9], m_eff
+
+
+@pytest.mark.parametrize("k", [1e5, 1e6, 1e7])
+def test_two_body_contact_closed_form(k):
+    """Duration pi sqrt(mu/k) and exit velocity (m_b - m) / (m_b + m) v of the two-body
+    linear-spring contact; the pendulum approaches it as the contact gets short."""
+    duration, v_exit, m_eff = _isolated_contact(k)
+    mu = 0.057 * m_eff / (0.057 + m_eff)
+    expected = (0.057 - m_eff) / (0.057 + m_eff) * 5.0
+    scale = math.sqrt(1e5 / k)  # error shrinks with the contact time
+    assert duration == pytest.approx(math.pi * math.sqrt(mu / k), rel=0.02 * scale)
+    assert v_exit == pytest.approx(expected, rel=0.02 * scale)
+
+
+@pytest.mark.parametrize("k", [188.0, 19000.0, 1e6, 1e7])
+def test_no_missed_contact_even_with_loose_tolerance(k):
+    """The contact step limit keeps even a 0.2 ms contact from being jumped over."""
+    loose = strike(*FIG4_A, {"k_contact": k}, SolverSettings(rtol=1e-3, atol=1e-3))
+    tight = strike(*FIG4_A, {"k_contact": k}, TIGHT)
+    assert loose["status_name"] == "ok"
+    assert loose["t_separation"] > loose["t_contact_start"]
+    assert loose["v_out_kmh"] == pytest.approx(tight["v_out_kmh"], abs=0.5)
+
+
+def test_rebound_speed_barely_depends_on_k():
+    """Sec. II: k sets the contact duration, the rebound speed is 'not altered very much'."""
+    speeds = [strike(*FIG4_A, {"k_contact": k})["v_out_kmh"] for k in (188.0, 19000.0, 1e7)]
+    durations = [strike(*FIG4_A, {"k_contact": k}) for k in (188.0, 19000.0)]
+    assert max(speeds) - min(speeds) < 0.15 * max(speeds)
+    assert (durations[0]["t_separation"] - durations[0]["t_contact_start"]) > 5 * (
+        durations[1]["t_separation"] - durations[1]["t_contact_start"])
+
+
+# Fig. 4 of the paper with the default readings; tolerances are the project's declared
+# ones (times 2 ms, angles 1 degree, angular velocities 0.5 rad/s, speeds 1 km/h).
+@pytest.mark.parametrize("stroke, t_contact, theta_c, omega1, omega2, v_out", [
+    (FIG4_A, 0.198, 11.5, 11.34, 37.98, 156.0),
+    (FIG4_B, 0.220, 87.1, 17.9, 37.98, 141.0),
+])
+def test_fig4_strokes(stroke, t_contact, theta_c, omega1, omega2, v_out):
+    res = strike(*stroke)
+    assert res["t_phi0"] == pytest.approx(t_contact, abs=2e-3)
+    assert abs(res["theta_deg_at_phi0"]) == pytest.approx(theta_c, abs=1.0)
+    assert res["omega1_contact"] == pytest.approx(omega1, abs=0.5)
+    assert res["omega2_contact"] == pytest.approx(omega2, abs=0.5)
+    assert res["v_out_kmh"] == pytest.approx(v_out, abs=1.0)
