@@ -63,26 +63,35 @@ def main() -> int:
     th, de = THETA0[:, None], DELTA0[None, :]
     n = THETA0.size * DELTA0.size
     settings = SolverSettings()
-    reference = strike_batch(th, de, settings=SolverSettings(rtol=1e-12, atol=1e-12,
-                                                             history=4096))
+    reference = strike_batch(th, de, settings=SolverSettings(rtol=1e-12, atol=1e-12, history=4096))
     ok = reference["status"] == 0
     n_threads = numba.config.NUMBA_NUM_THREADS
     rows = {}
     for threads in sorted({1, n_threads}):
         strike_batch(th[:2], de, settings=settings, threads=threads)  # warm up
-        wall, res = timed(lambda t=threads: strike_batch(th, de, settings=settings, threads=t),
-                          args.repeats)
+        wall, res = timed(
+            lambda t=threads: strike_batch(th, de, settings=settings, threads=t), args.repeats
+        )
         rows[threads] = wall
     err = np.abs(res["v_out_kmh"] - reference["v_out_kmh"])[ok]
     compiled_err = float(err.max())
     us_core = rows[1] / n * 1e6
 
     with tempfile.TemporaryDirectory() as tmp:
-        cmd = [str(Path(sys.executable).with_name("tennis-stroke")), "sweep", "--theta0",
-               "60:120:241", "--delta0", "0:90:181", "--no-progress", "--out",
-               os.path.join(tmp, "sweep.nc")]
-        process_wall, _ = timed(lambda: subprocess.run(cmd, check=True, capture_output=True),
-                                args.repeats)
+        cmd = [
+            str(Path(sys.executable).with_name("tennis-stroke")),
+            "sweep",
+            "--theta0",
+            "60:120:241",
+            "--delta0",
+            "0:90:181",
+            "--no-progress",
+            "--out",
+            os.path.join(tmp, "sweep.nc"),
+        ]
+        process_wall, _ = timed(
+            lambda: subprocess.run(cmd, check=True, capture_output=True), args.repeats
+        )
 
     rng = np.random.default_rng(20261121)
     idx = rng.choice(np.flatnonzero(ok.ravel()), size=args.subset, replace=False)

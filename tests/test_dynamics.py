@@ -10,15 +10,39 @@ from conftest import coefficient_row
 from scipy.integrate import quad, solve_ivp
 
 from tennis_stroke.dynamics import (
-    CF_A1, CF_A2, CF_C1, CF_COUPLING, CF_H1, CF_H2, CF_I1, CF_I2, CF_K, CF_L1, CF_LH, CF_M1,
-    CF_M2, CF_M11, CF_M12, CF_M22, OMEGA1, OMEGA2, effective_mass, elbow_acceleration,
-    elbow_position, elbow_velocity, hit_offset, input_power, mechanical_energy, rhs_angles,
+    CF_A1,
+    CF_A2,
+    CF_C1,
+    CF_COUPLING,
+    CF_H1,
+    CF_H2,
+    CF_I1,
+    CF_I2,
+    CF_K,
+    CF_L1,
+    CF_LH,
+    CF_M1,
+    CF_M2,
+    CF_M11,
+    CF_M12,
+    CF_M22,
+    OMEGA1,
+    OMEGA2,
+    effective_mass,
+    elbow_acceleration,
+    elbow_position,
+    elbow_velocity,
+    hit_offset,
+    input_power,
+    mechanical_energy,
+    rhs_angles,
     rhs_trig,
 )
 
 t = sp.symbols("t")
 M1, M2, L1, h1, h2, hH, I1, I2, C1, C2, ax, ay, F = sp.symbols(
-    "M1 M2 L1 h1 h2 h_H I1 I2 C1 C2 a_x a_y F_r")
+    "M1 M2 L1 h1 h2 h_H I1 I2 C1 C2 a_x a_y F_r"
+)
 th, ph = sp.Function("theta")(t), sp.Function("phi")(t)
 xE, yE = sp.Function("x_E")(t), sp.Function("y_E")(t)
 
@@ -31,8 +55,7 @@ def lagrangian_accelerations():
     r1 = sp.Matrix([xE + h1 * sp.sin(th), yE - h1 * sp.cos(th)])
     r2 = sp.Matrix([xE + L1 * sp.sin(th) + h2 * sp.sin(ph), yE - L1 * sp.cos(th) - h2 * sp.cos(ph)])
     v1, v2 = r1.diff(t), r2.diff(t)
-    kinetic = (M1 * v1.dot(v1) + I1 * th.diff(t) ** 2 + M2 * v2.dot(v2)
-               + I2 * ph.diff(t) ** 2) / 2
+    kinetic = (M1 * v1.dot(v1) + I1 * th.diff(t) ** 2 + M2 * v2.dot(v2) + I2 * ph.diff(t) ** 2) / 2
     x_hit = xE + L1 * sp.sin(th) + (h2 + hH) * sp.sin(ph)
     # Clockwise torques: -C1 + C2 on theta, -C2 on phi; the ball force does F dx_H.
     forces = {th: -C1 + C2 + F * x_hit.diff(th), ph: -C2 + F * x_hit.diff(ph)}
@@ -52,14 +75,29 @@ def lagrangian():
     a, b = sp.symbols("a b")
     args = (a, b, w1, w2, ax, ay, F, M1, M2, L1, h1, h2, hH, I1, I2, C1, C2)
     plain = {th: a, ph: b}
-    return (sp.lambdify(args, dw1.subs(plain)), sp.lambdify(args, dw2.subs(plain)),
-            dw1.subs(plain), dw2.subs(plain), args)
+    return (
+        sp.lambdify(args, dw1.subs(plain)),
+        sp.lambdify(args, dw2.subs(plain)),
+        dw1.subs(plain),
+        dw2.subs(plain),
+        args,
+    )
 
 
 def _trig_state(theta, phi, w1, w2, cf, compression=0.0, w=0.0):
     s = hit_offset(math.sin(theta), math.sin(phi), cf) + compression
-    return (math.sin(theta), math.cos(theta), math.sin(phi), math.cos(phi), w1, w2, theta, phi,
-            s, w)
+    return (
+        math.sin(theta),
+        math.cos(theta),
+        math.sin(phi),
+        math.cos(phi),
+        w1,
+        w2,
+        theta,
+        phi,
+        s,
+        w,
+    )
 
 
 @pytest.mark.parametrize("contact", [False, True])
@@ -67,17 +105,37 @@ def test_compiled_rhs_matches_lagrangian(lagrangian, contact):
     f1, f2, *_ = lagrangian
     rng = np.random.default_rng(1)
     for _ in range(20):
-        cf = coefficient_row(C2=rng.uniform(-5, 5), L1=rng.uniform(0.2, 0.5),
-                             M2=rng.uniform(0.2, 0.5), h_hit=rng.uniform(-0.2, 0.3))
+        cf = coefficient_row(
+            C2=rng.uniform(-5, 5),
+            L1=rng.uniform(0.2, 0.5),
+            M2=rng.uniform(0.2, 0.5),
+            h_hit=rng.uniform(-0.2, 0.3),
+        )
         theta, phi, w1, w2 = rng.uniform(-3, 3, 4) * [1, 1, 10, 10]
         tt = rng.uniform(0, 0.3)
         compression = rng.uniform(0, 0.01) if contact else 0.0
         d = rhs_trig(tt, _trig_state(theta, phi, w1, w2, cf, compression), cf, cf[14], contact)
         a_x, a_y = elbow_acceleration(tt, cf)
         f_racket = cf[CF_K] * compression if contact else 0.0
-        args = (theta, phi, w1, w2, a_x, a_y, f_racket, cf[CF_M1], cf[CF_M2], cf[CF_L1],
-                cf[CF_H1], cf[CF_H2], cf[CF_LH] - cf[CF_H2], cf[CF_I1], cf[CF_I2], cf[CF_C1],
-                cf[14])
+        args = (
+            theta,
+            phi,
+            w1,
+            w2,
+            a_x,
+            a_y,
+            f_racket,
+            cf[CF_M1],
+            cf[CF_M2],
+            cf[CF_L1],
+            cf[CF_H1],
+            cf[CF_H2],
+            cf[CF_LH] - cf[CF_H2],
+            cf[CF_I1],
+            cf[CF_I2],
+            cf[CF_C1],
+            cf[14],
+        )
         assert d[OMEGA1] == pytest.approx(f1(*args), rel=1e-11, abs=1e-9)
         assert d[OMEGA2] == pytest.approx(f2(*args), rel=1e-11, abs=1e-9)
 
@@ -88,13 +146,22 @@ def _paper_eq6(collision):
     m11 = I1 + M1 * h1**2 + M2 * L1**2
     m22 = I2 + M2 * h2**2
     den = m22 * m11 - M2**2 * h2**2 * L1**2 * sp.cos(b - a) ** 2
-    p = C1 - C2 - M2 * h2 * L1 * w2**2 * sp.sin(b - a) + (M1 * h1 + M2 * L1) * (
-        ax * sp.cos(a) + ay * sp.sin(a))
+    p = (
+        C1
+        - C2
+        - M2 * h2 * L1 * w2**2 * sp.sin(b - a)
+        + (M1 * h1 + M2 * L1) * (ax * sp.cos(a) + ay * sp.sin(a))
+    )
     q = C2 + M2 * h2 * L1 * w1**2 * sp.sin(b - a) + M2 * h2 * (ax * sp.cos(b) + ay * sp.sin(b))
-    s1 = collision * L1 * ((2 * I2 + h2 * (h2 - hH) * M2) * sp.cos(a)
-                           - h2 * (h2 + hH) * M2 * sp.cos(a - 2 * b))
-    s2 = collision * ((2 * hH * m11 + h2 * (2 * I1 + 2 * M1 * h1**2 + M2 * L1**2)) * sp.cos(b)
-                      - h2 * M2 * L1**2 * sp.cos(2 * a - b))
+    s1 = (
+        collision
+        * L1
+        * ((2 * I2 + h2 * (h2 - hH) * M2) * sp.cos(a) - h2 * (h2 + hH) * M2 * sp.cos(a - 2 * b))
+    )
+    s2 = collision * (
+        (2 * hH * m11 + h2 * (2 * I1 + 2 * M1 * h1**2 + M2 * L1**2)) * sp.cos(b)
+        - h2 * M2 * L1**2 * sp.cos(2 * a - b)
+    )
     mc = M2 * h2 * L1 * sp.cos(b - a)
     return (p * m22 - q * mc + s1) / den, (q * m11 - p * mc + s2) / den
 
@@ -108,8 +175,9 @@ def _vanishes(expr, samples=6, digits=40):
     symbols = sorted(expr.free_symbols, key=str)
     values = []
     for _ in range(samples):
-        point = {s: sp.Rational(int(rng.integers(1, 10**6)), 10**6) + sp.Rational(1, 10)
-                 for s in symbols}
+        point = {
+            s: sp.Rational(int(rng.integers(1, 10**6)), 10**6) + sp.Rational(1, 10) for s in symbols
+        }
         values.append(abs(sp.N(expr.subs(point), digits)))
     return max(values) < sp.Float(10) ** (-(digits - 10))
 
@@ -157,8 +225,9 @@ def test_elbow_closed_forms_integrate_the_acceleration():
             assert elbow_position(tt, cf)[axis] == pytest.approx(x, rel=1e-10, abs=1e-12)
     # Eq. 13 itself: v_x = -33 t + 69 t^2, v_y = -42 t + 174 t^2.
     cf0 = coefficient_row()
-    assert elbow_velocity(0.2, cf0) == pytest.approx((-33 * 0.2 + 69 * 0.04,
-                                                      -42 * 0.2 + 174 * 0.04))
+    assert elbow_velocity(0.2, cf0) == pytest.approx(
+        (-33 * 0.2 + 69 * 0.04, -42 * 0.2 + 174 * 0.04)
+    )
 
 
 def test_effective_mass_from_mass_matrix():
@@ -178,8 +247,7 @@ def _energy_and_work(cf, y0, t0, t1, c2, contact):
         rhs_angles(tt, z[:-1], cf, c2, contact, dydt)
         return np.append(dydt, input_power(tt, z[:-1], cf, c2, contact))
 
-    sol = solve_ivp(fun, (t0, t1), np.append(y0, 0.0), method="DOP853", rtol=1e-12,
-                    atol=1e-12)
+    sol = solve_ivp(fun, (t0, t1), np.append(y0, 0.0), method="DOP853", rtol=1e-12, atol=1e-12)
     y1 = sol.y[:-1, -1]
     gained = mechanical_energy(t1, y1, cf, contact) - mechanical_energy(t0, y0, cf, contact)
     return gained, sol.y[-1, -1]

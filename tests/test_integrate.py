@@ -9,8 +9,17 @@ from scipy.integrate import solve_ivp
 
 from tennis_stroke.dynamics import OMEGA1, OMEGA2, rhs_angles, rhs_trig
 from tennis_stroke.integrate import (
-    HISTORY_COLS, METHOD_IDS, N_STATS, ORDERS, PHASE_END, PHASE_FAIL, dense_coefficients,
-    dense_value, integrate_phase, peak_omega2, rk_step,
+    HISTORY_COLS,
+    METHOD_IDS,
+    N_STATS,
+    ORDERS,
+    PHASE_END,
+    PHASE_FAIL,
+    dense_coefficients,
+    dense_value,
+    integrate_phase,
+    peak_omega2,
+    rk_step,
 )
 
 T_END = 0.15
@@ -51,8 +60,9 @@ def test_observed_convergence_order(method, steps, reference_omegas):
     errors = []
     for n in steps:
         y = _fixed_steps(method, n)
-        errors.append(max(abs(y[OMEGA1] - reference_omegas[0]),
-                          abs(y[OMEGA2] - reference_omegas[1])))
+        errors.append(
+            max(abs(y[OMEGA1] - reference_omegas[0]), abs(y[OMEGA2] - reference_omegas[1]))
+        )
     slope = -np.polyfit(np.log(steps), np.log(errors), 1)[0]
     assert slope == pytest.approx(ORDERS[method], abs=0.6), (method, errors)
 
@@ -98,8 +108,24 @@ def test_too_many_steps_is_a_failure_status():
     y0 = _start()
     stats = np.zeros(N_STATS)
     f0 = rhs_trig(0.0, y0, cf, 2.5, False)
-    status, *_ = integrate_phase(1, False, 0.0, y0, f0, T_END, 0.001, np.inf, cf, 2.5, 1e-9,
-                                 1e-9, 3, False, stats, np.zeros((1, HISTORY_COLS)))
+    status, *_ = integrate_phase(
+        1,
+        False,
+        0.0,
+        y0,
+        f0,
+        T_END,
+        0.001,
+        np.inf,
+        cf,
+        2.5,
+        1e-9,
+        1e-9,
+        3,
+        False,
+        stats,
+        np.zeros((1, HISTORY_COLS)),
+    )
     assert status == PHASE_FAIL and stats[1] == 3
 
 
@@ -113,5 +139,6 @@ def test_peak_of_omega2_inside_a_step():
 
     best = peak_omega2(state(0.0), state(1.0), deriv(0.0), deriv(1.0), 1.0, -1.0)
     assert best == pytest.approx(1.0, abs=1e-12)
-    assert peak_omega2(state(0.0), state(0.2), deriv(0.0), deriv(0.2), 0.2, -1.0) == \
-        pytest.approx(state(0.2)[5])
+    assert peak_omega2(state(0.0), state(0.2), deriv(0.0), deriv(0.2), 0.2, -1.0) == pytest.approx(
+        state(0.2)[5]
+    )

@@ -6,7 +6,12 @@ import numpy as np
 import pytest
 
 from tennis_stroke.params import (
-    PARAMETERS, READINGS, ParameterError, parse_value, resolve_params, two_body_period,
+    PARAMETERS,
+    READINGS,
+    ParameterError,
+    parse_value,
+    resolve_params,
+    two_body_period,
 )
 
 
@@ -47,17 +52,20 @@ def test_arrays_broadcast_and_derive_per_stroke():
     assert p["elbow_force_mass"][2] == pytest.approx(2.4)
 
 
-@pytest.mark.parametrize("overrides, fragment", [
-    ({"M2": -1.0}, "'M2' must be > 0"),
-    ({"L1": 0.0}, "'L1' must be > 0"),
-    ({"L1": math.nan}, "'L1' must be finite"),
-    ({"k_contact": math.inf}, "'k_contact' must be finite"),
-    ({"tau": -0.1}, "'tau' must be >= 0"),
-    ({"M2": "abc"}, "'M2' must be a number"),
-    ({"bogus": 1.0}, "unknown parameter 'bogus'"),
-    ({"inertia": "hollow"}, "reading 'inertia' must be one of"),
-    ({"M2": np.array([0.2, 0.3]), "L1": np.array([0.3, 0.4, 0.5])}, "do not broadcast"),
-])
+@pytest.mark.parametrize(
+    "overrides, fragment",
+    [
+        ({"M2": -1.0}, "'M2' must be > 0"),
+        ({"L1": 0.0}, "'L1' must be > 0"),
+        ({"L1": math.nan}, "'L1' must be finite"),
+        ({"k_contact": math.inf}, "'k_contact' must be finite"),
+        ({"tau": -0.1}, "'tau' must be >= 0"),
+        ({"M2": "abc"}, "'M2' must be a number"),
+        ({"bogus": 1.0}, "unknown parameter 'bogus'"),
+        ({"inertia": "hollow"}, "reading 'inertia' must be one of"),
+        ({"M2": np.array([0.2, 0.3]), "L1": np.array([0.3, 0.4, 0.5])}, "do not broadcast"),
+    ],
+)
 def test_bad_values_are_one_line_errors(overrides, fragment):
     with pytest.raises(ParameterError, match=fragment) as info:
         resolve_params(overrides)

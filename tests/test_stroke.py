@@ -20,8 +20,10 @@ def _random_cases(n, seed=3):
     rng = np.random.default_rng(seed)
     for _ in range(n):
         params = {
-            "L1": rng.uniform(0.25, 0.45), "M2": rng.uniform(0.2, 0.45),
-            "C2": rng.uniform(0, 8), "tau": rng.choice([0.0, rng.uniform(0, 0.15)]),
+            "L1": rng.uniform(0.25, 0.45),
+            "M2": rng.uniform(0.2, 0.45),
+            "C2": rng.uniform(0, 8),
+            "tau": rng.choice([0.0, rng.uniform(0, 0.15)]),
             "k_contact": float(rng.choice([188.0, 2000.0, 19000.0])),
         }
         if rng.uniform() < 0.3:
@@ -33,8 +35,12 @@ def _random_cases(n, seed=3):
 def test_compiled_matches_scipy_at_tight_tolerance(method):
     checked = 0
     for theta0, delta0, params in _random_cases(12):
-        ours = strike(theta0, delta0, params, SolverSettings(method=method, rtol=1e-12,
-                                                             atol=1e-12, history=8192))
+        ours = strike(
+            theta0,
+            delta0,
+            params,
+            SolverSettings(method=method, rtol=1e-12, atol=1e-12, history=8192),
+        )
         ref = solve_stroke(theta0, delta0, params, rtol=1e-12, atol=1e-12).result
         assert ours["status"] == ref["status"], (theta0, delta0, params)
         if ours["status"] != 0:
@@ -78,13 +84,16 @@ def test_batch_broadcasts_parameters():
     assert res["v_out_kmh"][2] == single["v_out_kmh"]
 
 
-@pytest.mark.parametrize("params, settings, status", [
-    ({}, SolverSettings(t_max=0.05), "no_phi_zero"),
-    ({"contact_lead": 0.5}, SolverSettings(), "early_contact"),
-    ({"k_contact": 188.0, "contact_lead": 0.001}, SolverSettings(t_max=0.2), "no_release"),
-    ({}, SolverSettings(max_steps=3), "step_failure"),
-    ({"contact_lead": 0.15}, SolverSettings(history=2), "lead_too_long"),
-])
+@pytest.mark.parametrize(
+    "params, settings, status",
+    [
+        ({}, SolverSettings(t_max=0.05), "no_phi_zero"),
+        ({"contact_lead": 0.5}, SolverSettings(), "early_contact"),
+        ({"k_contact": 188.0, "contact_lead": 0.001}, SolverSettings(t_max=0.2), "no_release"),
+        ({}, SolverSettings(max_steps=3), "step_failure"),
+        ({"contact_lead": 0.15}, SolverSettings(history=2), "lead_too_long"),
+    ],
+)
 def test_failures_are_statuses(params, settings, status):
     res = strike(*FIG4_A, params, settings)
     assert res["status_name"] == status
@@ -97,20 +106,38 @@ def test_status_names_cover_codes():
 
 def _isolated_contact(k):
     """Ball at 5 m/s on the racket at rest (no torques, elbow fixed): two-body contact."""
-    still = {"C1": 0.0, "C2": 0.0, "vx_t1": 0.0, "vx_t2": 0.0, "vy_t1": 0.0, "vy_t2": 0.0,
-             "k_contact": k}
+    still = {
+        "C1": 0.0,
+        "C2": 0.0,
+        "vx_t1": 0.0,
+        "vx_t2": 0.0,
+        "vy_t1": 0.0,
+        "vy_t2": 0.0,
+        "k_contact": k,
+    }
     cf = coefficient_tup(**still)
     th, ph = -0.15, 0.05
-    y = (math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), 0.0, 0.0, th, ph,
-         hit_offset(math.sin(th), math.sin(ph), cf), 5.0)
+    y = (
+        math.sin(th),
+        math.cos(th),
+        math.sin(ph),
+        math.cos(ph),
+        0.0,
+        0.0,
+        th,
+        ph,
+        hit_offset(math.sin(th), math.sin(ph), cf),
+        5.0,
+    )
     m_eff = effective_mass(math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), cf)
     st = SolverSettings(rtol=1e-12, atol=1e-12).as_array()
     st[S_RTOL] = 1e-12
     stats = np.zeros(N_STATS)
     mu = 0.057 * m_eff / (0.057 + m_eff)
     h_max = math.pi * math.sqrt(mu / k) / 2
-    status, t, y, _ = run_phases(1, True, 0.0, y, 1.0, h_max, h_max, cf, True, st, stats,
-                                 np.zeros((1, HISTORY_COLS)))
+    status, t, y, _ = run_phases(
+        1, True, 0.0, y, 1.0, h_max, h_max, cf, True, st, stats, np.zeros((1, HISTORY_COLS))
+    )
     assert status == PHASE_EVENT
     return t, y[9], m_eff
 
@@ -143,15 +170,19 @@ def test_rebound_speed_barely_depends_on_k():
     durations = [strike(*FIG4_A, {"k_contact": k}) for k in (188.0, 19000.0)]
     assert max(speeds) - min(speeds) < 0.15 * max(speeds)
     assert (durations[0]["t_separation"] - durations[0]["t_contact_start"]) > 5 * (
-        durations[1]["t_separation"] - durations[1]["t_contact_start"])
+        durations[1]["t_separation"] - durations[1]["t_contact_start"]
+    )
 
 
 # Fig. 4 of the paper with the default readings; tolerances are the project's declared
 # ones (times 2 ms, angles 1 degree, angular velocities 0.5 rad/s, speeds 1 km/h).
-@pytest.mark.parametrize("stroke, t_contact, theta_c, omega1, omega2, v_out", [
-    (FIG4_A, 0.198, 11.5, 11.34, 37.98, 156.0),
-    (FIG4_B, 0.220, 87.1, 17.9, 37.98, 141.0),
-])
+@pytest.mark.parametrize(
+    "stroke, t_contact, theta_c, omega1, omega2, v_out",
+    [
+        (FIG4_A, 0.198, 11.5, 11.34, 37.98, 156.0),
+        (FIG4_B, 0.220, 87.1, 17.9, 37.98, 141.0),
+    ],
+)
 def test_fig4_strokes(stroke, t_contact, theta_c, omega1, omega2, v_out):
     res = strike(*stroke)
     assert res["t_phi0"] == pytest.approx(t_contact, abs=2e-3)

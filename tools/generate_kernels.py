@@ -61,32 +61,49 @@ def _method(name: str, cls) -> list[str]:
     out: list[str] = []
     for phase, (n, contact) in PHASES.items():
         y_new = _state(n, lambda i: f"y[{i}] + h * ({_combo(cls.B, range(ns), 'k', i)})")
-        out += ["", "", "@njit(**JIT_FAST)",
-                f"def step_{name}_{phase}(t, y, f0, h, cf, c2, rtol, atol):",
-                f'    """{name.upper()} step, {phase} phase: ``(y_new, f(t+h, y_new), error norm)``."""',
-                "    k0 = f0"]
+        out += [
+            "",
+            "",
+            "@njit(**JIT_FAST)",
+            f"def step_{name}_{phase}(t, y, f0, h, cf, c2, rtol, atol):",
+            f'    """{name.upper()} step, {phase} phase: ``(y_new, f(t+h, y_new), error)``."""',
+            "    k0 = f0",
+        ]
         out += _stages(a, c, 1, ns, n, contact)
-        out += [f"    y_new = {y_new}",
-                f"    k{ns} = rhs_trig(t + h, y_new, cf, c2, {contact})",
-                "    e5 = 0.0"]
+        out += [
+            f"    y_new = {y_new}",
+            f"    k{ns} = rhs_trig(t + h, y_new, cf, c2, {contact})",
+            "    e5 = 0.0",
+        ]
         if extra:
             out.append("    e3 = 0.0")
         for i in range(n):
-            out += [f"    scale = atol + rtol * max(abs(y[{i}]), abs(y_new[{i}]))",
-                    f"    d = ({_combo(e5, range(ns + 1), 'k', i)}) / scale",
-                    "    e5 += d * d"]
+            out += [
+                f"    scale = atol + rtol * max(abs(y[{i}]), abs(y_new[{i}]))",
+                f"    d = ({_combo(e5, range(ns + 1), 'k', i)}) / scale",
+                "    e5 += d * d",
+            ]
             if extra:
-                out += [f"    d = ({_combo(cls.E3, range(ns + 1), 'k', i)}) / scale",
-                        "    e3 += d * d"]
+                out += [
+                    f"    d = ({_combo(cls.E3, range(ns + 1), 'k', i)}) / scale",
+                    "    e3 += d * d",
+                ]
         if extra:
-            out += ["    if e5 == 0.0:", f"        return y_new, k{ns}, 0.0",
-                    f"    return y_new, k{ns}, abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * {n})"]
+            out += [
+                "    if e5 == 0.0:",
+                f"        return y_new, k{ns}, 0.0",
+                f"    return y_new, k{ns}, abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * {n})",
+            ]
         else:
             out.append(f"    return y_new, k{ns}, abs(h) * math.sqrt(e5 / {n})")
-        out += ["", "", "@njit(**JIT_FAST)",
-                f"def dense_{name}_{phase}(t, y, f0, h, cf, c2, y_new, f_new):",
-                '    """Dense-output coefficients (7 rows) of the step ``y -> y_new``."""',
-                "    k0 = f0"]
+        out += [
+            "",
+            "",
+            "@njit(**JIT_FAST)",
+            f"def dense_{name}_{phase}(t, y, f0, h, cf, c2, y_new, f_new):",
+            '    """Dense-output coefficients (7 rows) of the step ``y -> y_new``."""',
+            "    k0 = f0",
+        ]
         out += _stages(a, c, 1, ns, n, contact)
         out.append(f"    k{ns} = f_new")
         zero = "0.0"
@@ -101,11 +118,14 @@ def _method(name: str, cls) -> list[str]:
                 for r in range(cls.D.shape[0])
             ]
         else:  # padded to the 7 rows of DOP853, so both methods return one type
-            rows = [lambda i, col=col: f"h * ({_combo(cls.P[:, col], range(ns + 1), 'k', i)})"
-                    for col in range(cls.P.shape[1])]
-            rows += [lambda i: zero] * (7 - len(rows))
-        tuples = ["(" + ", ".join(row(i) if i < n else zero for i in range(N_STATE)) + ")"
-                  for row in rows]
+            rows = [
+                lambda i, col=col: f"h * ({_combo(cls.P[:, col], range(ns + 1), 'k', i)})"
+                for col in range(cls.P.shape[1])
+            ]
+            rows += [lambda i: "0.0"] * (7 - len(rows))
+        tuples = [
+            "(" + ", ".join(row(i) if i < n else zero for i in range(N_STATE)) + ")" for row in rows
+        ]
         out.append("    return (" + ",\n            ".join(tuples) + ")")
     return out
 
@@ -113,18 +133,29 @@ def _method(name: str, cls) -> list[str]:
 def _dense_evals() -> list[str]:
     dp54 = ",\n            ".join(
         f"y[{i}] + x * (z[0][{i}] + x * (z[1][{i}] + x * (z[2][{i}] + x * z[3][{i}])))"
-        for i in range(N_STATE))
+        for i in range(N_STATE)
+    )
     dop853 = []
     for i in range(N_STATE):
         acc = f"z[6][{i}] * x"
         for m in range(5, -1, -1):
             acc = f"({acc} + z[{m}][{i}]) * {'u' if m % 2 else 'x'}"
         dop853.append(f"y[{i}] + {acc}")
-    return ["", "", "@njit(**JIT_FAST)", "def dense_eval_dp54(x, y, z):",
-            '    """Shampine\'s 4th-order interpolant at the fraction ``x`` of the step."""',
-            f"    return ({dp54})", "", "", "@njit(**JIT_FAST)", "def dense_eval_dop853(x, y, z):",
-            '    """The 7th-order DOP853 interpolant at the fraction ``x`` of the step."""',
-            "    u = 1.0 - x", "    return (" + ",\n            ".join(dop853) + ")"]
+    return [
+        "",
+        "",
+        "@njit(**JIT_FAST)",
+        "def dense_eval_dp54(x, y, z):",
+        '    """Shampine\'s 4th-order interpolant at the fraction ``x`` of the step."""',
+        f"    return ({dp54})",
+        "",
+        "",
+        "@njit(**JIT_FAST)",
+        "def dense_eval_dop853(x, y, z):",
+        '    """The 7th-order DOP853 interpolant at the fraction ``x`` of the step."""',
+        "    u = 1.0 - x",
+        "    return (" + ",\n            ".join(dop853) + ")",
+    ]
 
 
 def render() -> str:

@@ -22,6 +22,13 @@ from .stroke import STATUS_NAMES, SolverSettings, strike, strike_batch  # noqa: 
 __version__ = "0.1.0"
 
 __all__ = [
-    "PARAMETERS", "READINGS", "STATUS_NAMES", "ParameterError", "SolverSettings",
-    "__version__", "resolve_params", "strike", "strike_batch",
+    "PARAMETERS",
+    "READINGS",
+    "STATUS_NAMES",
+    "ParameterError",
+    "SolverSettings",
+    "__version__",
+    "resolve_params",
+    "strike",
+    "strike_batch",
 ]

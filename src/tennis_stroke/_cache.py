@@ -2,8 +2,9 @@
 
 numba's on-disk cache checks only the source file of each compiled function, not the
 modules it calls, so a change in ``dynamics.py`` would not recompile ``stroke.py``.  The
-cache directory is therefore keyed by a hash of all package sources: any source change
-starts a fresh cache, and an unchanged package reloads in a new process without compiling.
+cache directory is therefore keyed by a hash of the modules with compiled code: a change
+in any of them starts a fresh cache, and an unchanged package reloads in a new process
+without compiling.
 """
 
 from __future__ import annotations
@@ -12,13 +13,16 @@ import hashlib
 import os
 from pathlib import Path
 
+#: The modules that hold compiled (numba) code; a change in any of them recompiles all.
+COMPILED_MODULES = ("dynamics.py", "_kernels.py", "integrate.py", "stroke.py")
+
 
 def source_hash() -> str:
-    """SHA-256 (first 16 hex digits) of the package's Python sources."""
+    """SHA-256 (first 16 hex digits) of the modules with compiled code."""
     digest = hashlib.sha256()
-    for path in sorted(Path(__file__).parent.glob("*.py")):
-        digest.update(path.name.encode())
-        digest.update(path.read_bytes())
+    for name in COMPILED_MODULES:
+        digest.update(name.encode())
+        digest.update((Path(__file__).parent / name).read_bytes())
     return digest.hexdigest()[:16]
 
 

@@ -71,8 +71,13 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def common(p: argparse.ArgumentParser) -> None:
-        p.add_argument("--set", action="append", default=[], metavar="KEY=VALUE",
-                       help="override a model parameter (SI units) or a reading")
+        p.add_argument(
+            "--set",
+            action="append",
+            default=[],
+            metavar="KEY=VALUE",
+            help="override a model parameter (SI units) or a reading",
+        )
         p.add_argument("--method", default="DOP853", help="DOP853 (default) or DP54")
         p.add_argument("--rtol", type=float, default=None, help="relative tolerance")
         p.add_argument("--atol", type=float, default=None, help="absolute tolerance")
@@ -116,18 +121,24 @@ def _strike(args: argparse.Namespace) -> int:
         fields = {"status": result["status_name"], "status_code": result["status"]}
         fields.update((k, v) for k, v in result.items() if k not in ("status", "status_name"))
         payload = {
-            "params": {"theta0_deg": args.theta0, "delta0_deg": args.delta0,
-                       **scalar_params(params)},
+            "params": {
+                "theta0_deg": args.theta0,
+                "delta0_deg": args.delta0,
+                **scalar_params(params),
+            },
             "solver": settings.as_dict(),
-            "result": {k: None if isinstance(v, float) and math.isnan(v) else v
-                       for k, v in fields.items()},
+            "result": {
+                k: None if isinstance(v, float) and math.isnan(v) else v for k, v in fields.items()
+            },
         }
         print(json.dumps(payload, indent=2))
         return 0
     from .stroke import RESULT_FIELDS
 
-    print(f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
-          f"{result['status_name']}")
+    print(
+        f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
+        f"{result['status_name']}"
+    )
     for name, (_, units, long_name) in RESULT_FIELDS.items():
         if name != "status":
             print(f"  {name:18s} {result[name]:14.6f} {units:7s} {long_name}")
@@ -148,12 +159,22 @@ def _sweep(args: argparse.Namespace) -> int:
         raise ValueError(f"--threads must be >= 1, got {args.threads}")
     out = check_writable(args.out)
     start = time.perf_counter()
-    results = strike_batch(theta0[:, None], delta0[None, :], overrides, settings,
-                           threads=args.threads,
-                           progress=not args.no_progress and sys.stderr.isatty())
+    results = strike_batch(
+        theta0[:, None],
+        delta0[None, :],
+        overrides,
+        settings,
+        threads=args.threads,
+        progress=not args.no_progress and sys.stderr.isatty(),
+    )
     wall = time.perf_counter() - start
-    ds = result_dataset(results, {"theta0": theta0, "delta0": delta0}, params, settings,
-                        {"wall_time_s": wall, "command": " ".join(sys.argv)})
+    ds = result_dataset(
+        results,
+        {"theta0": theta0, "delta0": delta0},
+        params,
+        settings,
+        {"wall_time_s": wall, "command": " ".join(sys.argv)},
+    )
     write_netcdf(ds, out)
     n_ok = int((results["status"] == 0).sum())
     print(f"{out}: {results['status'].size} strokes ({n_ok} ok) in {wall:.2f} s")

@@ -49,10 +49,39 @@ A_THETA, A_PHI, A_OMEGA1, A_OMEGA2, A_BALL_S, A_BALL_W = range(6)
 
 # Layout of the per-stroke coefficient array.
 (
-    CF_L1, CF_LH, CF_M1, CF_M2, CF_H1, CF_H2, CF_I1, CF_I2, CF_M11, CF_M22, CF_M12,
-    CF_A1, CF_A2, CF_C1, CF_C2, CF_TAU, CF_C2_OFF, CF_K, CF_MB, CF_COUPLING,
-    CF_VX1, CF_VX2, CF_VY1, CF_VY2, CF_FX, CF_FY, CF_TF, CF_TD,
-    CF_LEAD, CF_VBALL, CF_THETA0, CF_PHI0, CF_FORCE_ON,
+    CF_L1,
+    CF_LH,
+    CF_M1,
+    CF_M2,
+    CF_H1,
+    CF_H2,
+    CF_I1,
+    CF_I2,
+    CF_M11,
+    CF_M22,
+    CF_M12,
+    CF_A1,
+    CF_A2,
+    CF_C1,
+    CF_C2,
+    CF_TAU,
+    CF_C2_OFF,
+    CF_K,
+    CF_MB,
+    CF_COUPLING,
+    CF_VX1,
+    CF_VX2,
+    CF_VY1,
+    CF_VY2,
+    CF_FX,
+    CF_FY,
+    CF_TF,
+    CF_TD,
+    CF_LEAD,
+    CF_VBALL,
+    CF_THETA0,
+    CF_PHI0,
+    CF_FORCE_ON,
 ) = range(33)
 N_CF = 33
 
@@ -87,21 +116,39 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
     h1, h2 = g["L1"] / 2.0, g["L2"] / 2.0
     psi = np.radians(g["psi_F_deg"])
     cols = {
-        CF_L1: g["L1"], CF_LH: h2 + g["h_hit"], CF_M1: g["M1"], CF_M2: g["M2"],
-        CF_H1: h1, CF_H2: h2, CF_I1: g["I1_cm"], CF_I2: g["I2_cm"],
+        CF_L1: g["L1"],
+        CF_LH: h2 + g["h_hit"],
+        CF_M1: g["M1"],
+        CF_M2: g["M2"],
+        CF_H1: h1,
+        CF_H2: h2,
+        CF_I1: g["I1_cm"],
+        CF_I2: g["I2_cm"],
         CF_M11: g["I1_cm"] + g["M1"] * h1**2 + g["M2"] * g["L1"] ** 2,
         CF_M22: g["I2_cm"] + g["M2"] * h2**2,
         CF_M12: g["M2"] * h2 * g["L1"],
-        CF_A1: g["M1"] * h1 + g["M2"] * g["L1"], CF_A2: g["M2"] * h2,
-        CF_C1: g["C1"], CF_C2: g["C2"], CF_TAU: g["tau"], CF_C2_OFF: g["C2_off"],
-        CF_K: g["k_contact"], CF_MB: g["ball_mass"],
+        CF_A1: g["M1"] * h1 + g["M2"] * g["L1"],
+        CF_A2: g["M2"] * h2,
+        CF_C1: g["C1"],
+        CF_C2: g["C2"],
+        CF_TAU: g["tau"],
+        CF_C2_OFF: g["C2_off"],
+        CF_K: g["k_contact"],
+        CF_MB: g["ball_mass"],
         CF_COUPLING: _COUPLING_FACTOR[params["collision_coupling"]],
-        CF_VX1: g["vx_t1"], CF_VX2: g["vx_t2"], CF_VY1: g["vy_t1"], CF_VY2: g["vy_t2"],
+        CF_VX1: g["vx_t1"],
+        CF_VX2: g["vx_t2"],
+        CF_VY1: g["vy_t1"],
+        CF_VY2: g["vy_t2"],
         CF_FX: g["F0"] * np.cos(psi) / g["elbow_force_mass"],
         CF_FY: g["F0"] * np.sin(psi) / g["elbow_force_mass"],
-        CF_TF: g["t_F"], CF_TD: g["t_d"],
-        CF_LEAD: g["contact_lead"], CF_VBALL: g["ball_speed"],
-        CF_THETA0: th0, CF_PHI0: ph0, CF_FORCE_ON: (g["F0"] != 0.0).astype(float),
+        CF_TF: g["t_F"],
+        CF_TD: g["t_d"],
+        CF_LEAD: g["contact_lead"],
+        CF_VBALL: g["ball_speed"],
+        CF_THETA0: th0,
+        CF_PHI0: ph0,
+        CF_FORCE_ON: (g["F0"] != 0.0).astype(float),
     }
     out = np.empty((*shape, N_CF))
     for col, val in cols.items():
@@ -228,8 +275,18 @@ def rhs_trig(t, y, cf, c2, contact):
     m11, m22 = cf[CF_M11], cf[CF_M22]
     mc = m12 * cd
     det = m11 * m22 - mc * mc
-    return (-w1 * ct, w1 * st, -w2 * cp, w2 * sp, (p * m22 - q * mc) / det,
-            (q * m11 - p * mc) / det, -w1, -w2, ds, dw)
+    return (
+        -w1 * ct,
+        w1 * st,
+        -w2 * cp,
+        w2 * sp,
+        (p * m22 - q * mc) / det,
+        (q * m11 - p * mc) / det,
+        -w1,
+        -w2,
+        ds,
+        dw,
+    )
 
 
 @njit(**JIT)
@@ -244,8 +301,18 @@ def to_trig(y_angles):
     th, ph = y_angles[A_THETA], y_angles[A_PHI]
     s = y_angles[A_BALL_S] if y_angles.size > 4 else 0.0
     w = y_angles[A_BALL_W] if y_angles.size > 4 else 0.0
-    return (math.sin(th), math.cos(th), math.sin(ph), math.cos(ph), y_angles[A_OMEGA1],
-            y_angles[A_OMEGA2], th, ph, s, w)
+    return (
+        math.sin(th),
+        math.cos(th),
+        math.sin(ph),
+        math.cos(ph),
+        y_angles[A_OMEGA1],
+        y_angles[A_OMEGA2],
+        th,
+        ph,
+        s,
+        w,
+    )
 
 
 @njit(**JIT)

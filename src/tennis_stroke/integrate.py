@@ -16,15 +16,17 @@ module-level functions on disk, but recompiles closures in every new process.
 Contract of a phase integrator ``integrate(t, y, f, t_end, h, h_max, cf, c2, rtol, atol,
 max_steps, event_on, stats, history) -> (status, t, y, f, h)``: advance the state tuple
 ``y`` (and ``f = dy/dt``) from ``t`` towards ``t_end`` (forwards or backwards) without
-crossing it, with a constant wrist torque ``c2``.  With ``event_on``, the phase's terminal event (free swing: ``phi`` falls through
-0; contact: the compression falls through 0) is located by root finding (Illinois) on the
-dense output, and ``y`` is the dense output there.  Discontinuities never occur inside a
+crossing it, with a constant wrist torque ``c2``.  With ``event_on``, the phase's
+terminal event (free swing: ``phi`` falls through 0; contact: the compression falls
+through 0) is located by root finding (Illinois) on the dense output, and ``y`` is the
+dense output there.  Discontinuities never occur inside a
 phase: the caller ends a phase at every switch and starts a new one.
 """
 
 from __future__ import annotations
 
 import math
+
 import numpy as np
 from numba import njit
 
@@ -111,8 +113,7 @@ def peak_omega2(y0, y1, f0, f1, h, best):
 def history_state(row):
     """``(t, step, omega2 max before, y, f)`` of a history row, states as tuples."""
     y = (row[3], row[4], row[5], row[6], row[7], row[8], row[9], row[10], row[11], row[12])
-    f = (row[13], row[14], row[15], row[16], row[17], row[18], row[19], row[20], row[21],
-         row[22])
+    f = (row[13], row[14], row[15], row[16], row[17], row[18], row[19], row[20], row[21], row[22])
     return row[0], row[1], row[2], y, f
 
 
@@ -211,8 +212,24 @@ def locate_event(method, contact, y, z, cf):
 
 
 @njit(**JIT)
-def integrate_phase(method, contact, t, y, f, t_end, h, h_max, cf, c2, rtol, atol, max_steps,
-                    event_on, stats, history):
+def integrate_phase(
+    method,
+    contact,
+    t,
+    y,
+    f,
+    t_end,
+    h,
+    h_max,
+    cf,
+    c2,
+    rtol,
+    atol,
+    max_steps,
+    event_on,
+    stats,
+    history,
+):
     """Advance ``(t, y, f)`` towards ``t_end`` within one phase; see the module contract.
 
     Parameters
@@ -275,8 +292,7 @@ def integrate_phase(method, contact, t, y, f, t_end, h, h_max, cf, c2, rtol, ato
         nfev += n_stages
         if not err <= 1.0:  # also NaN
             nreject += 1
-            h = abs(dt) * (max(MIN_FACTOR, SAFETY * err**exponent) if err < np.inf
-                           else MIN_FACTOR)
+            h = abs(dt) * (max(MIN_FACTOR, SAFETY * err**exponent) if err < np.inf else MIN_FACTOR)
             rejected = True
             continue
         factor = MAX_FACTOR if err == 0.0 else min(MAX_FACTOR, SAFETY * err**exponent)
@@ -305,8 +321,12 @@ def integrate_phase(method, contact, t, y, f, t_end, h, h_max, cf, c2, rtol, ato
         y, f = y_new, f_new
         t = t_end if last else t + dt
         h = h_next
-    stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], stats[ST_W2MAX] = \
-        nfev, nstep, nreject, w2max
+    stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], stats[ST_W2MAX] = (
+        nfev,
+        nstep,
+        nreject,
+        w2max,
+    )
     if capacity > 0:
         history[capacity, 0] = count
     return status, t, y, f, h

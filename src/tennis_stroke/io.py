@@ -40,11 +40,21 @@ def git_commit() -> str:
     """Commit of the source tree this package runs from, or ``"unknown"``."""
     try:
         out = subprocess.run(
-            ["git", "rev-parse", "HEAD"], cwd=Path(__file__).parent, capture_output=True,
-            text=True, timeout=5, check=True)
+            ["git", "rev-parse", "HEAD"],
+            cwd=Path(__file__).parent,
+            capture_output=True,
+            text=True,
+            timeout=5,
+            check=True,
+        )
         dirty = subprocess.run(
             ["git", "status", "--porcelain", "--untracked-files=no"],
-            cwd=Path(__file__).parent, capture_output=True, text=True, timeout=5, check=True)
+            cwd=Path(__file__).parent,
+            capture_output=True,
+            text=True,
+            timeout=5,
+            check=True,
+        )
     except (OSError, subprocess.SubprocessError):
         return "unknown"
     return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
@@ -75,9 +85,13 @@ def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[s
     return attrs
 
 
-def result_dataset(results: Mapping[str, np.ndarray], coords: Mapping[str, np.ndarray],
-                   params: Mapping[str, object], settings: SolverSettings,
-                   extra_attrs: Mapping[str, object] | None = None) -> xr.Dataset:
+def result_dataset(
+    results: Mapping[str, np.ndarray],
+    coords: Mapping[str, np.ndarray],
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    extra_attrs: Mapping[str, object] | None = None,
+) -> xr.Dataset:
     """A dataset of stroke results on named grid axes, with CF metadata and provenance.
 
     Parameters
@@ -100,8 +114,11 @@ def result_dataset(results: Mapping[str, np.ndarray], coords: Mapping[str, np.nd
             values, units, long_name = values
         else:
             units, long_name = COORDINATES[name]
-        coord_vars[name] = (name, np.asarray(values, dtype=float),
-                            {"units": units, "long_name": long_name})
+        coord_vars[name] = (
+            name,
+            np.asarray(values, dtype=float),
+            {"units": units, "long_name": long_name},
+        )
     data_vars = {}
     for field, values in results.items():
         _, units, long_name = RESULT_FIELDS[field]

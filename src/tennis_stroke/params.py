@@ -55,10 +55,26 @@ PARAMETERS: dict[str, ParamSpec] = {
         _p("M1", 2.0, "kg", "mass of rod 1", 0, 100, True),
         _p("L2", 0.7, "m", "length of rod 2 (hand+racket)", 0, 5, True),
         _p("M2", 0.3, "kg", "mass of rod 2", 0, 100, True),
-        _p("I1_cm", None, "kg m2", "moment of inertia of rod 1 about its centre", 0,
-           None, True, derived=True),
-        _p("I2_cm", None, "kg m2", "moment of inertia of rod 2 about its centre", 0,
-           None, True, derived=True),
+        _p(
+            "I1_cm",
+            None,
+            "kg m2",
+            "moment of inertia of rod 1 about its centre",
+            0,
+            None,
+            True,
+            derived=True,
+        ),
+        _p(
+            "I2_cm",
+            None,
+            "kg m2",
+            "moment of inertia of rod 2 about its centre",
+            0,
+            None,
+            True,
+            derived=True,
+        ),
         _p("C1", 25.0, "N m", "elbow torque on rod 1 (clockwise positive)"),
         _p("C2", 2.5, "N m", "wrist torque on rod 2 (clockwise positive)"),
         _p("tau", 0.0, "s", "delay after which C2 switches on (Sec. V)", 0, 10),
@@ -67,8 +83,15 @@ PARAMETERS: dict[str, ParamSpec] = {
         _p("ball_mass", 0.057, "kg", "ball mass (not stated in the paper)", 0, 10, True),
         _p("ball_speed", 5.0, "m/s", "incoming ball speed along +x", 0, 100),
         _p("k_contact", 19000.0, "N/m", "ball-racket spring constant", 0, 1e12, True),
-        _p("contact_lead", None, "s", "time from contact start to phi = 0 (t0 - t_c)", 0,
-           1, derived=True),
+        _p(
+            "contact_lead",
+            None,
+            "s",
+            "time from contact start to phi = 0 (t0 - t_c)",
+            0,
+            1,
+            derived=True,
+        ),
         _p("vx_t1", -33.0, "m/s2", "elbow velocity vx = vx_t1 t + vx_t2 t^2 (Eq. 13)"),
         _p("vx_t2", 69.0, "m/s3", "elbow velocity, quadratic x coefficient (Eq. 13)"),
         _p("vy_t1", -42.0, "m/s2", "elbow velocity vy = vy_t1 t + vy_t2 t^2 (Eq. 13)"),
@@ -77,8 +100,16 @@ PARAMETERS: dict[str, ParamSpec] = {
         _p("psi_F_deg", 0.0, "degree", "direction of the extra elbow force from +x, ccw"),
         _p("t_F", 0.185, "s", "centre time of the extra elbow force (tau_H + tau_F)", 0, 10),
         _p("t_d", 0.05, "s", "width of the extra elbow force pulse (Eq. 14)", 0, 10, True),
-        _p("elbow_force_mass", None, "kg", "mass the extra elbow force accelerates", 0,
-           None, True, derived=True),
+        _p(
+            "elbow_force_mass",
+            None,
+            "kg",
+            "mass the extra elbow force accelerates",
+            0,
+            None,
+            True,
+            derived=True,
+        ),
     ]
 }
 
@@ -99,14 +130,28 @@ class Reading:
 READINGS: dict[str, Reading] = {
     r.name: r
     for r in [
-        Reading("inertia", ("uniform_rod", "paper_text"), "uniform_rod", "paper_text",
-                "I_cm of each rod: M L^2/12 (uniform rod) or M L^2/2 (Sec. III text)"),
-        Reading("contact_lead_rule", ("half_period", "quarter_period", "zero"),
-                "half_period", "half_period",
-                "contact starts T/2, T/4 or 0 before phi = 0, T from Eq. 12"),
-        Reading("collision_coupling", ("newton", "paper_eq8"), "newton", "paper_eq8",
-                "ball force on the racket: Newton's third law (Lagrangian) or Eq. 8 as "
-                "printed (twice the Lagrangian terms)"),
+        Reading(
+            "inertia",
+            ("uniform_rod", "paper_text"),
+            "uniform_rod",
+            "paper_text",
+            "I_cm of each rod: M L^2/12 (uniform rod) or M L^2/2 (Sec. III text)",
+        ),
+        Reading(
+            "contact_lead_rule",
+            ("half_period", "quarter_period", "zero"),
+            "half_period",
+            "half_period",
+            "contact starts T/2, T/4 or 0 before phi = 0, T from Eq. 12",
+        ),
+        Reading(
+            "collision_coupling",
+            ("newton", "paper_eq8"),
+            "newton",
+            "paper_eq8",
+            "ball force on the racket: Newton's third law (Lagrangian) or Eq. 8 as "
+            "printed (twice the Lagrangian terms)",
+        ),
     ]
 }
 

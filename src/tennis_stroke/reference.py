@@ -18,16 +18,39 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from .dynamics import (
-    A_BALL_S, A_BALL_W, A_OMEGA1, A_OMEGA2, A_PHI, A_THETA, CF_K, CF_LEAD, CF_MB, CF_PHI0,
-    CF_THETA0, CF_VBALL, approach_rate, coefficients, effective_mass, elbow_velocity,
-    hit_offset, rhs_angles,
+    A_BALL_S,
+    A_BALL_W,
+    A_OMEGA1,
+    A_OMEGA2,
+    A_PHI,
+    A_THETA,
+    CF_K,
+    CF_LEAD,
+    CF_MB,
+    CF_PHI0,
+    CF_THETA0,
+    CF_VBALL,
+    approach_rate,
+    coefficients,
+    effective_mass,
+    elbow_velocity,
+    hit_offset,
+    rhs_angles,
 )
 from .params import resolve_params
 from .stroke import (
-    EARLY_CONTACT, MS_TO_KMH, NO_APPROACH, NO_PHI_ZERO, NO_RELEASE, OK, RESULT_FIELDS,
-    STATUS_NAMES, STEP_FAILURE, next_switch, wrist_torque,
+    EARLY_CONTACT,
+    MS_TO_KMH,
+    NO_APPROACH,
+    NO_PHI_ZERO,
+    NO_RELEASE,
+    OK,
+    RESULT_FIELDS,
+    STATUS_NAMES,
+    STEP_FAILURE,
+    next_switch,
+    wrist_torque,
 )
-
 
 #: Samples per phase for ``omega2_max`` on the reference path.
 OMEGA2_SAMPLES = 512
@@ -62,8 +85,12 @@ class ReferenceStroke:
             mask = (times >= seg.t0) & (times <= seg.t1)
             if np.any(mask):
                 y = seg.sol(times[mask])
-                for key, idx in (("theta", A_THETA), ("phi", A_PHI), ("omega1", A_OMEGA1),
-                                 ("omega2", A_OMEGA2)):
+                for key, idx in (
+                    ("theta", A_THETA),
+                    ("phi", A_PHI),
+                    ("omega1", A_OMEGA1),
+                    ("omega2", A_OMEGA2),
+                ):
                     out[key][mask] = y[idx]
         return out
 
@@ -83,8 +110,17 @@ def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segmen
     while True:
         t_seg = next_switch(t, cf, t_stop)
         c2 = wrist_torque(t, t_seg, cf)
-        sol = solve_ivp(_phase_fun(cf, c2, contact), (t, t_seg), y, method=method, rtol=rtol,
-                        atol=atol, events=events, dense_output=True, max_step=max_step)
+        sol = solve_ivp(
+            _phase_fun(cf, c2, contact),
+            (t, t_seg),
+            y,
+            method=method,
+            rtol=rtol,
+            atol=atol,
+            events=events,
+            dense_output=True,
+            max_step=max_step,
+        )
         nfev += sol.nfev
         if sol.status == -1:
             return t, y, False, nfev, False
@@ -96,11 +132,17 @@ def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segmen
             return t, y, hit, nfev, True
 
 
-def solve_stroke(theta0_deg: float, delta0_deg: float,
-                 params: Mapping[str, object] | None = None, method: str = "DOP853",
-                 rtol: float = 1e-12, atol: float = 1e-12, t_max: float = 1.0,
-                 contact_min_steps: float = 2.0, follow_through: float = 0.0
-                 ) -> ReferenceStroke:
+def solve_stroke(
+    theta0_deg: float,
+    delta0_deg: float,
+    params: Mapping[str, object] | None = None,
+    method: str = "DOP853",
+    rtol: float = 1e-12,
+    atol: float = 1e-12,
+    t_max: float = 1.0,
+    contact_min_steps: float = 2.0,
+    follow_through: float = 0.0,
+) -> ReferenceStroke:
     """One stroke with ``solve_ivp``; same phases, statuses and fields as the compiled path.
 
     Parameters
@@ -131,9 +173,12 @@ def solve_stroke(theta0_deg: float, delta0_deg: float,
         for key in ("theta_deg_at_phi0", "theta_deg_contact"):
             res[key] = math.degrees(res[key])
         if code == OK:  # sampled: a check of the compiled peak finder, not a replacement
-            res["omega2_max"] = float(max(
-                np.max(seg.sol(np.linspace(seg.t0, seg.t1, OMEGA2_SAMPLES))[A_OMEGA2])
-                for seg in ref.segments))
+            res["omega2_max"] = float(
+                max(
+                    np.max(seg.sol(np.linspace(seg.t0, seg.t1, OMEGA2_SAMPLES))[A_OMEGA2])
+                    for seg in ref.segments
+                )
+            )
         return ref
 
     def phi_zero(t, y):
@@ -142,15 +187,17 @@ def solve_stroke(theta0_deg: float, delta0_deg: float,
     phi_zero.terminal, phi_zero.direction = True, -1
     swing = []
     y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
-    t0, y, hit, nfev, ok = _run(0.0, y0, t_max, cf, False, [phi_zero], method, rtol, atol,
-                                np.inf, swing)
+    t0, y, hit, nfev, ok = _run(
+        0.0, y0, t_max, cf, False, [phi_zero], method, rtol, atol, np.inf, swing
+    )
     res["rhs_evals"] += nfev
     if not ok:
         return finish(STEP_FAILURE)
     if not hit:
         return finish(NO_PHI_ZERO)
-    res.update(t_phi0=t0, theta_deg_at_phi0=y[A_THETA], omega1_phi0=y[A_OMEGA1],
-               omega2_phi0=y[A_OMEGA2])
+    res.update(
+        t_phi0=t0, theta_deg_at_phi0=y[A_THETA], omega1_phi0=y[A_OMEGA1], omega2_phi0=y[A_OMEGA2]
+    )
     t_c = t0 - cf[CF_LEAD]
     if t_c < 0.0:
         return finish(EARLY_CONTACT)
@@ -158,10 +205,18 @@ def solve_stroke(theta0_deg: float, delta0_deg: float,
     yc = seg.sol(t_c)
     ref.segments = [s for s in swing if s.t0 < t_c]
     ref.segments[-1] = Segment(ref.segments[-1].t0, t_c, False, ref.segments[-1].sol)
-    res.update(t_contact_start=t_c, theta_deg_contact=yc[A_THETA], omega1_contact=yc[A_OMEGA1],
-               omega2_contact=yc[A_OMEGA2])
-    st, ct, sp, cp = (math.sin(yc[A_THETA]), math.cos(yc[A_THETA]), math.sin(yc[A_PHI]),
-                      math.cos(yc[A_PHI]))
+    res.update(
+        t_contact_start=t_c,
+        theta_deg_contact=yc[A_THETA],
+        omega1_contact=yc[A_OMEGA1],
+        omega2_contact=yc[A_OMEGA2],
+    )
+    st, ct, sp, cp = (
+        math.sin(yc[A_THETA]),
+        math.cos(yc[A_THETA]),
+        math.sin(yc[A_PHI]),
+        math.cos(yc[A_PHI]),
+    )
     w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
     if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
         return finish(NO_APPROACH)
@@ -174,8 +229,9 @@ def solve_stroke(theta0_deg: float, delta0_deg: float,
 
     separation.terminal, separation.direction = True, -1
     y = np.array([*yc, hit_offset(st, sp, cf), w])
-    t_sep, y, hit, nfev, ok = _run(t_c, y, t_max, cf, True, [separation], method, rtol, atol,
-                                   max_step, ref.segments)
+    t_sep, y, hit, nfev, ok = _run(
+        t_c, y, t_max, cf, True, [separation], method, rtol, atol, max_step, ref.segments
+    )
     res["rhs_evals"] += nfev
     if not ok:
         return finish(STEP_FAILURE)
@@ -184,8 +240,19 @@ def solve_stroke(theta0_deg: float, delta0_deg: float,
     res["t_separation"] = t_sep
     res["v_out_kmh"] = -MS_TO_KMH * (y[A_BALL_W] + elbow_velocity(t_sep, cf)[0])
     if follow_through > 0.0:
-        _, _, _, nfev, ok = _run(t_sep, y[:4], t_sep + follow_through, cf, False, None, method,
-                                 rtol, atol, np.inf, ref.segments)
+        _, _, _, nfev, ok = _run(
+            t_sep,
+            y[:4],
+            t_sep + follow_through,
+            cf,
+            False,
+            None,
+            method,
+            rtol,
+            atol,
+            np.inf,
+            ref.segments,
+        )
         res["rhs_evals"] += nfev
         if not ok:
             return finish(STEP_FAILURE)

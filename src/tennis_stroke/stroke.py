@@ -28,13 +28,47 @@ from numba import njit, prange
 
 from ._kernels import N_STAGES_BY_ID, coefficient_tuple
 from .dynamics import (
-    BALL_W, CF_C2, CF_C2_OFF, CF_K, CF_LEAD, CF_MB, CF_PHI0, CF_TAU, CF_THETA0, CF_VBALL,
-    COS_PH, COS_TH, JIT, OMEGA1, OMEGA2, PHI, SIN_PH, SIN_TH, THETA, approach_rate, coefficients,
-    effective_mass, elbow_velocity, hit_offset, rhs_trig,
+    BALL_W,
+    CF_C2,
+    CF_C2_OFF,
+    CF_K,
+    CF_LEAD,
+    CF_MB,
+    CF_PHI0,
+    CF_TAU,
+    CF_THETA0,
+    CF_VBALL,
+    COS_PH,
+    COS_TH,
+    JIT,
+    OMEGA1,
+    OMEGA2,
+    PHI,
+    SIN_PH,
+    SIN_TH,
+    THETA,
+    approach_rate,
+    coefficients,
+    effective_mass,
+    elbow_velocity,
+    hit_offset,
+    rhs_trig,
 )
 from .integrate import (
-    HISTORY_COLS, METHOD_IDS, N_STATS, PHASE_END, PHASE_FAIL, ST_NFEV, ST_NSTEP, ST_W2MAX,
-    history_find, history_reset, history_state, integrate_phase, peak_omega2, rk_step,
+    HISTORY_COLS,
+    METHOD_IDS,
+    N_STATS,
+    PHASE_END,
+    PHASE_FAIL,
+    ST_NFEV,
+    ST_NSTEP,
+    ST_W2MAX,
+    history_find,
+    history_reset,
+    history_state,
+    integrate_phase,
+    peak_omega2,
+    rk_step,
 )
 from .params import ParameterError, resolve_params
 
@@ -55,8 +89,20 @@ STATUS_NAMES = {
 
 # Output columns of the compiled solver.
 (
-    O_STATUS, O_VOUT, O_T_PHI0, O_T_CONTACT, O_T_SEP, O_THETA_PHI0, O_W1_PHI0, O_W2_PHI0,
-    O_THETA_CONTACT, O_W1_CONTACT, O_W2_CONTACT, O_W2_MAX, O_NFEV, O_NSTEP,
+    O_STATUS,
+    O_VOUT,
+    O_T_PHI0,
+    O_T_CONTACT,
+    O_T_SEP,
+    O_THETA_PHI0,
+    O_W1_PHI0,
+    O_W2_PHI0,
+    O_THETA_CONTACT,
+    O_W1_CONTACT,
+    O_W2_CONTACT,
+    O_W2_MAX,
+    O_NFEV,
+    O_NSTEP,
 ) = range(14)
 N_OUT = 14
 
@@ -140,8 +186,17 @@ class SolverSettings:
 
     def as_array(self) -> np.ndarray:
         """The numeric settings in the compiled layout ``S_*``."""
-        return np.array([self.rtol, self.atol, self.t_max, self.first_step,
-                         float(self.max_steps), self.contact_min_steps, self.follow_through])
+        return np.array(
+            [
+                self.rtol,
+                self.atol,
+                self.t_max,
+                self.first_step,
+                float(self.max_steps),
+                self.contact_min_steps,
+                self.follow_through,
+            ]
+        )
 
     def as_dict(self) -> dict[str, object]:
         """Plain dict (for file attributes and JSON)."""
@@ -173,9 +228,24 @@ def run_phases(method, contact, t, y, t_stop, h, h_max, cf, event_on, st, stats,
         c2 = wrist_torque(t, t_seg, cf)
         f = rhs_trig(t, y, cf, c2, contact)
         stats[ST_NFEV] += 1
-        status, t, y, f, h = integrate_phase(method, contact, t, y, f, t_seg, h, h_max, cf, c2,
-                                             st[S_RTOL], st[S_ATOL], st[S_MAX_STEPS],
-                                             event_on, stats, history)
+        status, t, y, f, h = integrate_phase(
+            method,
+            contact,
+            t,
+            y,
+            f,
+            t_seg,
+            h,
+            h_max,
+            cf,
+            c2,
+            st[S_RTOL],
+            st[S_ATOL],
+            st[S_MAX_STEPS],
+            event_on,
+            stats,
+            history,
+        )
         if status != PHASE_END or t >= t_stop:
             return status, t, y, h
 
@@ -188,8 +258,9 @@ def restart_at(method, t_c, row, cf, st, stats):
     dt = t_c - t_i
     if dt <= 0.0:
         return y
-    y_new, f_new, _ = rk_step(method, False, t_i, y, f, dt, cf,
-                              wrist_torque(t_i, t_i + h_i, cf), st[S_RTOL], st[S_ATOL])
+    y_new, f_new, _ = rk_step(
+        method, False, t_i, y, f, dt, cf, wrist_torque(t_i, t_i + h_i, cf), st[S_RTOL], st[S_ATOL]
+    )
     stats[ST_NFEV] += N_STAGES_BY_ID[method]
     stats[ST_W2MAX] = peak_omega2(y, y_new, f, f_new, dt, w2max)
     return y_new
@@ -212,8 +283,9 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
     h_max = math.pi * math.sqrt(mu / cf[CF_K]) / st[S_CONTACT_STEPS]
     no_history = history[:1]
-    status, t, y, h = run_phases(method, True, t_c, y, st[S_TMAX], min(h, h_max), h_max, cf,
-                                 True, st, stats, no_history)
+    status, t, y, h = run_phases(
+        method, True, t_c, y, st[S_TMAX], min(h, h_max), h_max, cf, True, st, stats, no_history
+    )
     if status == PHASE_FAIL:
         return STEP_FAILURE
     if status == PHASE_END:
@@ -221,8 +293,9 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     out[O_T_SEP] = t
     out[O_VOUT] = -MS_TO_KMH * (y[BALL_W] + elbow_velocity(t, cf)[0])
     if st[S_FOLLOW] > 0.0:
-        status, t, y, h = run_phases(method, False, t, y, t + st[S_FOLLOW], h, np.inf, cf,
-                                     False, st, stats, no_history)
+        status, t, y, h = run_phases(
+            method, False, t, y, t + st[S_FOLLOW], h, np.inf, cf, False, st, stats, no_history
+        )
         if status == PHASE_FAIL:
             return STEP_FAILURE
     out[O_W2_MAX] = stats[ST_W2MAX]
@@ -236,11 +309,11 @@ def solve_stroke(method, cf_row, st, out, history, stats):
     out[:] = np.nan
     stats[:] = 0.0
     th0, ph0 = cf[CF_THETA0], cf[CF_PHI0]
-    y = (math.sin(th0), math.cos(th0), math.sin(ph0), math.cos(ph0), 0.0, 0.0, th0, ph0, 0.0,
-         0.0)
+    y = (math.sin(th0), math.cos(th0), math.sin(ph0), math.cos(ph0), 0.0, 0.0, th0, ph0, 0.0, 0.0)
     history_reset(history)
-    status, t, y, h = run_phases(method, False, 0.0, y, st[S_TMAX], st[S_FIRST_STEP], np.inf,
-                                 cf, True, st, stats, history)
+    status, t, y, h = run_phases(
+        method, False, 0.0, y, st[S_TMAX], st[S_FIRST_STEP], np.inf, cf, True, st, stats, history
+    )
     code = OK
     if status == PHASE_FAIL:
         code = STEP_FAILURE
@@ -282,8 +355,12 @@ def solve_batch(method, cf_rows, st, n_chunks, history_capacity):
 PROGRESS_BLOCK = 8192
 
 
-def solve_coefficients(cf_rows: np.ndarray, settings: SolverSettings | None = None,
-                       threads: int | None = None, progress: bool = False) -> np.ndarray:
+def solve_coefficients(
+    cf_rows: np.ndarray,
+    settings: SolverSettings | None = None,
+    threads: int | None = None,
+    progress: bool = False,
+) -> np.ndarray:
     """Run the compiled solver on prepared coefficient rows; returns ``(n, N_OUT)``.
 
     Parameters
@@ -304,8 +381,7 @@ def solve_coefficients(cf_rows: np.ndarray, settings: SolverSettings | None = No
     n_threads = numba.get_num_threads()
     n = cf_rows.shape[0]
     if not progress or n <= PROGRESS_BLOCK:
-        return solve_batch(method, cf_rows, st, min(max(n, 1), 4 * n_threads),
-                           settings.history)
+        return solve_batch(method, cf_rows, st, min(max(n, 1), 4 * n_threads), settings.history)
     from tqdm import tqdm
 
     out = np.empty((n, N_OUT))
@@ -330,9 +406,14 @@ def results_from_output(out: np.ndarray, shape: tuple[int, ...]) -> dict[str, np
     return res
 
 
-def strike_batch(theta0_deg, delta0_deg, params: Mapping[str, object] | None = None,
-                 settings: SolverSettings | None = None, threads: int | None = None,
-                 progress: bool = False) -> dict[str, np.ndarray]:
+def strike_batch(
+    theta0_deg,
+    delta0_deg,
+    params: Mapping[str, object] | None = None,
+    settings: SolverSettings | None = None,
+    threads: int | None = None,
+    progress: bool = False,
+) -> dict[str, np.ndarray]:
     """Simulate many strokes; every input broadcasts against the others.
 
     Parameters
@@ -357,15 +438,20 @@ def strike_batch(theta0_deg, delta0_deg, params: Mapping[str, object] | None = N
     for name, arr in (("theta0", th), ("delta0", de)):
         if not np.all(np.isfinite(arr)):
             raise ParameterError(f"initial angle {name!r} must be finite")
-    shape = np.broadcast_shapes(th.shape, de.shape,
-                                *(np.shape(v) for v in resolved.values() if not isinstance(v, str)))
+    shape = np.broadcast_shapes(
+        th.shape, de.shape, *(np.shape(v) for v in resolved.values() if not isinstance(v, str))
+    )
     cf_rows = coefficients(resolved, th, de)
     out = solve_coefficients(cf_rows, settings, threads, progress)
     return results_from_output(out, shape)
 
 
-def strike(theta0_deg: float, delta0_deg: float, params: Mapping[str, object] | None = None,
-           settings: SolverSettings | None = None) -> dict[str, object]:
+def strike(
+    theta0_deg: float,
+    delta0_deg: float,
+    params: Mapping[str, object] | None = None,
+    settings: SolverSettings | None = None,
+) -> dict[str, object]:
     """Simulate one stroke; returns the result fields as Python scalars plus ``status_name``."""
     res = strike_batch(theta0_deg, delta0_deg, params, settings, threads=1)
     out: dict[str, object] = {k: v.item() for k, v in res.items()}

@@ -1,0 +1,39 @@
+# tennis-stroke: everything installs into ./.venv from pyproject.toml; only python3 is needed.
+PYTHON ?= python3
+VENV   := .venv
+BIN    := $(VENV)/bin
+STAMP  := $(VENV)/.installed-stamp
+JOBS   ?= 2
+
+.PHONY: install report test lint bench kernels clean
+
+install: $(STAMP)
+
+$(STAMP): pyproject.toml
+	$(PYTHON) -m venv $(VENV)
+	$(BIN)/python -m pip install --quiet --upgrade pip
+	$(BIN)/python -m pip install --quiet -e '.[test,workflow]'
+	touch $(STAMP)
+
+## The replication: every experiment, figure and claim, then report/index.html.
+report: $(STAMP)
+	$(BIN)/snakemake --cores $(JOBS) report
+
+## The test suite (includes a tiny end-to-end workflow run).
+test: $(STAMP)
+	$(BIN)/python -m pytest
+
+lint: $(STAMP)
+	$(BIN)/ruff check src tests tools benchmarks
+	$(BIN)/python tools/generate_kernels.py --check
+
+## Speed and accuracy against solve_ivp (see benchmarks/bench_sweep.py).
+bench: $(STAMP)
+	$(BIN)/python benchmarks/bench_sweep.py
+
+## Regenerate the unrolled Runge-Kutta kernels from the tableaux.
+kernels: $(STAMP)
+	$(BIN)/python tools/generate_kernels.py
+
+clean:
+	rm -rf results report .snakemake
