@@ -1,0 +1,54 @@
+# Config validation and helpers shared by all rules.
+import hashlib
+import json
+from pathlib import Path
+
+from snakemake.utils import validate
+
+validate(config, "../schemas/config.schema.yaml", set_default=True)
+
+#: The package's sources: simulations rerun when the solver changes.
+PACKAGE_SOURCES = sorted(str(p) for p in Path("src/tennis_stroke").glob("*.py"))
+#: A short hash of the whole config, recorded in every result file.
+CONFIG_HASH = hashlib.sha256(json.dumps(config, sort_keys=True).encode()).hexdigest()[:16]
+
+
+def grid_spec(spec):
+    """A range of the config as a plain list [start, stop, step] (a params value)."""
+    return [float(spec["start"]), float(spec["stop"]), float(spec["step"])]
+
+
+def model():
+    """Model overrides as a plain dict in a fixed order (params compare by repr)."""
+    return dict(sorted(config.get("model", {}).items()))
+
+
+def solver():
+    """Solver settings as a plain dict."""
+    return dict(sorted(config["solver"].items()))
+
+
+def common_params():
+    """Params every simulation script needs."""
+    return {"model": model(), "solver": solver(), "config_hash": CONFIG_HASH}
+
+
+FIGURES = {
+    "fig02_angle_map_L1_0.3": ["results/angle_maps/L1_0.3.nc"],
+    "fig03_angle_map_L1_0.4": ["results/angle_maps/L1_0.4.nc"],
+    "fig04_omegas": ["results/strokes/fig4.nc"],
+    "fig05_mass_length_vout": ["results/mass_length/map.nc"],
+    "fig06_mass_length_theta_c": ["results/mass_length/map.nc"],
+    "fig07_torque_delay": ["results/torque_delay/fig7.nc"],
+    "fig08_delay_delta0": ["results/torque_delay/fig8.nc"],
+    "fig09_v_tau": ["results/torque_delay/fig9.nc"],
+    "fig10_omegas_delay": ["results/strokes/delay.nc"],
+    "fig11_strobe_tau_H": ["results/strokes/delay.nc"],
+    "fig12_strobe_tau_L": ["results/strokes/delay.nc"],
+    "fig13_elbow_force": ["results/elbow_force/map.nc"],
+    "fig14_elbow_paths": ["results/strokes/elbow_force.nc"],
+}
+
+
+def figure_inputs(wildcards):
+    return FIGURES[wildcards.name]

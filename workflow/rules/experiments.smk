@@ -1,0 +1,157 @@
+# Simulation rules: one job per experiment, each writing one netCDF file.
+
+
+rule angle_map:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/angle_maps/L1_{L1}.nc",
+    params:
+        common=common_params(),
+        theta0=grid_spec(config["angle_maps"]["theta0"]),
+        delta0=grid_spec(config["angle_maps"]["delta0"]),
+    threads: config["threads"]
+    log:
+        "logs/angle_map_L1_{L1}.log",
+    benchmark:
+        "benchmarks/workflow/angle_map_L1_{L1}.tsv"
+    script:
+        "../scripts/angle_map.py"
+
+
+rule fig4_strokes:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/strokes/fig4.nc",
+    params:
+        common=common_params(),
+        strokes=[list(map(float, s)) for s in config["fig4"]["strokes"]],
+        t_end=config["fig4"]["t_end"],
+        samples=config["fig4"]["samples"],
+    threads: 1
+    log:
+        "logs/fig4_strokes.log",
+    benchmark:
+        "benchmarks/workflow/fig4_strokes.tsv"
+    script:
+        "../scripts/fig4_strokes.py"
+
+
+rule mass_length:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/mass_length/map.nc",
+    params:
+        common=common_params(),
+        M2=grid_spec(config["mass_length"]["M2"]),
+        L1=grid_spec(config["mass_length"]["L1"]),
+        theta0_range=config["mass_length"]["theta0_range"],
+        delta0_range=config["mass_length"]["delta0_range"],
+        coarse_step=config["mass_length"]["coarse_step"],
+        fine_step=config["mass_length"]["fine_step"],
+    threads: config["threads"]
+    log:
+        "logs/mass_length.log",
+    benchmark:
+        "benchmarks/workflow/mass_length.tsv"
+    script:
+        "../scripts/mass_length.py"
+
+
+rule delay_map:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/torque_delay/{fig}.nc",
+    wildcard_constraints:
+        fig="fig[789]",
+    params:
+        common=common_params(),
+        section=lambda wc: {
+            **config["torque_delay"][wc.fig],
+            "L1": config["torque_delay"]["L1"],
+            "theta0": config["torque_delay"]["theta0"],
+        },
+    threads: config["threads"]
+    log:
+        "logs/delay_map_{fig}.log",
+    benchmark:
+        "benchmarks/workflow/delay_map_{fig}.tsv"
+    script:
+        "../scripts/delay_map.py"
+
+
+rule delay_strokes:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/strokes/delay.nc",
+    params:
+        common=common_params(),
+        strokes=config["torque_delay"]["strokes"],
+        fig9=config["torque_delay"]["fig9"],
+        L1=config["torque_delay"]["L1"],
+        theta0=config["torque_delay"]["theta0"],
+    threads: 1
+    log:
+        "logs/delay_strokes.log",
+    benchmark:
+        "benchmarks/workflow/delay_strokes.tsv"
+    script:
+        "../scripts/delay_strokes.py"
+
+
+rule elbow_force_map:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/elbow_force/map.nc",
+    params:
+        common=common_params(),
+        force=config["elbow_force"],
+        psi_F=grid_spec(config["elbow_force"]["psi_F"]),
+        tau_F=grid_spec(config["elbow_force"]["tau_F"]),
+        delay=config["torque_delay"],
+    threads: config["threads"]
+    log:
+        "logs/elbow_force_map.log",
+    benchmark:
+        "benchmarks/workflow/elbow_force_map.tsv"
+    script:
+        "../scripts/elbow_force_map.py"
+
+
+rule elbow_force_strokes:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/strokes/elbow_force.nc",
+    params:
+        common=common_params(),
+        force=config["elbow_force"],
+        delay=config["torque_delay"],
+    threads: 1
+    log:
+        "logs/elbow_force_strokes.log",
+    benchmark:
+        "benchmarks/workflow/elbow_force_strokes.tsv"
+    script:
+        "../scripts/elbow_force_strokes.py"
+
+
+rule identification:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/identification/readings.csv",
+    params:
+        common=common_params(),
+    threads: 1
+    log:
+        "logs/identification.log",
+    benchmark:
+        "benchmarks/workflow/identification.tsv"
+    script:
+        "../scripts/identification.py"
