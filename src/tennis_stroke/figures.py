@@ -1,0 +1,194 @@
+"""The paper's figures, drawn from the result files (never re-simulating).
+
+:func:`draw` maps a figure name to its drawing function; axis labels and colour-bar labels
+come from the files' ``long_name`` and ``units`` attributes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from pathlib import Path
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+import xarray as xr  # noqa: E402
+
+from .claims import measure_delay_threshold  # noqa: E402
+
+DPI = 110
+
+
+def _label(da: xr.DataArray) -> str:
+    return f"{da.attrs.get('long_name', da.name)} ({da.attrs.get('units', '')})"
+
+
+def _map(ax, da: xr.DataArray, x: str, y: str, cmap="viridis"):
+    """Colour map of ``da`` with ``x`` horizontal and ``y`` vertical, and its colour bar."""
+    mesh = ax.pcolormesh(da[x], da[y], da.transpose(y, x), shading="auto", cmap=cmap)
+    ax.set_xlabel(_label(da[x]))
+    ax.set_ylabel(_label(da[y]))
+    plt.colorbar(mesh, ax=ax, label=_label(da))
+    return mesh
+
+
+def angle_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Figs. 2-3: v_out over (theta0, delta0) with the best delta0 (red line)."""
+    d = ds[0]
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    v = d["v_out"].where(d["status"] == 0)
+    _map(ax, v, "theta0", "delta0")
+    ax.contour(d["theta0"], d["delta0"], v.transpose("delta0", "theta0"), colors="w",
+               linewidths=0.5, levels=10)
+    ax.plot(d["theta0"], d["best_delta0"], "r-", lw=2, label="best delta0")
+    ax.legend(loc="upper right")
+    ax.set_title(f"{title}: L1 = {d.attrs['param_L1']:g} m")
+    return fig
+
+
+def omegas(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Figs. 4 and 10: omega1(t), omega2(t) of the strokes, contact times dashed."""
+    d = ds[0]
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    for i, label in enumerate(d["label"].values):
+        line = ax.plot(d["time"], d["omega2"][i], lw=2, label=f"omega2 {label}")[0]
+        ax.plot(d["time"], d["omega1"][i], "--", color=line.get_color(), lw=1.2,
+                label=f"omega1 {label}")
+        ax.axvline(float(d["t_contact_start"][i]), color=line.get_color(), ls=":", lw=1)
+    ax.set_xlabel(_label(d["time"]))
+    ax.set_ylabel("angular velocity (rad/s)")
+    ax.legend(fontsize=8)
+    ax.set_title(title)
+    return fig
+
+
+def mass_length(ds: Sequence[xr.Dataset], title: str, var: str) -> plt.Figure:
+    """Figs. 5-6: the fastest rebound (or its theta_c) over (M2, L1)."""
+    d = ds[0]
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    _map(ax, d[var], "M2", "L1", cmap="viridis" if var == "v_out_best" else "magma")
+    ax.contour(d["M2"], d["L1"], d[var].transpose("L1", "M2"), colors="w", linewidths=0.5)
+    ax.set_title(title)
+    return fig
+
+
+def delay_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Figs. 7-8: v_out over (C2 or delta0, tau) with the best tau per row."""
+    d = ds[0]
+    axis = "C2" if "C2" in d.dims else "delta0"
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    _map(ax, d["v_out"].where(d["status"] == 0), axis, "tau")
+    ax.plot(d[axis], d["best_tau"], "r-", lw=1.5, label="best tau")
+    if axis == "C2":
+        thr = measure_delay_threshold(d)
+        ax.axvline(thr, color="w", ls="--", lw=1, label=f"best tau leaves 0: C2 = {thr:.2f} N m")
+    else:
+        v = d["v_out"].where(d["status"] == 0)
+        i = np.unravel_index(int(v.argmax()), v.shape)
+        ax.plot(float(d[axis][i[0]]), float(d["tau"][i[1]]), "r*", ms=14, label="optimum")
+    ax.legend(loc="upper right", fontsize=8)
+    ax.set_title(title)
+    return fig
+
+
+def v_tau(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Fig. 9: v_out as a function of the delay tau."""
+    d = ds[0].isel(delta0=0)
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    v = d["v_out"].where(d["status"] == 0)
+    ax.plot(d["tau"], v, lw=2)
+    ax.plot(float(d["best_tau"]), float(d["best_v_out"]), "r*", ms=12,
+            label=f"tau_H = {float(d['best_tau']):.4f} s, v_H = {float(d['best_v_out']):.1f} km/h")
+    ax.plot(0.0, float(v[0]), "ko", label=f"tau_L = 0, v_L = {float(v[0]):.1f} km/h")
+    ax.set_xlabel(_label(d["tau"]))
+    ax.set_ylabel(_label(d["v_out"]))
+    ax.legend()
+    ax.set_title(title)
+    return fig
+
+
+def strobe(ds: Sequence[xr.Dataset], title: str, label: str) -> plt.Figure:
+    """Figs. 11-12: stick figures of rod 1 (blue) and rod 2 (black), contact in red."""
+    d = ds[0]
+    i = int(np.flatnonzero(d["label"].values == label)[0])
+    p = {k.removeprefix("param_"): v for k, v in d.attrs.items() if k.startswith("param_")}
+    l1, l2 = p["L1"], p["L2"]
+    fig, ax = plt.subplots(figsize=(5.5, 5.5))
+    times = d["time"].values
+    picks = np.linspace(0, np.flatnonzero(np.isfinite(d["theta"][i]))[-1], 17).astype(int)
+    t_c = float(d["t_contact_start"][i])
+    for k in [*picks, int(np.argmin(np.abs(times - t_c)))]:
+        th, ph = np.radians(float(d["theta"][i, k])), np.radians(float(d["phi"][i, k]))
+        xe, ye = float(d["x_elbow"][i, k]), float(d["y_elbow"][i, k])
+        xw, yw = xe + l1 * np.sin(th), ye - l1 * np.cos(th)
+        xr_, yr = xw + l2 * np.sin(ph), yw - l2 * np.cos(ph)
+        contact = abs(times[k] - t_c) < 0.5 * (times[1] - times[0])
+        ax.plot([xe, xw], [ye, yw], color="r" if contact else "tab:blue", lw=2)
+        ax.plot([xw, xr_], [yw, yr], color="r" if contact else "k", lw=1.5)
+    ax.set_aspect("equal")
+    ax.set_xlabel("x (m)")
+    ax.set_ylabel("y (m)")
+    ax.set_title(f"{title} ({label} = {float(d['tau'][i]):g} s)")
+    return fig
+
+
+def elbow_force(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Fig. 13: v_out over the force direction psi_F and extra delay tau_F."""
+    d = ds[0]
+    fig, ax = plt.subplots(figsize=(6.4, 4.8))
+    v = d["v_out"].where(d["status"] == 0)
+    _map(ax, v, "psi_F", "tau_F")
+    i = np.unravel_index(int(v.argmax()), v.shape)
+    ax.plot(float(d["psi_F"][i[0]]), float(d["tau_F"][i[1]]), "r*", ms=14, label="maximum")
+    ax.legend(loc="upper right")
+    ax.set_title(title)
+    return fig
+
+
+def elbow_paths(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Fig. 14: elbow trajectories from t = 0 to the contact, with and without the force."""
+    d = ds[0]
+    fig, ax = plt.subplots(figsize=(5.5, 5.0))
+    for i, label in enumerate(d["label"].values):
+        keep = d["time"] <= float(d["t_contact_start"][i])
+        ax.plot(d["x_elbow"][i][keep], d["y_elbow"][i][keep], lw=2, label=str(label))
+    ax.set_aspect("equal")
+    ax.set_xlabel(_label(d["x_elbow"]))
+    ax.set_ylabel(_label(d["y_elbow"]))
+    ax.legend(fontsize=8)
+    ax.set_title(title)
+    return fig
+
+
+#: Figure name -> (drawing function, title, extra arguments).
+FIGURES: dict[str, tuple[Callable, str, tuple]] = {
+    "fig02_angle_map_L1_0.3": (angle_map, "Fig. 2: v_out over the initial angles", ()),
+    "fig03_angle_map_L1_0.4": (angle_map, "Fig. 3: v_out over the initial angles", ()),
+    "fig04_omegas": (omegas, "Fig. 4: angular velocities of two strokes", ()),
+    "fig05_mass_length_vout": (mass_length, "Fig. 5: fastest v_out over (M2, L1)",
+                               ("v_out_best",)),
+    "fig06_mass_length_theta_c": (mass_length, "Fig. 6: theta_c of the fastest stroke",
+                                  ("theta_c",)),
+    "fig07_torque_delay": (delay_map, "Fig. 7: v_out over (C2, tau), theta0 = 90, delta0 = 26.1",
+                           ()),
+    "fig08_delay_delta0": (delay_map, "Fig. 8: v_out over (delta0, tau), C2 = 5 N m", ()),
+    "fig09_v_tau": (v_tau, "Fig. 9: v_out over the delay tau", ()),
+    "fig10_omegas_delay": (omegas, "Fig. 10: angular velocities for tau_L and tau_H", ()),
+    "fig11_strobe_tau_H": (strobe, "Fig. 11: stroke with tau_H", ("tau_H",)),
+    "fig12_strobe_tau_L": (strobe, "Fig. 12: stroke with tau_L", ("tau_L",)),
+    "fig13_elbow_force": (elbow_force, "Fig. 13: v_out over the elbow force direction and delay",
+                          ()),
+    "fig14_elbow_paths": (elbow_paths, "Fig. 14: elbow paths until the contact", ()),
+}
+
+
+def draw(name: str, inputs: Sequence[str | Path], output: str | Path) -> None:
+    """Draw figure ``name`` from its result files into ``output`` (PNG)."""
+    function, title, extra = FIGURES[name]
+    datasets = [xr.load_dataset(p) for p in inputs]
+    fig = function(datasets, title, *extra)
+    fig.tight_layout()
+    fig.savefig(output, dpi=DPI)
+    plt.close(fig)

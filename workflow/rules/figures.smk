@@ -1,0 +1,19 @@
+# Plotting rules: separate from the simulations, so restyling never re-simulates.
+
+
+rule figure:
+    input:
+        figure_inputs,
+        "src/tennis_stroke/figures.py",
+    output:
+        report(
+            "results/figures/{name}.png",
+            caption="../report/figure.rst",
+            category="Figures",
+        ),
+    wildcard_constraints:
+        name="fig[0-9][0-9]_[A-Za-z0-9_.]+",
+    log:
+        "logs/figure_{name}.log",
+    script:
+        "../scripts/figure.py"

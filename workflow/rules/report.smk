@@ -1,0 +1,47 @@
+# Claims, assumption ledger and the HTML report.
+
+CLAIM_FILES = {
+    "fig2": "results/angle_maps/L1_0.3.nc",
+    "fig3": "results/angle_maps/L1_0.4.nc",
+    "fig4": "results/strokes/fig4.nc",
+    "ml": "results/mass_length/map.nc",
+    "fig7": "results/torque_delay/fig7.nc",
+    "fig8": "results/torque_delay/fig8.nc",
+    "fig9": "results/torque_delay/fig9.nc",
+    "delay": "results/strokes/delay.nc",
+    "elbow_map": "results/elbow_force/map.nc",
+    "elbow": "results/strokes/elbow_force.nc",
+}
+
+
+rule claims:
+    input:
+        **CLAIM_FILES,
+        claims="config/claims.yaml",
+        code="src/tennis_stroke/claims.py",
+    output:
+        report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
+    params:
+        files=CLAIM_FILES,
+    log:
+        "logs/claims.log",
+    script:
+        "../scripts/claims.py"
+
+
+rule report:
+    input:
+        figures=expand("results/figures/{name}.png", name=sorted(FIGURES)),
+        claims="results/claims.csv",
+        readings="results/identification/readings.csv",
+        results=list(CLAIM_FILES.values()),
+        code="src/tennis_stroke/report.py",
+    output:
+        "report/index.html",
+    params:
+        config=config,
+        benchmarks="benchmarks/workflow",
+    log:
+        "logs/report.log",
+    script:
+        "../scripts/report.py"

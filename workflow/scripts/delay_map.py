@@ -1,0 +1,23 @@
+"""Figs. 7-9: v_out over the wrist-torque delay and C2 (Fig. 7) or delta0 (Figs. 8-9)."""
+
+import numpy as np
+
+from tennis_stroke.experiments import delay_map
+from tennis_stroke.pipeline import Timer, axis, logged, save, settings
+
+p = snakemake.params  # noqa: F821
+s = p.section
+with logged(snakemake.log[0]):  # noqa: F821
+    clock = Timer()
+    model = {**p.common["model"], "L1": s["L1"]}
+    tau = axis(s["tau"])
+    if isinstance(s["C2"], dict):  # Fig. 7: (C2, tau) at fixed delta0
+        ds = delay_map("C2", axis(s["C2"]), ("N m", "wrist torque C2"), tau, s["theta0"],
+                       s["delta0"], model, settings(p.common), snakemake.threads)  # noqa: F821
+    else:  # Figs. 8-9: (delta0, tau) at fixed C2
+        delta0 = axis(s["delta0"]) if isinstance(s["delta0"], dict) else np.array(
+            [float(s["delta0"])])
+        ds = delay_map("delta0", delta0, ("degree", "initial angle between the rods"), tau,
+                       s["theta0"], None, {**model, "C2": s["C2"]}, settings(p.common),
+                       snakemake.threads)  # noqa: F821
+    save(ds, snakemake.output[0], p.common, clock())  # noqa: F821

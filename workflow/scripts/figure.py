@@ -1,0 +1,8 @@
+"""Draw one figure from its result files."""
+
+from tennis_stroke.figures import draw
+from tennis_stroke.pipeline import logged
+
+with logged(snakemake.log[0]):  # noqa: F821
+    data = [p for p in snakemake.input if p.endswith(".nc")]  # noqa: F821
+    draw(snakemake.wildcards.name, data, snakemake.output[0])  # noqa: F821
