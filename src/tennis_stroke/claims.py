@@ -22,8 +22,19 @@ import pandas as pd
 import xarray as xr
 import yaml
 
-COLUMNS = ["id", "source", "quantity", "unit", "paper_value", "reproduced_value", "tolerance",
-           "status", "expectation", "reason", "identification"]
+COLUMNS = [
+    "id",
+    "source",
+    "quantity",
+    "unit",
+    "paper_value",
+    "reproduced_value",
+    "tolerance",
+    "status",
+    "expectation",
+    "reason",
+    "identification",
+]
 EXPECTATIONS = ("reproduce", "known_deviation")
 
 
@@ -166,7 +177,8 @@ def measure_table1_minimum(ds: xr.Dataset) -> float:
 
 #: Named measurements: function(datasets..., **args) -> float.
 MEASUREMENTS: dict[str, Callable[..., float]] = {
-    name.removeprefix("measure_"): fn for name, fn in globals().items()
+    name.removeprefix("measure_"): fn
+    for name, fn in globals().items()
     if name.startswith("measure_") and callable(fn)
 }
 
@@ -192,8 +204,16 @@ def load_claims(path: str | Path) -> list[dict]:
     claims = yaml.safe_load(Path(path).read_text())["claims"]
     seen = set()
     for c in claims:
-        for key in ("id", "source", "quantity", "unit", "paper_value", "tolerance",
-                    "expectation", "measure"):
+        for key in (
+            "id",
+            "source",
+            "quantity",
+            "unit",
+            "paper_value",
+            "tolerance",
+            "expectation",
+            "measure",
+        ):
             if key not in c:
                 raise ClaimError(f"claim {c.get('id', '?')!r} lacks {key!r}")
         if c["expectation"] not in EXPECTATIONS:
@@ -214,13 +234,48 @@ def evaluate(claims: list[dict], files: Mapping[str, str | Path]) -> pd.DataFram
     rows = []
     for c in claims:
         value = _measure(c["measure"], datasets)
-        within = bool(np.isfinite(value) and abs(value - c["paper_value"]) <= c["tolerance"]
-                      + 1e-12)
-        status = "pass" if within else (
-            "known_deviation" if c["expectation"] == "known_deviation" else "fail")
-        rows.append({"id": c["id"], "source": c["source"], "quantity": c["quantity"],
-                     "unit": c["unit"], "paper_value": c["paper_value"],
-                     "reproduced_value": value, "tolerance": c["tolerance"], "status": status,
-                     "expectation": c["expectation"], "reason": c.get("reason", ""),
-                     "identification": bool(c.get("identification", False))})
+        within = bool(
+            np.isfinite(value) and abs(value - c["paper_value"]) <= c["tolerance"] + 1e-12
+        )
+        status = (
+            "pass"
+            if within
+            else ("known_deviation" if c["expectation"] == "known_deviation" else "fail")
+        )
+        rows.append(
+            {
+                "id": c["id"],
+                "source": c["source"],
+                "quantity": c["quantity"],
+                "unit": c["unit"],
+                "paper_value": c["paper_value"],
+                "reproduced_value": value,
+                "tolerance": c["tolerance"],
+                "status": status,
+                "expectation": c["expectation"],
+                "reason": c.get("reason", ""),
+                "identification": bool(c.get("identification", False)),
+            }
+        )
     return pd.DataFrame(rows, columns=COLUMNS)
+
+
+def main(argv: list[str] | None = None) -> int:
+    """``python -m tennis_stroke.claims results/claims.csv``: exit 1 if a claim failed."""
+    import sys
+
+    args = sys.argv[1:] if argv is None else argv
+    table = pd.read_csv(args[0] if args else "results/claims.csv", keep_default_na=False)
+    failed = table[table["status"] == "fail"]
+    counts = table["status"].value_counts().to_dict()
+    print(f"claims: {counts}")
+    for _, row in failed.iterrows():
+        print(
+            f"FAIL {row['id']}: paper {row['paper_value']} {row['unit']}, reproduced "
+            f"{float(row['reproduced_value']):.6g} (tolerance {row['tolerance']})"
+        )
+    return 1 if len(failed) else 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())

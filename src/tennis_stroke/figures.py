@@ -40,8 +40,14 @@ def angle_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     v = d["v_out"].where(d["status"] == 0)
     _map(ax, v, "theta0", "delta0")
-    ax.contour(d["theta0"], d["delta0"], v.transpose("delta0", "theta0"), colors="w",
-               linewidths=0.5, levels=10)
+    ax.contour(
+        d["theta0"],
+        d["delta0"],
+        v.transpose("delta0", "theta0"),
+        colors="w",
+        linewidths=0.5,
+        levels=10,
+    )
     ax.plot(d["theta0"], d["best_delta0"], "r-", lw=2, label="best delta0")
     ax.legend(loc="upper right")
     ax.set_title(f"{title}: L1 = {d.attrs['param_L1']:g} m")
@@ -54,8 +60,9 @@ def omegas(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for i, label in enumerate(d["label"].values):
         line = ax.plot(d["time"], d["omega2"][i], lw=2, label=f"omega2 {label}")[0]
-        ax.plot(d["time"], d["omega1"][i], "--", color=line.get_color(), lw=1.2,
-                label=f"omega1 {label}")
+        ax.plot(
+            d["time"], d["omega1"][i], "--", color=line.get_color(), lw=1.2, label=f"omega1 {label}"
+        )
         ax.axvline(float(d["t_contact_start"][i]), color=line.get_color(), ls=":", lw=1)
     ax.set_xlabel(_label(d["time"]))
     ax.set_ylabel("angular velocity (rad/s)")
@@ -99,8 +106,13 @@ def v_tau(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     v = d["v_out"].where(d["status"] == 0)
     ax.plot(d["tau"], v, lw=2)
-    ax.plot(float(d["best_tau"]), float(d["best_v_out"]), "r*", ms=12,
-            label=f"tau_H = {float(d['best_tau']):.4f} s, v_H = {float(d['best_v_out']):.1f} km/h")
+    ax.plot(
+        float(d["best_tau"]),
+        float(d["best_v_out"]),
+        "r*",
+        ms=12,
+        label=f"tau_H = {float(d['best_tau']):.4f} s, v_H = {float(d['best_v_out']):.1f} km/h",
+    )
     ax.plot(0.0, float(v[0]), "ko", label=f"tau_L = 0, v_L = {float(v[0]):.1f} km/h")
     ax.set_xlabel(_label(d["tau"]))
     ax.set_ylabel(_label(d["v_out"]))
@@ -167,19 +179,27 @@ FIGURES: dict[str, tuple[Callable, str, tuple]] = {
     "fig02_angle_map_L1_0.3": (angle_map, "Fig. 2: v_out over the initial angles", ()),
     "fig03_angle_map_L1_0.4": (angle_map, "Fig. 3: v_out over the initial angles", ()),
     "fig04_omegas": (omegas, "Fig. 4: angular velocities of two strokes", ()),
-    "fig05_mass_length_vout": (mass_length, "Fig. 5: fastest v_out over (M2, L1)",
-                               ("v_out_best",)),
-    "fig06_mass_length_theta_c": (mass_length, "Fig. 6: theta_c of the fastest stroke",
-                                  ("theta_c",)),
-    "fig07_torque_delay": (delay_map, "Fig. 7: v_out over (C2, tau), theta0 = 90, delta0 = 26.1",
-                           ()),
+    "fig05_mass_length_vout": (mass_length, "Fig. 5: fastest v_out over (M2, L1)", ("v_out_best",)),
+    "fig06_mass_length_theta_c": (
+        mass_length,
+        "Fig. 6: theta_c of the fastest stroke",
+        ("theta_c",),
+    ),
+    "fig07_torque_delay": (
+        delay_map,
+        "Fig. 7: v_out over (C2, tau), theta0 = 90, delta0 = 26.1",
+        (),
+    ),
     "fig08_delay_delta0": (delay_map, "Fig. 8: v_out over (delta0, tau), C2 = 5 N m", ()),
     "fig09_v_tau": (v_tau, "Fig. 9: v_out over the delay tau", ()),
     "fig10_omegas_delay": (omegas, "Fig. 10: angular velocities for tau_L and tau_H", ()),
     "fig11_strobe_tau_H": (strobe, "Fig. 11: stroke with tau_H", ("tau_H",)),
     "fig12_strobe_tau_L": (strobe, "Fig. 12: stroke with tau_L", ("tau_L",)),
-    "fig13_elbow_force": (elbow_force, "Fig. 13: v_out over the elbow force direction and delay",
-                          ()),
+    "fig13_elbow_force": (
+        elbow_force,
+        "Fig. 13: v_out over the elbow force direction and delay",
+        (),
+    ),
     "fig14_elbow_paths": (elbow_paths, "Fig. 14: elbow paths until the contact", ()),
 }
 

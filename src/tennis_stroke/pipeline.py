@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import contextlib
-import sys
+import hashlib
+import json
 import time
 from collections.abc import Iterator, Mapping
 from pathlib import Path
@@ -32,8 +33,11 @@ def axis(spec) -> np.ndarray:
 def logged(log_path: str | Path) -> Iterator[None]:
     """Send stdout and stderr of a script to its Snakemake log file."""
     Path(log_path).parent.mkdir(parents=True, exist_ok=True)
-    with open(log_path, "w") as log, contextlib.redirect_stdout(log), \
-            contextlib.redirect_stderr(log):
+    with (
+        open(log_path, "w") as log,
+        contextlib.redirect_stdout(log),
+        contextlib.redirect_stderr(log),
+    ):
         yield
 
 
@@ -47,11 +51,20 @@ class Timer:
         return time.perf_counter() - self.start
 
 
-def save(ds: xr.Dataset, path: str | Path, common: Mapping[str, object],
-         wall_time: float) -> None:
-    """Add the run's provenance (config hash, wall time, command) and write atomically."""
-    ds.attrs["config_sha256_16"] = str(common["config_hash"])
+def params_hash(params) -> str:
+    """SHA-256 (16 hex digits) of a rule's params: the configuration this job used.
+
+    (A hash of the whole config as a rule param would rerun every job on any change.)
+    """
+    items = dict(params.items()) if hasattr(params, "items") else dict(params)
+    return hashlib.sha256(json.dumps(items, sort_keys=True, default=str).encode()).hexdigest()[:16]
+
+
+def save(ds: xr.Dataset, path: str | Path, params, wall_time: float) -> None:
+    """Add the job's provenance (config hash and text, wall time) and write atomically."""
+    items = dict(params.items()) if hasattr(params, "items") else dict(params)
+    ds.attrs["config_sha256_16"] = params_hash(items)
+    ds.attrs["config"] = json.dumps(items, sort_keys=True, default=str)
     ds.attrs["wall_time_s"] = float(wall_time)
-    ds.attrs["producer"] = " ".join(sys.argv[:1]) or "snakemake"
     write_netcdf(ds, path)
     print(f"wrote {path} in {wall_time:.2f} s")

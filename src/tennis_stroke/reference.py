@@ -132,6 +132,27 @@ def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segmen
             return t, y, hit, nfev, True
 
 
+def free_swing(
+    theta0_deg: float,
+    delta0_deg: float,
+    t_end: float,
+    params: Mapping[str, object] | None = None,
+    rtol: float = 1e-10,
+    atol: float = 1e-10,
+) -> ReferenceStroke:
+    """The pendulum swung from rest without the ball until ``t_end`` (s), for plotting.
+
+    The paper computes the swing without the ball and the collision separately (Sec. II);
+    its figures of omega(t) (Figs. 4, 10) show the swing.  ``result`` holds no stroke
+    numbers (see :func:`solve_stroke` for those).
+    """
+    cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
+    ref = ReferenceStroke({})
+    y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
+    _run(0.0, y0, t_end, cf, False, None, "DOP853", rtol, atol, np.inf, ref.segments)
+    return ref
+
+
 def solve_stroke(
     theta0_deg: float,
     delta0_deg: float,

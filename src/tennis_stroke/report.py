@@ -26,36 +26,36 @@ from .params import READINGS
 #: What the paper says about each figure (quoted or closely paraphrased).
 STATEMENTS = {
     "fig02": "Fig. 2 (L1 = 0.3 m): 'As theta0 changes from 60 to 120 deg, the delta0 [of the "
-             "maximum speed] becomes smaller and reaches 20 deg.'",
+    "maximum speed] becomes smaller and reaches 20 deg.'",
     "fig03": "Fig. 3 (L1 = 0.4 m): 'the delta0 is smaller as compared to the case when L1 = "
-             "0.3 m. When theta0 is 120 deg, the racket and the first rod should be in the "
-             "same line.'",
+    "0.3 m. When theta0 is 120 deg, the racket and the first rod should be in the "
+    "same line.'",
     "fig04": "Fig. 4: stroke a (120, 81.5) contacts at 0.198 s with omega1 = 11.34 rad/s, b "
-             "(75, 39) at 0.220 s with omega1 = 17.9 rad/s; omega2 is about 37.98 rad/s for "
-             "both; v_out = 156 and 141 km/h; omega2 of b increases even after the collision.",
+    "(75, 39) at 0.220 s with omega1 = 17.9 rad/s; omega2 is about 37.98 rad/s for "
+    "both; v_out = 156 and 141 km/h; omega2 of b increases even after the collision.",
     "fig05": "Fig. 5: 'If the mass of the racket is about 0.2 kg, the speed of the rebound "
-             "ball is decreased as the projected length ... is increased. However, if the "
-             "racket mass is getting heavier, the speed of the rebound ball increases.'",
+    "ball is decreased as the projected length ... is increased. However, if the "
+    "racket mass is getting heavier, the speed of the rebound ball increases.'",
     "fig06": "Fig. 6: 'Regardless of the racket mass, the forearm angle theta_c decrease[s] "
-             "to 20 deg as the length L1 increase[s]'; for a folded arm it 'should be about "
-             "90 deg'.",
+    "to 20 deg as the length L1 increase[s]'; for a folded arm it 'should be about "
+    "90 deg'.",
     "fig07": "Fig. 7: 'If the torque C2 is less than 1.56 N, the maximum speed ... is "
-             "obtained when the delay time tau is zero'; above it there is always a non-zero "
-             "best delay.",
+    "obtained when the delay time tau is zero'; above it there is always a non-zero "
+    "best delay.",
     "fig08": "Fig. 8: 'The new optimum condition ... is the time lag tau = 0.185 s and the "
-             "initial angle delta0 = 52.5 deg.'",
+    "initial angle delta0 = 52.5 deg.'",
     "fig09": "Fig. 9: v_L = 136.6 km/h at tau_L = 0, maximum v_H = 164.4 km/h at tau_H = "
-             "0.185 s: about 20 % faster.",
+    "0.185 s: about 20 % faster.",
     "fig10": "Fig. 10: contact times of tau_L and tau_H differ by less than 10 ms; the racket "
-             "hits the ball before omega2 peaks; when omega2H peaks, omega1 is almost zero.",
+    "hits the ball before omega2 peaks; when omega2H peaks, omega1 is almost zero.",
     "fig11": "Fig. 11: with tau_H the racket stays back, then hits the ball with theta_c = "
-             "53.3 deg (contact in red).",
+    "53.3 deg (contact in red).",
     "fig12": "Fig. 12: with a constant torque (tau_L = 0) the racket rotates less rapidly at "
-             "the contact than with tau_H.",
+    "the contact than with tau_H.",
     "fig13": "Fig. 13: 'we can obtain the maximum speed of the rebound ball when the angle is "
-             "76 deg'; psi_F = 180 deg gives almost the speed without force.",
+    "76 deg'; psi_F = 180 deg gives almost the speed without force.",
     "fig14": "Fig. 14: elbow paths P_NF (no force), P_forward (180 deg), P_max (76 deg), "
-             "P_min (275 deg) until the contact.",
+    "P_min (275 deg) until the contact.",
 }
 
 TEMPLATE = jinja2.Template("""<!DOCTYPE html>
@@ -87,7 +87,8 @@ fail, {{ n_known }} are known deviations.
 {% endfor %}</table>
 
 <h2>Figures</h2>
-{% for f in figures %}<div class="fig"><img alt="{{ f.name }}" src="data:image/png;base64,{{ f.data }}">
+{% for f in figures %}<div class="fig">
+<img alt="{{ f.name }}" src="data:image/png;base64,{{ f.data }}">
 <p class="statement">{{ f.statement }}</p></div>
 {% endfor %}
 
@@ -124,8 +125,14 @@ def _sensitivity(readings: pd.DataFrame) -> pd.DataFrame:
             match = readings[mask]
             if len(match):
                 row = match.iloc[0]
-                rows.append({"reading": key, "value": value, "passed": row["passed"],
-                             **{k: round(row[k], 3) for k in paper_row()}})
+                rows.append(
+                    {
+                        "reading": key,
+                        "value": value,
+                        "passed": row["passed"],
+                        **{k: round(row[k], 3) for k in paper_row()},
+                    }
+                )
     return pd.DataFrame(rows)
 
 
@@ -133,14 +140,25 @@ def _timings(directory: Path) -> pd.DataFrame:
     rows = []
     for path in sorted(directory.glob("*.tsv")):
         table = pd.read_csv(path, sep="\t")
-        rows.append({"rule": path.stem, "wall time (s)": round(float(table["s"].iloc[-1]), 2),
-                     "max RSS (MB)": table.get("max_rss", pd.Series([float("nan")])).iloc[-1]})
+        rows.append(
+            {
+                "rule": path.stem,
+                "wall time (s)": round(float(table["s"].iloc[-1]), 2),
+                "max RSS (MB)": table.get("max_rss", pd.Series([float("nan")])).iloc[-1],
+            }
+        )
     return pd.DataFrame(rows)
 
 
-def build_report(figures: Sequence[str], claims_csv: str, readings_csv: str,
-                 results: Sequence[str], config: Mapping, benchmarks_dir: str,
-                 output: str) -> None:
+def build_report(
+    figures: Sequence[str],
+    claims_csv: str,
+    readings_csv: str,
+    results: Sequence[str],
+    config: Mapping,
+    benchmarks_dir: str,
+    output: str,
+) -> None:
     """Write the report page to ``output``."""
     claims = pd.read_csv(claims_csv, keep_default_na=False)
     claims["reproduced_value"] = claims["reproduced_value"].astype(float)
@@ -148,23 +166,38 @@ def build_report(figures: Sequence[str], claims_csv: str, readings_csv: str,
     figs = []
     for path in figures:
         name = Path(path).stem
-        figs.append({"name": name, "statement": STATEMENTS.get(name[:5], ""),
-                     "data": base64.b64encode(Path(path).read_bytes()).decode()})
+        figs.append(
+            {
+                "name": name,
+                "statement": STATEMENTS.get(name[:5], ""),
+                "data": base64.b64encode(Path(path).read_bytes()).decode(),
+            }
+        )
     with xr.open_dataset(results[0]) as ds:
         solver = {k: v for k, v in ds.attrs.items() if k.startswith("solver_")}
-    meta = {"tennis_stroke version": __version__, "git commit": git_commit(),
-            "python": platform.python_version(),
-            "built": datetime.now(UTC).isoformat(timespec="seconds"), **solver,
-            "config": dict(config)}
+    meta = {
+        "tennis_stroke version": __version__,
+        "git commit": git_commit(),
+        "python": platform.python_version(),
+        "built": datetime.now(UTC).isoformat(timespec="seconds"),
+        **solver,
+        "config": dict(config),
+    }
     cols = [*CANDIDATES, "passed", "score"]
     html = TEMPLATE.render(
-        claims=claims.to_dict("records"), n_claims=len(claims),
-        n_pass=int((claims.status == "pass").sum()), n_fail=int((claims.status == "fail").sum()),
+        claims=claims.to_dict("records"),
+        n_claims=len(claims),
+        n_pass=int((claims.status == "pass").sum()),
+        n_fail=int((claims.status == "fail").sum()),
         n_known=int((claims.status == "known_deviation").sum()),
         n_ident=int(claims["identification"].astype(str).eq("True").sum()),
-        figures=figs, readings=list(READINGS.values()), n_combos=len(readings),
+        figures=figs,
+        readings=list(READINGS.values()),
+        n_combos=len(readings),
         best_table=readings[cols].head(8).round(3).to_html(index=False),
         sensitivity_table=_sensitivity(readings).to_html(index=False),
-        meta=meta, timing_table=_timings(Path(benchmarks_dir)).to_html(index=False))
+        meta=meta,
+        timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
+    )
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     Path(output).write_text(html)

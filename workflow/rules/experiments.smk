@@ -6,15 +6,15 @@ rule angle_map:
         PACKAGE_SOURCES,
     output:
         "results/angle_maps/L1_{L1}.nc",
-    params:
-        common=common_params(),
-        theta0=grid_spec(config["angle_maps"]["theta0"]),
-        delta0=grid_spec(config["angle_maps"]["delta0"]),
-    threads: config["threads"]
     log:
         "logs/angle_map_L1_{L1}.log",
     benchmark:
         "benchmarks/workflow/angle_map_L1_{L1}.tsv"
+    threads: config["threads"]
+    params:
+        common=common_params(),
+        theta0=grid_spec(config["angle_maps"]["theta0"]),
+        delta0=grid_spec(config["angle_maps"]["delta0"]),
     script:
         "../scripts/angle_map.py"
 
@@ -24,16 +24,17 @@ rule fig4_strokes:
         PACKAGE_SOURCES,
     output:
         "results/strokes/fig4.nc",
-    params:
-        common=common_params(),
-        strokes=[list(map(float, s)) for s in config["fig4"]["strokes"]],
-        t_end=config["fig4"]["t_end"],
-        samples=config["fig4"]["samples"],
-    threads: 1
     log:
         "logs/fig4_strokes.log",
     benchmark:
         "benchmarks/workflow/fig4_strokes.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        strokes=[list(map(float, s)) for s in config["fig4"]["strokes"]],
+        curves=config["figure_curves"],
+        t_end=config["fig4"]["t_end"],
+        samples=config["fig4"]["samples"],
     script:
         "../scripts/fig4_strokes.py"
 
@@ -43,6 +44,11 @@ rule mass_length:
         PACKAGE_SOURCES,
     output:
         "results/mass_length/map.nc",
+    log:
+        "logs/mass_length.log",
+    benchmark:
+        "benchmarks/workflow/mass_length.tsv"
+    threads: config["threads"]
     params:
         common=common_params(),
         M2=grid_spec(config["mass_length"]["M2"]),
@@ -51,11 +57,6 @@ rule mass_length:
         delta0_range=config["mass_length"]["delta0_range"],
         coarse_step=config["mass_length"]["coarse_step"],
         fine_step=config["mass_length"]["fine_step"],
-    threads: config["threads"]
-    log:
-        "logs/mass_length.log",
-    benchmark:
-        "benchmarks/workflow/mass_length.tsv"
     script:
         "../scripts/mass_length.py"
 
@@ -65,8 +66,13 @@ rule delay_map:
         PACKAGE_SOURCES,
     output:
         "results/torque_delay/{fig}.nc",
+    log:
+        "logs/delay_map_{fig}.log",
+    benchmark:
+        "benchmarks/workflow/delay_map_{fig}.tsv"
     wildcard_constraints:
         fig="fig[789]",
+    threads: config["threads"]
     params:
         common=common_params(),
         section=lambda wc: {
@@ -74,11 +80,6 @@ rule delay_map:
             "L1": config["torque_delay"]["L1"],
             "theta0": config["torque_delay"]["theta0"],
         },
-    threads: config["threads"]
-    log:
-        "logs/delay_map_{fig}.log",
-    benchmark:
-        "benchmarks/workflow/delay_map_{fig}.tsv"
     script:
         "../scripts/delay_map.py"
 
@@ -88,17 +89,18 @@ rule delay_strokes:
         PACKAGE_SOURCES,
     output:
         "results/strokes/delay.nc",
-    params:
-        common=common_params(),
-        strokes=config["torque_delay"]["strokes"],
-        fig9=config["torque_delay"]["fig9"],
-        L1=config["torque_delay"]["L1"],
-        theta0=config["torque_delay"]["theta0"],
-    threads: 1
     log:
         "logs/delay_strokes.log",
     benchmark:
         "benchmarks/workflow/delay_strokes.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        strokes=config["torque_delay"]["strokes"],
+        curves=config["figure_curves"],
+        fig9=config["torque_delay"]["fig9"],
+        L1=config["torque_delay"]["L1"],
+        theta0=config["torque_delay"]["theta0"],
     script:
         "../scripts/delay_strokes.py"
 
@@ -108,17 +110,17 @@ rule elbow_force_map:
         PACKAGE_SOURCES,
     output:
         "results/elbow_force/map.nc",
+    log:
+        "logs/elbow_force_map.log",
+    benchmark:
+        "benchmarks/workflow/elbow_force_map.tsv"
+    threads: config["threads"]
     params:
         common=common_params(),
         force=config["elbow_force"],
         psi_F=grid_spec(config["elbow_force"]["psi_F"]),
         tau_F=grid_spec(config["elbow_force"]["tau_F"]),
         delay=config["torque_delay"],
-    threads: config["threads"]
-    log:
-        "logs/elbow_force_map.log",
-    benchmark:
-        "benchmarks/workflow/elbow_force_map.tsv"
     script:
         "../scripts/elbow_force_map.py"
 
@@ -128,15 +130,16 @@ rule elbow_force_strokes:
         PACKAGE_SOURCES,
     output:
         "results/strokes/elbow_force.nc",
-    params:
-        common=common_params(),
-        force=config["elbow_force"],
-        delay=config["torque_delay"],
-    threads: 1
     log:
         "logs/elbow_force_strokes.log",
     benchmark:
         "benchmarks/workflow/elbow_force_strokes.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        force=config["elbow_force"],
+        delay=config["torque_delay"],
+        curves=config["figure_curves"],
     script:
         "../scripts/elbow_force_strokes.py"
 
@@ -146,12 +149,12 @@ rule identification:
         PACKAGE_SOURCES,
     output:
         "results/identification/readings.csv",
-    params:
-        common=common_params(),
-    threads: 1
     log:
         "logs/identification.log",
     benchmark:
         "benchmarks/workflow/identification.tsv"
+    threads: 1
+    params:
+        common=common_params(),
     script:
         "../scripts/identification.py"

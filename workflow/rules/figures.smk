@@ -4,16 +4,16 @@
 rule figure:
     input:
         figure_inputs,
-        "src/tennis_stroke/figures.py",
+        str(PACKAGE_DIR / "figures.py"),
     output:
         report(
             "results/figures/{name}.png",
             caption="../report/figure.rst",
             category="Figures",
         ),
-    wildcard_constraints:
-        name="fig[0-9][0-9]_[A-Za-z0-9_.]+",
     log:
         "logs/figure_{name}.log",
+    wildcard_constraints:
+        name="fig[0-9][0-9]_[A-Za-z0-9_.]+",
     script:
         "../scripts/figure.py"

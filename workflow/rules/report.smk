@@ -18,13 +18,13 @@ rule claims:
     input:
         **CLAIM_FILES,
         claims="config/claims.yaml",
-        code="src/tennis_stroke/claims.py",
+        code=str(PACKAGE_DIR / "claims.py"),
     output:
         report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
-    params:
-        files=CLAIM_FILES,
     log:
         "logs/claims.log",
+    params:
+        files=CLAIM_FILES,
     script:
         "../scripts/claims.py"
 
@@ -35,13 +35,13 @@ rule report:
         claims="results/claims.csv",
         readings="results/identification/readings.csv",
         results=list(CLAIM_FILES.values()),
-        code="src/tennis_stroke/report.py",
+        code=str(PACKAGE_DIR / "report.py"),
     output:
         "report/index.html",
+    log:
+        "logs/report.log",
     params:
         config=config,
         benchmarks="benchmarks/workflow",
-    log:
-        "logs/report.log",
     script:
         "../scripts/report.py"

@@ -3,7 +3,7 @@
 from tennis_stroke.claims import evaluate, load_claims
 from tennis_stroke.pipeline import logged
 
-with logged(snakemake.log[0]):  # noqa: F821
-    table = evaluate(load_claims(snakemake.input.claims), snakemake.params.files)  # noqa: F821
-    table.to_csv(snakemake.output[0], index=False)  # noqa: F821
+with logged(snakemake.log[0]):
+    table = evaluate(load_claims(snakemake.input.claims), snakemake.params.files)
+    table.to_csv(snakemake.output[0], index=False)
     print(table[["id", "paper_value", "reproduced_value", "tolerance", "status"]].to_string())

@@ -5,19 +5,37 @@ import numpy as np
 from tennis_stroke.experiments import delay_map
 from tennis_stroke.pipeline import Timer, axis, logged, save, settings
 
-p = snakemake.params  # noqa: F821
+p = snakemake.params
 s = p.section
-with logged(snakemake.log[0]):  # noqa: F821
+with logged(snakemake.log[0]):
     clock = Timer()
     model = {**p.common["model"], "L1": s["L1"]}
     tau = axis(s["tau"])
     if isinstance(s["C2"], dict):  # Fig. 7: (C2, tau) at fixed delta0
-        ds = delay_map("C2", axis(s["C2"]), ("N m", "wrist torque C2"), tau, s["theta0"],
-                       s["delta0"], model, settings(p.common), snakemake.threads)  # noqa: F821
+        ds = delay_map(
+            "C2",
+            axis(s["C2"]),
+            ("N m", "wrist torque C2"),
+            tau,
+            s["theta0"],
+            s["delta0"],
+            model,
+            settings(p.common),
+            snakemake.threads,
+        )
     else:  # Figs. 8-9: (delta0, tau) at fixed C2
-        delta0 = axis(s["delta0"]) if isinstance(s["delta0"], dict) else np.array(
-            [float(s["delta0"])])
-        ds = delay_map("delta0", delta0, ("degree", "initial angle between the rods"), tau,
-                       s["theta0"], None, {**model, "C2": s["C2"]}, settings(p.common),
-                       snakemake.threads)  # noqa: F821
-    save(ds, snakemake.output[0], p.common, clock())  # noqa: F821
+        delta0 = (
+            axis(s["delta0"]) if isinstance(s["delta0"], dict) else np.array([float(s["delta0"])])
+        )
+        ds = delay_map(
+            "delta0",
+            delta0,
+            ("degree", "initial angle between the rods"),
+            tau,
+            s["theta0"],
+            None,
+            {**model, "C2": s["C2"]},
+            settings(p.common),
+            snakemake.threads,
+        )
+    save(ds, snakemake.output[0], p, clock())

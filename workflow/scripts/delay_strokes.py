@@ -5,13 +5,15 @@ import numpy as np
 from tennis_stroke.experiments import trajectories
 from tennis_stroke.pipeline import Timer, logged, save, settings
 
-p = snakemake.params  # noqa: F821
-with logged(snakemake.log[0]):  # noqa: F821
+p = snakemake.params
+with logged(snakemake.log[0]):
     clock = Timer()
     s = p.strokes
     extra = {"L1": p.L1, "C2": p.fig9["C2"]}
     strokes = [(p.theta0, p.fig9["delta0"], {**extra, "tau": s[k]}) for k in ("tau_L", "tau_H")]
     times = np.linspace(0.0, s["t_end"], s["samples"])
-    ds = trajectories(strokes, ["tau_L", "tau_H"], times, p.common["model"], settings(p.common))
+    ds = trajectories(
+        strokes, ["tau_L", "tau_H"], times, p.common["model"], settings(p.common), p.curves
+    )
     ds["tau"] = ("stroke", [s["tau_L"], s["tau_H"]], {"units": "s", "long_name": "delay of C2"})
-    save(ds, snakemake.output[0], p.common, clock())  # noqa: F821
+    save(ds, snakemake.output[0], p, clock())

@@ -5,11 +5,11 @@ import numpy as np
 from tennis_stroke.experiments import trajectories
 from tennis_stroke.pipeline import Timer, logged, save, settings
 
-p = snakemake.params  # noqa: F821
-with logged(snakemake.log[0]):  # noqa: F821
+p = snakemake.params
+with logged(snakemake.log[0]):
     clock = Timer()
     strokes = [(a, b, {}) for a, b in p.strokes]
     labels = [f"({a:g}, {b:g})" for a, b in p.strokes]
     times = np.linspace(0.0, p.t_end, p.samples)
-    ds = trajectories(strokes, labels, times, p.common["model"], settings(p.common))
-    save(ds, snakemake.output[0], p.common, clock())  # noqa: F821
+    ds = trajectories(strokes, labels, times, p.common["model"], settings(p.common), p.curves)
+    save(ds, snakemake.output[0], p, clock())

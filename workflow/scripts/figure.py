@@ -3,6 +3,6 @@
 from tennis_stroke.figures import draw
 from tennis_stroke.pipeline import logged
 
-with logged(snakemake.log[0]):  # noqa: F821
-    data = [p for p in snakemake.input if p.endswith(".nc")]  # noqa: F821
-    draw(snakemake.wildcards.name, data, snakemake.output[0])  # noqa: F821
+with logged(snakemake.log[0]):
+    data = [p for p in snakemake.input if p.endswith(".nc")]
+    draw(snakemake.wildcards.name, data, snakemake.output[0])

@@ -3,7 +3,7 @@
 from tennis_stroke.identification import score_readings
 from tennis_stroke.pipeline import logged, settings
 
-with logged(snakemake.log[0]):  # noqa: F821
-    table = score_readings(settings(snakemake.params.common))  # noqa: F821
-    table.to_csv(snakemake.output[0], index=False)  # noqa: F821
+with logged(snakemake.log[0]):
+    table = score_readings(settings(snakemake.params.common))
+    table.to_csv(snakemake.output[0], index=False)
     print(table.head(10).to_string())

@@ -3,10 +3,18 @@
 from tennis_stroke.experiments import mass_length_map
 from tennis_stroke.pipeline import Timer, axis, logged, save, settings
 
-p = snakemake.params  # noqa: F821
-with logged(snakemake.log[0]):  # noqa: F821
+p = snakemake.params
+with logged(snakemake.log[0]):
     clock = Timer()
-    ds = mass_length_map(axis(p.M2), axis(p.L1), p.coarse_step, p.fine_step,
-                         tuple(p.theta0_range), tuple(p.delta0_range), p.common["model"],
-                         settings(p.common), snakemake.threads)  # noqa: F821
-    save(ds, snakemake.output[0], p.common, clock())  # noqa: F821
+    ds = mass_length_map(
+        axis(p.M2),
+        axis(p.L1),
+        p.coarse_step,
+        p.fine_step,
+        tuple(p.theta0_range),
+        tuple(p.delta0_range),
+        p.common["model"],
+        settings(p.common),
+        snakemake.threads,
+    )
+    save(ds, snakemake.output[0], p, clock())
