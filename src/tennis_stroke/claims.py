@@ -73,14 +73,14 @@ def measure_below_threshold_tau_zero(ds: xr.Dataset) -> float:
 def measure_optimum(ds: xr.Dataset, coord: str) -> float:
     """The coordinate ``coord`` of the largest v_out of a map (grid point)."""
     v = _v(ds)
-    index = np.unravel_index(int(v.fillna(-np.inf).argmax()), v.shape)
+    index = np.unravel_index(int(np.argmax(v.fillna(-np.inf).values)), v.shape)
     return float(ds[coord][index[v.dims.index(coord)]])
 
 
 def measure_minimum(ds: xr.Dataset, coord: str) -> float:
     """The coordinate ``coord`` of the smallest v_out of a map (grid point)."""
     v = _v(ds)
-    index = np.unravel_index(int(v.fillna(np.inf).argmin()), v.shape)
+    index = np.unravel_index(int(np.argmin(v.fillna(np.inf).values)), v.shape)
     return float(ds[coord][index[v.dims.index(coord)]])
 
 
@@ -135,14 +135,14 @@ def measure_omega2_rises_after_contact(ds: xr.Dataset, stroke: int) -> float:
 def measure_peak_after_contact(ds: xr.Dataset, stroke: int) -> float:
     """Fig. 10: 1 if omega2 peaks after the contact start (the ball is hit before)."""
     d = ds.isel(stroke=stroke)
-    t_peak = float(d["time"][int(d["omega2"].fillna(-np.inf).argmax())])
+    t_peak = float(d["time"][int(np.argmax(d["omega2"].fillna(-np.inf).values))])
     return float(t_peak > float(d["t_contact_start"]))
 
 
 def measure_omega1_at_omega2_peak(ds: xr.Dataset, stroke: int) -> float:
     """Fig. 10: |omega1| (rad/s) when omega2 has its maximum."""
     d = ds.isel(stroke=stroke)
-    return abs(float(d["omega1"][int(d["omega2"].fillna(-np.inf).argmax())]))
+    return abs(float(d["omega1"][int(np.argmax(d["omega2"].fillna(-np.inf).values))]))
 
 
 def measure_contact_time_difference(ds: xr.Dataset) -> float:

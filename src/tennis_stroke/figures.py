@@ -93,7 +93,7 @@ def delay_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
         ax.axvline(thr, color="w", ls="--", lw=1, label=f"best tau leaves 0: C2 = {thr:.2f} N m")
     else:
         v = d["v_out"].where(d["status"] == 0)
-        i = np.unravel_index(int(v.argmax()), v.shape)
+        i = np.unravel_index(int(np.nanargmax(v.values)), v.shape)
         ax.plot(float(d[axis][i[0]]), float(d["tau"][i[1]]), "r*", ms=14, label="optimum")
     ax.legend(loc="upper right", fontsize=8)
     ax.set_title(title)
@@ -152,7 +152,7 @@ def elbow_force(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     v = d["v_out"].where(d["status"] == 0)
     _map(ax, v, "psi_F", "tau_F")
-    i = np.unravel_index(int(v.argmax()), v.shape)
+    i = np.unravel_index(int(np.nanargmax(v.values)), v.shape)
     ax.plot(float(d["psi_F"][i[0]]), float(d["tau_F"][i[1]]), "r*", ms=14, label="maximum")
     ax.legend(loc="upper right")
     ax.set_title(title)
