@@ -29,6 +29,19 @@ def solver():
     return dict(sorted(config["solver"].items()))
 
 
+def delay_stroke():
+    """The Sec. V-VI base stroke (plain dict): only what the stroke rules need, so that
+    changing a map's grid does not rerun them."""
+    d = config["torque_delay"]
+    return {
+        "L1": d["L1"],
+        "theta0": d["theta0"],
+        "C2": d["fig9"]["C2"],
+        "delta0": d["fig9"]["delta0"],
+        **d["strokes"],
+    }
+
+
 def common_params():
     """Params every simulation script needs."""
     return {"model": model(), "solver": solver()}

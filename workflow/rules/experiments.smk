@@ -96,11 +96,8 @@ rule delay_strokes:
     threads: 1
     params:
         common=common_params(),
-        strokes=config["torque_delay"]["strokes"],
+        stroke=delay_stroke(),
         curves=config["figure_curves"],
-        fig9=config["torque_delay"]["fig9"],
-        L1=config["torque_delay"]["L1"],
-        theta0=config["torque_delay"]["theta0"],
     script:
         "../scripts/delay_strokes.py"
 
@@ -117,10 +114,10 @@ rule elbow_force_map:
     threads: config["threads"]
     params:
         common=common_params(),
-        force=config["elbow_force"],
+        force={k: config["elbow_force"][k] for k in ("F0", "t_d")},
         psi_F=grid_spec(config["elbow_force"]["psi_F"]),
         tau_F=grid_spec(config["elbow_force"]["tau_F"]),
-        delay=config["torque_delay"],
+        stroke=delay_stroke(),
     script:
         "../scripts/elbow_force_map.py"
 
@@ -137,8 +134,8 @@ rule elbow_force_strokes:
     threads: 1
     params:
         common=common_params(),
-        force=config["elbow_force"],
-        delay=config["torque_delay"],
+        force={k: config["elbow_force"][k] for k in ("F0", "t_d", "table1_psi")},
+        stroke=delay_stroke(),
         curves=config["figure_curves"],
     script:
         "../scripts/elbow_force_strokes.py"

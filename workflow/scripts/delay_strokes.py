@@ -6,11 +6,11 @@ from tennis_stroke.experiments import trajectories
 from tennis_stroke.pipeline import Timer, logged, save, settings
 
 p = snakemake.params
+s = p.stroke
 with logged(snakemake.log[0]):
     clock = Timer()
-    s = p.strokes
-    extra = {"L1": p.L1, "C2": p.fig9["C2"]}
-    strokes = [(p.theta0, p.fig9["delta0"], {**extra, "tau": s[k]}) for k in ("tau_L", "tau_H")]
+    extra = {"L1": s["L1"], "C2": s["C2"]}
+    strokes = [(s["theta0"], s["delta0"], {**extra, "tau": s[k]}) for k in ("tau_L", "tau_H")]
     times = np.linspace(0.0, s["t_end"], s["samples"])
     ds = trajectories(
         strokes, ["tau_L", "tau_H"], times, p.common["model"], settings(p.common), p.curves

@@ -6,16 +6,15 @@ from tennis_stroke.experiments import trajectories
 from tennis_stroke.pipeline import Timer, logged, save, settings
 
 p = snakemake.params
-f, d = p.force, p.delay
+f, s = p.force, p.stroke
 with logged(snakemake.log[0]):
     clock = Timer()
-    tau_h = d["strokes"]["tau_H"]
-    base = {"L1": d["L1"], "C2": d["fig9"]["C2"], "tau": tau_h, "t_d": f["t_d"], "t_F": tau_h}
+    base = {"L1": s["L1"], "C2": s["C2"], "tau": s["tau_H"], "t_d": f["t_d"], "t_F": s["tau_H"]}
     cases = [{**base, "F0": f["F0"], "psi_F_deg": psi} for psi in f["table1_psi"]]
     cases.append({**base, "F0": 0.0})
     labels = [f"F0={f['F0']:g} N, psi={psi:g} deg" for psi in f["table1_psi"]] + ["no force"]
-    strokes = [(d["theta0"], d["fig9"]["delta0"], case) for case in cases]
-    times = np.linspace(0.0, d["strokes"]["t_end"], d["strokes"]["samples"])
+    strokes = [(s["theta0"], s["delta0"], case) for case in cases]
+    times = np.linspace(0.0, s["t_end"], s["samples"])
     ds = trajectories(strokes, labels, times, p.common["model"], settings(p.common), p.curves)
     ds["psi_F"] = (
         "stroke",
