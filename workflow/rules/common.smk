@@ -1,9 +1,16 @@
 # Config validation and helpers shared by all rules.
 from pathlib import Path
 
+from snakemake.exceptions import WorkflowError
 from snakemake.utils import validate
 
+from tennis_stroke.params import ParameterError, resolve_params
+
 validate(config, "../schemas/config.schema.yaml", set_default=True)
+try:  # the package knows the name, unit and bounds of every model parameter
+    resolve_params(config.get("model", {}))
+except ParameterError as exc:
+    raise WorkflowError(f"config key 'model': {exc}") from None
 
 #: The package's sources that simulations run: they rerun when the solver changes (not
 #: when only the claims, figures, report or CLI code changes).
