@@ -104,6 +104,8 @@ candidates against the ten Fig. 4 numbers (declared tolerances).</p>
 {{ best_table }}
 <h3>How much the Fig. 4 numbers move with each reading (others at the default)</h3>
 {{ sensitivity_table }}
+<h3>All assumptions with their evidence (docs/assumptions.md)</h3>
+<pre style="white-space: pre-wrap; font-size: 0.8em">{{ assumptions }}</pre>
 
 <h2>Solver and run</h2>
 <table>{% for k, v in meta.items() %}<tr><td>{{ k }}</td><td>{{ v }}</td></tr>{% endfor %}</table>

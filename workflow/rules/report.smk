@@ -36,6 +36,7 @@ rule report:
         readings="results/identification/readings.csv",
         results=list(CLAIM_FILES.values()),
         code=str(PACKAGE_DIR / "report.py"),
+        assumptions=str(Path(workflow.basedir) / "docs" / "assumptions.md"),
     output:
         "report/index.html",
     log:

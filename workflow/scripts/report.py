@@ -12,4 +12,5 @@ with logged(snakemake.log[0]):
         config=snakemake.params.config,
         benchmarks_dir=snakemake.params.benchmarks,
         output=snakemake.output[0],
+        assumptions_md=snakemake.input.assumptions,
     )
