@@ -160,8 +160,9 @@ def build_report(
     config: Mapping,
     benchmarks_dir: str,
     output: str,
+    assumptions_md: str | None = None,
 ) -> None:
-    """Write the report page to ``output``."""
+    """Write the report page to ``output`` (``assumptions_md``: the ledger's text)."""
     claims = pd.read_csv(claims_csv, keep_default_na=False)
     claims["reproduced_value"] = claims["reproduced_value"].astype(float)
     readings = pd.read_csv(readings_csv)
