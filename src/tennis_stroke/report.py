@@ -201,6 +201,7 @@ def build_report(
         sensitivity_table=_sensitivity(readings).to_html(index=False),
         meta=meta,
         timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
+        assumptions=Path(assumptions_md).read_text() if assumptions_md else "",
     )
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     Path(output).write_text(html)
