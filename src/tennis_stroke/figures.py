@@ -174,6 +174,29 @@ def elbow_paths(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     return fig
 
 
+def work_precision(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Study 1: log error against log cost, one line per method (SciML style)."""
+    d = ds[0]
+    fig, ax = plt.subplots(figsize=(6.8, 4.8))
+    floor = 1e-12  # errors below the reference's own accuracy are drawn at this floor
+    for method in d["method"].values:
+        row = d.sel(method=method)
+        keep = np.isfinite(row["error_kmh"]) & np.isfinite(row["us_per_stroke"])
+        if keep.any():
+            ax.loglog(
+                row["us_per_stroke"][keep],
+                np.maximum(row["error_kmh"][keep], floor),
+                "o-",
+                label=str(method),
+            )
+    ax.axhline(1e-4, color="grey", ls="--", lw=1, label="1e-4 km/h")
+    ax.set_xlabel(_label(d["us_per_stroke"]))
+    ax.set_ylabel(_label(d["error_kmh"]))
+    ax.legend(fontsize=8)
+    ax.set_title(title)
+    return fig
+
+
 #: Figure name -> (drawing function, title, extra arguments).
 FIGURES: dict[str, tuple[Callable, str, tuple]] = {
     "fig02_angle_map_L1_0.3": (angle_map, "Fig. 2: v_out over the initial angles", ()),
@@ -201,6 +224,7 @@ FIGURES: dict[str, tuple[Callable, str, tuple]] = {
         (),
     ),
     "fig14_elbow_paths": (elbow_paths, "Fig. 14: elbow paths until the contact", ()),
+    "study01_work_precision": (work_precision, "Work-precision: error against cost per stroke", ()),
 }
 
 

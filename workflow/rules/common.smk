@@ -68,6 +68,7 @@ FIGURES = {
     "fig12_strobe_tau_L": ["results/strokes/delay.nc"],
     "fig13_elbow_force": ["results/elbow_force/map.nc"],
     "fig14_elbow_paths": ["results/strokes/elbow_force.nc"],
+    "study01_work_precision": ["results/solver_study/work_precision.nc"],
 }
 
 

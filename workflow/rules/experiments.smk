@@ -155,3 +155,20 @@ rule identification:
         common=common_params(),
     script:
         "../scripts/identification.py"
+
+
+rule work_precision:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/solver_study/work_precision.nc",
+    log:
+        "logs/work_precision.log",
+    benchmark:
+        "benchmarks/workflow/work_precision.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        study=config["solver_study"],
+    script:
+        "../scripts/work_precision.py"

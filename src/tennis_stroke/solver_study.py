@@ -1,0 +1,294 @@
+"""Speed against accuracy: a work-precision study of the integrators, and a model ladder.
+
+* :func:`work_precision`: one seeded set of strokes drawn across the paper's parameter
+  space, solved by every method over a sweep of tolerances (adaptive methods) or steps
+  (fixed-step RK4); error = largest |v_out - reference| (km/h) against the compiled
+  DOP853 at rtol = atol = 1e-13, cost = microseconds per stroke (median of repeats, one
+  thread) and right-hand-side evaluations per stroke.
+* :func:`fixed_step_stroke`: the classical fixed-step RK4 through the same phases, with
+  events found by a sign change between steps (linear interpolation): it misses a contact
+  shorter than its step, which the stability study shows.
+* :func:`impact_model`: the cheapest rung of the model ladder, an instantaneous elastic
+  impact with the racket's effective mass at the hitting point (no spring phase).
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from .dynamics import (
+    A_BALL_S,
+    A_BALL_W,
+    A_OMEGA1,
+    A_OMEGA2,
+    A_PHI,
+    A_THETA,
+    CF_L1,
+    CF_LEAD,
+    CF_LH,
+    CF_MB,
+    CF_PHI0,
+    CF_THETA0,
+    CF_VBALL,
+    approach_rate,
+    coefficients,
+    effective_mass,
+    elbow_velocity,
+    hit_offset,
+    rhs_angles,
+)
+from .params import resolve_params
+from .reference import solve_stroke
+from .stroke import MS_TO_KMH, SolverSettings, next_switch, strike_batch, wrist_torque
+
+#: Parameter space of the sampled strokes (uniform ranges).
+STROKE_SPACE = {
+    "theta0": (60.0, 120.0),
+    "delta0": (0.0, 90.0),
+    "L1": (0.25, 0.45),
+    "M2": (0.2, 0.45),
+    "C2": (0.0, 8.0),
+    "tau": (0.0, 0.2),
+}
+REFERENCE = SolverSettings(rtol=1e-13, atol=1e-13, history=8192)
+#: Strokes per timed batch of the compiled solver.
+TIMING_STROKES = 4000
+
+
+def sample_strokes(n: int, seed: int = 20261121) -> dict[str, np.ndarray]:
+    """``n`` strokes drawn uniformly from :data:`STROKE_SPACE` (seeded), all ``ok``."""
+    rng = np.random.default_rng(seed)
+    out = {k: [] for k in STROKE_SPACE}
+    while len(out["theta0"]) < n:
+        draw = {k: rng.uniform(*r) for k, r in STROKE_SPACE.items()}
+        res = strike_batch(
+            draw["theta0"],
+            draw["delta0"],
+            {k: draw[k] for k in ("L1", "M2", "C2", "tau")},
+            REFERENCE,
+        )
+        if res["status"] == 0:
+            for k in out:
+                out[k].append(draw[k])
+    return {k: np.array(v) for k, v in out.items()}
+
+
+def _rk4(fun, t, y, h):
+    k1 = fun(t, y)
+    k2 = fun(t + h / 2, y + h / 2 * k1)
+    k3 = fun(t + h / 2, y + h / 2 * k2)
+    k4 = fun(t + h, y + h * k3)
+    return y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+
+
+def _fixed_phase(cf, t, y, t_stop, h, contact, event):
+    """RK4 with step ``h`` through the torque switches until ``event`` changes sign.
+
+    Returns ``(t, y, hit, evaluations)``; the event state is interpolated linearly.
+    """
+    evals = 0
+    while t < t_stop:
+        t_seg = next_switch(t, cf, t_stop)
+        c2 = wrist_torque(t, t_seg, cf)
+
+        def fun(tt, yy, c2=c2):
+            d = np.empty_like(yy)
+            rhs_angles(tt, yy, cf, c2, contact, d)
+            return d
+
+        while t < t_seg:
+            step = min(h, t_seg - t)
+            y_new = _rk4(fun, t, y, step)
+            evals += 4
+            g0, g1 = event(y), event(y_new)
+            if g0 > 0.0 >= g1:
+                x = g0 / (g0 - g1)
+                return t + x * step, y + x * (y_new - y), True, evals
+            t, y = t + step, y_new
+    return t, y, False, evals
+
+
+def fixed_step_stroke(
+    theta0_deg: float, delta0_deg: float, params: Mapping[str, object], h: float, t_max: float = 1.0
+) -> dict[str, float]:
+    """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (``ok``,
+    ``missed_contact``, ``no_phi_zero``, ``no_approach``, ``non_finite``), ``v_out_kmh``
+    and ``rhs_evals``.
+
+    The contact state at ``t_c`` is the RK4 state of the step before, advanced by one
+    step of the remaining size.
+    """
+    cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
+    out = {"status": "ok", "v_out_kmh": math.nan, "rhs_evals": 0}
+    y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
+    t0, y, hit, evals = _fixed_phase(cf, 0.0, y0, t_max, h, False, lambda y: y[A_PHI])
+    out["rhs_evals"] += evals
+    if not hit:
+        out["status"] = "no_phi_zero" if np.all(np.isfinite(y)) else "non_finite"
+        return out
+    t_c = t0 - cf[CF_LEAD]
+    _, yc, _, evals = _fixed_phase(cf, 0.0, y0, t_c, h, False, lambda y: 1.0)
+    out["rhs_evals"] += evals
+    st, sp = math.sin(yc[A_THETA]), math.sin(yc[A_PHI])
+    ct, cp = math.cos(yc[A_THETA]), math.cos(yc[A_PHI])
+    w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
+    if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
+        out["status"] = "no_approach"
+        return out
+    y = np.array([*yc, hit_offset(st, sp, cf), w])
+
+    def compression(yy):
+        return yy[A_BALL_S] - hit_offset(math.sin(yy[A_THETA]), math.sin(yy[A_PHI]), cf)
+
+    # A step longer than the contact jumps over it: the compression is negative again at
+    # the first step's end, so the event fires at once with a wrong ball speed.
+    first = _rk4(lambda tt, yy: _angles_rhs(cf, tt, yy), t_c, y, h)
+    if compression(first) <= 0.0:
+        out["status"] = "missed_contact"
+        out["rhs_evals"] += 4
+        return out
+    t_s, y, hit, evals = _fixed_phase(cf, t_c, y, t_max, h, True, compression)
+    out["rhs_evals"] += evals
+    if not hit or not np.all(np.isfinite(y)):
+        out["status"] = "non_finite" if not np.all(np.isfinite(y)) else "no_release"
+        return out
+    out["v_out_kmh"] = -MS_TO_KMH * (y[A_BALL_W] + elbow_velocity(t_s, cf)[0])
+    return out
+
+
+def _angles_rhs(cf, t, y):
+    d = np.empty_like(y)
+    rhs_angles(t, y, cf, wrist_torque(t, t, cf), True, d)
+    return d
+
+
+def impact_model(
+    theta0: np.ndarray,
+    delta0: np.ndarray,
+    params: Mapping[str, object],
+    settings: SolverSettings | None = None,
+) -> np.ndarray:
+    """v_out (km/h) of an instantaneous elastic impact at ``phi = 0`` (the paper's ``t0``).
+
+    The racket is replaced by its effective mass ``m`` at the hitting point (from the
+    inertia matrix) moving with the hitting point's velocity ``v_H`` along x; the ball
+    leaves with ``((m_b - m) v_b + 2 m v_H) / (m_b + m)``.  Only the swing is needed.
+    """
+    res = strike_batch(theta0, delta0, params, settings)
+    shape = res["status"].shape
+    theta = np.radians(res["theta_deg_at_phi0"]).ravel()
+    w1, w2, t0 = (res[k].ravel() for k in ("omega1_phi0", "omega2_phi0", "t_phi0"))
+    cf_rows = coefficients(resolve_params(params), theta0, delta0)
+    v = np.full(theta.shape, np.nan)
+    for i, cf in enumerate(cf_rows):
+        if res["status"].ravel()[i] != 0:
+            continue
+        st, ct = math.sin(theta[i]), math.cos(theta[i])
+        m = effective_mass(st, ct, 0.0, 1.0, cf)
+        v_hit = elbow_velocity(t0[i], cf)[0] - cf[CF_L1] * w1[i] * ct - cf[CF_LH] * w2[i]
+        mb = cf[CF_MB]
+        v[i] = -MS_TO_KMH * ((mb - m) * cf[CF_VBALL] + 2.0 * m * v_hit) / (mb + m)
+    return v.reshape(shape)
+
+
+def _time(fn, repeats: int) -> tuple[float, object]:
+    times, out = [], None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - start)
+    return float(np.median(times)), out
+
+
+def work_precision(
+    strokes: Mapping[str, np.ndarray],
+    compiled_tols: Sequence[float],
+    scipy_tols: Sequence[float],
+    rk4_steps: Sequence[float],
+    scipy_methods: Sequence[str] = ("RK45", "DOP853", "LSODA", "Radau"),
+    repeats: int = 3,
+) -> xr.Dataset:
+    """The work-precision table: dims ``method`` x ``setting``.
+
+    ``setting`` is the tolerance (rtol = atol) of adaptive methods and the step (s) of
+    fixed-step RK4; absent combinations are NaN.
+    """
+    params = {k: strokes[k] for k in ("L1", "M2", "C2", "tau")}
+    th, de = strokes["theta0"], strokes["delta0"]
+    n = th.size
+    ref = strike_batch(th, de, params, REFERENCE)["v_out_kmh"]
+    methods = [
+        "tennis_stroke.DP54",
+        "tennis_stroke.DOP853",
+        *(f"scipy.{m}" for m in scipy_methods),
+        "fixed.RK4",
+    ]
+    settings_axis = sorted({*compiled_tols, *scipy_tols, *rk4_steps}, reverse=True)
+    shape = (len(methods), len(settings_axis))
+    err, cost, evals, failed = (np.full(shape, np.nan) for _ in range(4))
+    for mi, method in enumerate(methods):
+        family, name = method.split(".")
+        values = {"tennis_stroke": compiled_tols, "scipy": scipy_tols, "fixed": rk4_steps}[family]
+        for value in values:
+            si = settings_axis.index(value)
+            if family == "tennis_stroke":
+                st = SolverSettings(method=name, rtol=value, atol=value)
+                res = strike_batch(th, de, params, st, threads=1)
+                v, nfev, ok = res["v_out_kmh"], res["rhs_evals"], res["status"] == 0
+                # timed on the strokes repeated to TIMING_STROKES, so that the batch's
+                # fixed cost (thread start, ~1 ms) does not count per stroke
+                reps = max(1, TIMING_STROKES // n)
+                big = {k: np.tile(val, reps) for k, val in params.items()}
+                th_big, de_big = np.tile(th, reps), np.tile(de, reps)
+                wall, _ = _time(
+                    lambda st=st, a=th_big, b=de_big, p=big: strike_batch(a, b, p, st, threads=1),
+                    repeats,
+                )
+                cost[mi, si] = wall / th_big.size * 1e6
+            else:
+                per, v, nfev, ok = [], np.full(n, np.nan), np.zeros(n), np.zeros(n, bool)
+                for i in range(n):
+                    p = {k: float(params[k][i]) for k in params}
+                    start = time.perf_counter()
+                    if family == "scipy":
+                        r = solve_stroke(
+                            th[i], de[i], p, method=name, rtol=value, atol=value
+                        ).result
+                        ok[i] = r["status"] == 0
+                    else:
+                        r = fixed_step_stroke(th[i], de[i], p, value)
+                        ok[i] = r["status"] == "ok"
+                    per.append(time.perf_counter() - start)
+                    v[i], nfev[i] = r["v_out_kmh"], r["rhs_evals"]
+                cost[mi, si] = float(np.median(per)) * 1e6
+            failed[mi, si] = float(np.sum(~ok))
+            err[mi, si] = float(np.nanmax(np.abs(v - ref))) if ok.any() else np.nan
+            evals[mi, si] = float(np.mean(nfev))
+    coords = {
+        "method": ("method", methods, {"units": "1", "long_name": "integrator"}),
+        "setting": (
+            "setting",
+            np.array(settings_axis),
+            {"units": "1", "long_name": "tolerance rtol = atol, or RK4 step (s)"},
+        ),
+    }
+    dims = ("method", "setting")
+    return xr.Dataset(
+        {
+            "error_kmh": (dims, err, {"units": "km/h", "long_name": "largest |v_out error|"}),
+            "us_per_stroke": (
+                dims,
+                cost,
+                {"units": "us", "long_name": "cost per stroke, one thread"},
+            ),
+            "rhs_evals": (dims, evals, {"units": "1", "long_name": "evaluations per stroke"}),
+            "failed": (dims, failed, {"units": "1", "long_name": "strokes without status ok"}),
+        },
+        coords=coords,
+        attrs={"strokes": n, "reference": "compiled DOP853, rtol = atol = 1e-13"},
+    )
