@@ -181,14 +181,10 @@ def work_precision(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     floor = 1e-12  # errors below the reference's own accuracy are drawn at this floor
     for method in d["method"].values:
         row = d.sel(method=method)
-        keep = np.isfinite(row["error_kmh"]) & np.isfinite(row["us_per_stroke"])
+        err, cost = row["error_kmh"].values, row["us_per_stroke"].values
+        keep = np.isfinite(err) & np.isfinite(cost)
         if keep.any():
-            ax.loglog(
-                row["us_per_stroke"][keep],
-                np.maximum(row["error_kmh"][keep], floor),
-                "o-",
-                label=str(method),
-            )
+            ax.loglog(cost[keep], np.maximum(err[keep], floor), "o-", label=str(method))
     ax.axhline(1e-4, color="grey", ls="--", lw=1, label="1e-4 km/h")
     ax.set_xlabel(_label(d["us_per_stroke"]))
     ax.set_ylabel(_label(d["error_kmh"]))
