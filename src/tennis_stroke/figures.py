@@ -179,8 +179,8 @@ def work_precision(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     d = ds[0]
     fig, ax = plt.subplots(figsize=(6.8, 4.8))
     floor = 1e-12  # errors below the reference's own accuracy are drawn at this floor
-    for method in d["method"].values:
-        row = d.sel(method=method)
+    for i, method in enumerate(d["method"].values):
+        row = d.isel(method=i)
         err, cost = row["error_kmh"].values, row["us_per_stroke"].values
         keep = np.isfinite(err) & np.isfinite(cost)
         if keep.any():
