@@ -43,8 +43,18 @@ TINY = {
         "fig9": {"C2": 5.0, "delta0": 52.5, "tau": {"start": 0.0, "stop": 0.2, "step": 0.05}},
         "strokes": {"tau_L": 0.0, "tau_H": 0.185, "t_end": 0.32, "samples": 33},
     },
-    "solver_study": {"strokes": 2, "seed": 1, "compiled_tolerances": [1e-6, 1e-8],
-                     "scipy_tolerances": [1e-6], "rk4_steps": [1e-3], "repeats": 1},
+    "solver_study": {
+        "strokes": 2,
+        "seed": 1,
+        "compiled_tolerances": [1e-6, 1e-8],
+        "scipy_tolerances": [1e-6],
+        "rk4_steps": [1e-3],
+        "repeats": 1,
+        "stability": {
+            "k_contact": {"start": 2.0, "stop": 7.0, "num": 2},
+            "cases": [["tennis_stroke.DOP853", 5e-8], ["fixed.RK4", 1e-3]],
+        },
+    },
     "elbow_force": {
         "F0": 20.0,
         "t_d": 0.05,
@@ -102,7 +112,7 @@ def test_report_and_claims_are_built(tiny_run):
 
 def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
     files = sorted((tiny_run / "results").rglob("*.nc"))
-    assert len(files) == 11
+    assert len(files) == 12
     for path in files:
         with xr.open_dataset(path) as ds:
             for name in [*ds.data_vars, *ds.coords]:
@@ -119,7 +129,7 @@ def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
 
 def test_every_figure_is_drawn(tiny_run):
     figures = sorted(p.name for p in (tiny_run / "results" / "figures").glob("*.png"))
-    assert len(figures) == 14 and figures[0].startswith("fig02")
+    assert len(figures) == 15 and figures[0].startswith("fig02")
 
 
 def test_changing_one_parameter_reruns_only_its_jobs(tiny_run):

@@ -193,6 +193,32 @@ def work_precision(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     return fig
 
 
+def stability(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Study 2: outcome of the isolated contact per method/setting and spring constant."""
+    from matplotlib.colors import ListedColormap
+
+    d = ds[0]
+    names = d["outcome"].attrs["flag_meanings"].split()
+    colours = ["#2ca02c", "#bcbd22", "#1f77b4", "#ff7f0e", "#d62728", "#7f7f7f"]
+    fig, ax = plt.subplots(figsize=(7.5, 0.35 * d.sizes["case"] + 1.8))
+    mesh = ax.pcolormesh(
+        np.log10(d["k_contact"].values),
+        np.arange(d.sizes["case"]),
+        d["outcome"].values,
+        cmap=ListedColormap(colours[: len(names)]),
+        vmin=-0.5,
+        vmax=len(names) - 0.5,
+        shading="nearest",
+    )
+    ax.set_yticks(np.arange(d.sizes["case"]), [str(c) for c in d["case"].values], fontsize=7)
+    ax.set_xlabel("log10 k_contact (N/m)")
+    ax.axvspan(np.log10(188), np.log10(19000), color="k", alpha=0.08, label="paper's k range")
+    bar = plt.colorbar(mesh, ax=ax, ticks=np.arange(len(names)))
+    bar.ax.set_yticklabels(names, fontsize=8)
+    ax.set_title(title)
+    return fig
+
+
 #: Figure name -> (drawing function, title, extra arguments).
 FIGURES: dict[str, tuple[Callable, str, tuple]] = {
     "fig02_angle_map_L1_0.3": (angle_map, "Fig. 2: v_out over the initial angles", ()),
@@ -220,6 +246,7 @@ FIGURES: dict[str, tuple[Callable, str, tuple]] = {
         (),
     ),
     "fig14_elbow_paths": (elbow_paths, "Fig. 14: elbow paths until the contact", ()),
+    "study02_stability": (stability, "Stability: isolated contact against stiffness", ()),
     "study01_work_precision": (work_precision, "Work-precision: error against cost per stroke", ()),
 }
 

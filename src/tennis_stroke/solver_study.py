@@ -296,3 +296,183 @@ def work_precision(
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
     ds.attrs["solver_settings_of"] = "the reference; each method's settings are the setting axis"
     return ds
+
+
+# --- Stability where methods fail -------------------------------------------------------
+
+#: Outcomes of the isolated-contact test, as stored (``flag_values``/``flag_meanings``).
+OUTCOMES = ("ok", "inaccurate", "missed_contact", "energy_created", "blow_up", "event_error")
+#: Relative energy change above which a run "created energy".
+ENERGY_TOLERANCE = 1e-3
+#: Exit-speed error (m/s) above which a run is "inaccurate".
+SPEED_TOLERANCE = 1e-3
+_STILL = {"C1": 0.0, "C2": 0.0, "vx_t1": 0.0, "vx_t2": 0.0, "vy_t1": 0.0, "vy_t2": 0.0}
+_THETA, _PHI, _BALL_SPEED = -0.15, 0.05, 5.0
+
+
+def _isolated_start(k: float):
+    """Coefficients and the angle-layout state of the isolated contact at stiffness ``k``.
+
+    The pendulum is at rest (no torques, elbow still) with the ball arriving at 5 m/s: its
+    energy is conserved exactly, whatever ``k``, so energy changes are numerical.
+    """
+    cf = coefficients(resolve_params({**_STILL, "k_contact": k}), 0.0, 0.0)[0]
+    y = np.array(
+        [_THETA, _PHI, 0.0, 0.0, hit_offset(math.sin(_THETA), math.sin(_PHI), cf), _BALL_SPEED]
+    )
+    return cf, y
+
+
+def isolated_contact(method: str, setting: float, k: float, t_end: float = 0.5) -> dict[str, float]:
+    """Run the isolated contact with ``method`` (``tennis_stroke.X``, ``tennis_stroke.X
+    (no step limit)``, ``scipy.X`` or ``fixed.RK4``) at tolerance or step ``setting``.
+
+    Returns ``outcome`` (index into :data:`OUTCOMES`), ``v_exit`` (m/s), ``duration``
+    (s), ``energy_change`` (relative), ``expected_duration`` (s, two-body closed form).
+    """
+    from .dynamics import mechanical_energy
+    from .integrate import HISTORY_COLS, METHOD_IDS, N_STATS
+    from .stroke import S_CONTACT_STEPS, run_phases
+
+    cf, y0 = _isolated_start(k)
+    m = effective_mass(math.sin(_THETA), math.cos(_THETA), math.sin(_PHI), math.cos(_PHI), cf)
+    mu = cf[CF_MB] * m / (cf[CF_MB] + m)
+    expected = math.pi * math.sqrt(mu / k)
+    e0 = mechanical_energy(0.0, y0, cf, True)
+    family, name = method.split(".", 1)
+    duration, y, failed, missed = math.nan, None, False, False
+    if family == "tennis_stroke":
+        base = name.split(" ")[0]
+        limit = "no step limit" not in name
+        st = SolverSettings(method=base, rtol=setting, atol=setting).as_array()
+        if not limit:
+            st[S_CONTACT_STEPS] = 1e-9
+        h_max = expected / st[S_CONTACT_STEPS]
+        yt = (
+            math.sin(_THETA),
+            math.cos(_THETA),
+            math.sin(_PHI),
+            math.cos(_PHI),
+            0.0,
+            0.0,
+            _THETA,
+            _PHI,
+            y0[4],
+            y0[5],
+        )
+        from ._kernels import coefficient_tuple
+
+        status, t, yt, _ = run_phases(
+            METHOD_IDS[base],
+            True,
+            0.0,
+            yt,
+            t_end,
+            min(0.01, h_max),
+            h_max,
+            coefficient_tuple(cf),
+            True,
+            st,
+            np.zeros(N_STATS),
+            np.zeros((1, HISTORY_COLS)),
+        )
+        failed = status != 1
+        duration = t
+        y = np.array([yt[6], yt[7], yt[4], yt[5], yt[8], yt[9]])
+    elif family == "scipy":
+
+        def sep(t, yy):
+            return yy[A_BALL_S] - hit_offset(math.sin(yy[A_THETA]), math.sin(yy[A_PHI]), cf)
+
+        sep.terminal, sep.direction = True, -1
+
+        def fun(t, yy):
+            d = np.empty_like(yy)
+            rhs_angles(t, yy, cf, 0.0, True, d)
+            return d
+
+        from scipy.integrate import solve_ivp
+
+        sol = solve_ivp(fun, (0.0, t_end), y0, method=name, rtol=setting, atol=setting, events=sep)
+        failed = sol.status != 1
+        if not failed:
+            duration, y = float(sol.t_events[0][0]), sol.y_events[0][0]
+        elif sol.status == 0:
+            duration, y = float(sol.t[-1]), sol.y[:, -1]
+    else:
+
+        def compression(yy):
+            return yy[A_BALL_S] - hit_offset(math.sin(yy[A_THETA]), math.sin(yy[A_PHI]), cf)
+
+        first = _rk4(lambda t, yy: _angles_rhs(cf, t, yy), 0.0, y0, setting)
+        if np.all(np.isfinite(first)) and compression(first) <= 0.0:
+            duration, y, missed = setting, first, True  # one step jumped over the contact
+        else:
+            duration, y, hit, _ = _fixed_phase(cf, 0.0, y0, t_end, setting, True, compression)
+            failed = not hit
+    out = {
+        "expected_duration": expected,
+        "duration": duration,
+        "v_exit": math.nan,
+        "energy_change": math.nan,
+    }
+    v_ref = (cf[CF_MB] - m) / (cf[CF_MB] + m) * _BALL_SPEED
+    if y is not None and np.all(np.isfinite(y)):
+        out["v_exit"] = float(y[A_BALL_W])
+        out["energy_change"] = float(mechanical_energy(duration, y, cf, True) / e0 - 1.0)
+    if y is None or not np.all(np.isfinite(y)) or abs(out["energy_change"]) > 10.0:
+        outcome = "blow_up" if y is not None else "event_error"
+    elif missed or (np.isfinite(duration) and duration < 0.1 * expected):
+        outcome = "missed_contact"
+    elif failed:
+        outcome = "event_error"
+    elif out["energy_change"] > ENERGY_TOLERANCE:
+        outcome = "energy_created"
+    elif abs(out["v_exit"] - v_ref) > SPEED_TOLERANCE + 0.05 * abs(v_ref) * math.sqrt(
+        expected / 0.005
+    ):
+        outcome = "inaccurate"
+    else:
+        outcome = "ok"
+    out["outcome"] = OUTCOMES.index(outcome)
+    return out
+
+
+def stability_map(cases: Sequence[tuple[str, float]], k_values: np.ndarray) -> xr.Dataset:
+    """Outcome of the isolated contact for each (method, setting) case and stiffness ``k``."""
+    labels = [f"{m} @ {v:g}" for m, v in cases]
+    shape = (len(cases), len(k_values))
+    fields = {
+        key: np.full(shape, np.nan)
+        for key in ("outcome", "v_exit", "duration", "energy_change", "expected_duration")
+    }
+    for i, (method, setting) in enumerate(cases):
+        for j, k in enumerate(k_values):
+            for key, value in isolated_contact(method, setting, float(k)).items():
+                fields[key][i, j] = value
+    meta = {
+        "outcome": ("1", "outcome code (see flag_meanings)"),
+        "v_exit": ("m/s", "ball velocity after separation (lab frame, along x)"),
+        "duration": ("s", "contact duration"),
+        "energy_change": ("1", "relative change of the mechanical energy"),
+        "expected_duration": ("s", "two-body contact duration pi sqrt(mu/k)"),
+    }
+    dims = ("case", "k_contact")
+    ds = xr.Dataset(
+        {
+            key: (dims, fields[key], {"units": meta[key][0], "long_name": meta[key][1]})
+            for key in fields
+        },
+        coords={
+            "case": ("case", labels, {"units": "1", "long_name": "method @ setting"}),
+            "k_contact": (
+                "k_contact",
+                np.asarray(k_values, dtype=float),
+                {"units": "N/m", "long_name": "spring constant"},
+            ),
+        },
+    )
+    ds["outcome"].attrs["flag_values"] = np.arange(len(OUTCOMES))
+    ds["outcome"].attrs["flag_meanings"] = " ".join(OUTCOMES)
+    ds.attrs.update(provenance(resolve_params(), REFERENCE))
+    return ds

@@ -69,6 +69,7 @@ FIGURES = {
     "fig13_elbow_force": ["results/elbow_force/map.nc"],
     "fig14_elbow_paths": ["results/strokes/elbow_force.nc"],
     "study01_work_precision": ["results/solver_study/work_precision.nc"],
+    "study02_stability": ["results/solver_study/stability.nc"],
 }
 
 

@@ -172,3 +172,20 @@ rule work_precision:
         study=config["solver_study"],
     script:
         "../scripts/work_precision.py"
+
+
+rule stability:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        "results/solver_study/stability.nc",
+    log:
+        "logs/stability.log",
+    benchmark:
+        "benchmarks/workflow/stability.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        stability=config["solver_study"]["stability"],
+    script:
+        "../scripts/stability.py"

@@ -1,0 +1,72 @@
+"""Speed against accuracy: failure modes of the stability study, the fixed-step path,
+the impact model and the work-precision table."""
+
+import numpy as np
+import pytest
+
+from tennis_stroke.solver_study import (
+    OUTCOMES,
+    fixed_step_stroke,
+    impact_model,
+    isolated_contact,
+    sample_strokes,
+    work_precision,
+)
+from tennis_stroke.stroke import strike
+
+
+def _outcome(method, setting, k):
+    return OUTCOMES[isolated_contact(method, setting, k)["outcome"]]
+
+
+@pytest.mark.parametrize("k", [188.0, 19000.0, 1e7])
+def test_default_never_fails(k):
+    assert _outcome("tennis_stroke.DOP853", 5e-8, k) == "ok"
+
+
+@pytest.mark.parametrize(
+    "method, setting, k, outcome",
+    [
+        ("fixed.RK4", 1e-3, 3.2e5, "missed_contact"),  # one step is longer than the contact
+        ("fixed.RK4", 1e-3, 1e7, "blow_up"),  # past the explicit stability limit
+        ("scipy.RK45", 1e-3, 1e4, "energy_created"),  # a loose tolerance creates energy
+        ("fixed.RK4", 1e-4, 1e7, "inaccurate"),
+    ],
+)
+def test_failure_modes(method, setting, k, outcome):
+    assert _outcome(method, setting, k) == outcome
+
+
+def test_isolated_contact_matches_closed_form_duration():
+    r = isolated_contact("tennis_stroke.DOP853", 1e-10, 1e6)
+    assert r["duration"] == pytest.approx(r["expected_duration"], rel=0.02)
+    assert abs(r["energy_change"]) < 1e-8
+
+
+def test_fixed_step_rk4_converges_to_the_compiled_stroke():
+    ref = strike(120.0, 81.5)["v_out_kmh"]
+    errors = [
+        abs(fixed_step_stroke(120.0, 81.5, {}, h)["v_out_kmh"] - ref) for h in (4e-4, 2e-4, 1e-4)
+    ]
+    assert errors[0] > errors[1] > errors[2]
+    assert fixed_step_stroke(120.0, 81.5, {}, 1e-2)["status"] == "missed_contact"
+
+
+def test_impact_model_is_close_to_but_not_the_spring_contact():
+    s = sample_strokes(6, seed=5)
+    params = {k: s[k] for k in ("L1", "M2", "C2", "tau")}
+    from tennis_stroke.solver_study import REFERENCE
+    from tennis_stroke.stroke import strike_batch
+
+    full = strike_batch(s["theta0"], s["delta0"], params, REFERENCE)["v_out_kmh"]
+    err = np.abs(impact_model(s["theta0"], s["delta0"], params) - full)
+    assert 0.05 < err.max() < 5.0
+
+
+def test_work_precision_table_shape_and_order():
+    s = sample_strokes(2, seed=2)
+    ds = work_precision(s, [1e-4, 1e-8], [1e-6], [1e-3], scipy_methods=("DOP853",), repeats=1)
+    assert ds["error_kmh"].dims == ("method", "setting")
+    compiled = ds["error_kmh"].isel(method=1)
+    assert float(compiled.sel(setting=1e-8)) < float(compiled.sel(setting=1e-4))
+    assert float(ds["failed"].sum()) == 0
