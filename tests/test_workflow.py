@@ -112,7 +112,7 @@ def test_report_and_claims_are_built(tiny_run):
 
 def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
     files = sorted((tiny_run / "results").rglob("*.nc"))
-    assert len(files) == 12
+    assert len(files) == 14
     for path in files:
         with xr.open_dataset(path) as ds:
             for name in [*ds.data_vars, *ds.coords]:

@@ -476,3 +476,86 @@ def stability_map(cases: Sequence[tuple[str, float]], k_values: np.ndarray) -> x
     ds["outcome"].attrs["flag_meanings"] = " ".join(OUTCOMES)
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
     return ds
+
+
+def ladder(strokes: Mapping[str, np.ndarray], repeats: int = 3) -> xr.Dataset:
+    """Model ladder: v_out of the spring contact (the paper) and of the instantaneous
+    impact at ``phi = 0`` on the same strokes, with their costs (µs per stroke)."""
+    params = {k: strokes[k] for k in ("L1", "M2", "C2", "tau")}
+    th, de = strokes["theta0"], strokes["delta0"]
+    reps = max(1, TIMING_STROKES // th.size)
+    big = {k: np.tile(v, reps) for k, v in params.items()}
+    tb, db = np.tile(th, reps), np.tile(de, reps)
+    t_spring, spring = _time(lambda: strike_batch(tb, db, big, threads=1), repeats)
+    t_impact, impact = _time(lambda: impact_model(th, de, params), 1)
+    ds = xr.Dataset(
+        {
+            "v_out_spring": (
+                "stroke",
+                spring["v_out_kmh"][: th.size],
+                {"units": "km/h", "long_name": "v_out, spring contact (paper)"},
+            ),
+            "v_out_impact": (
+                "stroke",
+                impact,
+                {"units": "km/h", "long_name": "v_out, instantaneous impact at phi=0"},
+            ),
+        },
+        coords={"stroke": ("stroke", np.arange(th.size), {"units": "1", "long_name": "stroke"})},
+        attrs={
+            "us_per_stroke_spring": t_spring / tb.size * 1e6,
+            "us_per_stroke_impact_python": t_impact / th.size * 1e6,
+            "max_error_impact_kmh": float(
+                np.nanmax(np.abs(impact - spring["v_out_kmh"][: th.size]))
+            ),
+        },
+    )
+    ds.attrs.update(provenance(resolve_params(), REFERENCE))
+    return ds
+
+
+def optimum_cost(
+    m2: Sequence[float],
+    l1: Sequence[float],
+    steps: Sequence[tuple[float, float]],
+    reference_step: float = 0.05,
+    theta0_range=(60.0, 120.0),
+    delta0_range=(0.0, 100.0),
+) -> xr.Dataset:
+    """Accuracy of the nested optimum of Figs. 5-6 against its cost.
+
+    For each ``(coarse, fine)`` step pair the optimum at every ``(M2, L1)`` point is found
+    as in :func:`tennis_stroke.experiments.mass_length_map`; the reference is the same
+    search with a ``reference_step`` fine grid around a 1-degree coarse one.  Errors are the
+    largest over the points.
+    """
+    from .experiments import mass_length_map
+
+    settings = SolverSettings()
+    m2, l1 = np.asarray(m2, float), np.asarray(l1, float)
+    ref = mass_length_map(m2, l1, 1.0, reference_step, theta0_range, delta0_range, {}, settings)
+    rows = {k: [] for k in ("v_err", "theta0_err", "delta0_err", "seconds")}
+    for coarse, fine in steps:
+        start = time.perf_counter()
+        ds = mass_length_map(m2, l1, coarse, fine, theta0_range, delta0_range, {}, settings)
+        rows["seconds"].append(time.perf_counter() - start)
+        rows["v_err"].append(float(np.nanmax(np.abs(ds["v_out_best"] - ref["v_out_best"]))))
+        rows["theta0_err"].append(float(np.nanmax(np.abs(ds["theta0_best"] - ref["theta0_best"]))))
+        rows["delta0_err"].append(float(np.nanmax(np.abs(ds["delta0_best"] - ref["delta0_best"]))))
+    labels = [f"coarse {c:g} deg, fine {f:g} deg" for c, f in steps]
+    meta = {
+        "v_err": ("km/h", "largest error of the best v_out"),
+        "theta0_err": ("degree", "largest error of the best theta0"),
+        "delta0_err": ("degree", "largest error of the best delta0"),
+        "seconds": ("s", "wall time of the search over all points (all threads)"),
+    }
+    ds = xr.Dataset(
+        {
+            k: ("search", np.array(v), {"units": meta[k][0], "long_name": meta[k][1]})
+            for k, v in rows.items()
+        },
+        coords={"search": ("search", labels, {"units": "1", "long_name": "steps"})},
+        attrs={"points": m2.size * l1.size, "reference_fine_step_deg": reference_step},
+    )
+    ds.attrs.update(provenance(resolve_params(), REFERENCE))
+    return ds

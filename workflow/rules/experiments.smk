@@ -189,3 +189,23 @@ rule stability:
         stability=config["solver_study"]["stability"],
     script:
         "../scripts/stability.py"
+
+
+rule model_ladder:
+    input:
+        PACKAGE_SOURCES,
+    output:
+        ladder="results/solver_study/ladder.nc",
+        optimum="results/solver_study/optimum_cost.nc",
+    log:
+        "logs/model_ladder.log",
+    benchmark:
+        "benchmarks/workflow/model_ladder.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        strokes=config["solver_study"]["strokes"],
+        seed=config["solver_study"]["seed"],
+        optimum=config["solver_study"]["optimum"],
+    script:
+        "../scripts/model_ladder.py"

@@ -37,6 +37,10 @@ rule report:
         results=list(CLAIM_FILES.values()),
         code=str(PACKAGE_DIR / "report.py"),
         assumptions=str(Path(workflow.basedir) / "docs" / "assumptions.md"),
+        studies=[
+            "results/solver_study/ladder.nc",
+            "results/solver_study/optimum_cost.nc",
+        ],
     output:
         "report/index.html",
     log:

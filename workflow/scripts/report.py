@@ -13,4 +13,5 @@ with logged(snakemake.log[0]):
         benchmarks_dir=snakemake.params.benchmarks,
         output=snakemake.output[0],
         assumptions_md=snakemake.input.assumptions,
+        studies=list(snakemake.input.studies),
     )

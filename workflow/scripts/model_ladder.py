@@ -1,0 +1,12 @@
+"""Model ladder (spring contact vs instantaneous impact) and the optimum-search cost."""
+
+from tennis_stroke.pipeline import Timer, logged, save
+from tennis_stroke.solver_study import ladder, optimum_cost, sample_strokes
+
+p = snakemake.params
+with logged(snakemake.log[0]):
+    clock = Timer()
+    save(ladder(sample_strokes(p.strokes, p.seed)), snakemake.output.ladder, p, clock())
+    o = p.optimum
+    ds = optimum_cost(o["M2"], o["L1"], [tuple(s) for s in o["steps"]], o["reference_step"])
+    save(ds, snakemake.output.optimum, p, clock())
