@@ -54,6 +54,7 @@ TINY = {
             "k_contact": {"start": 2.0, "stop": 7.0, "num": 2},
             "cases": [["tennis_stroke.DOP853", 5e-8], ["fixed.RK4", 1e-3]],
         },
+        "optimum": {"M2": [0.3], "L1": [0.4], "steps": [[20.0, 5.0]], "reference_step": 2.0},
     },
     "elbow_force": {
         "F0": 20.0,
