@@ -130,7 +130,7 @@ def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
 
 def test_every_figure_is_drawn(tiny_run):
     figures = sorted(p.name for p in (tiny_run / "results" / "figures").glob("*.png"))
-    assert len(figures) == 15 and figures[0].startswith("fig02")
+    assert len(figures) == 16 and figures[0].startswith("fig02")
 
 
 def test_changing_one_parameter_reruns_only_its_jobs(tiny_run):

@@ -219,6 +219,21 @@ def stability(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     return fig
 
 
+def ladder(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Study 3: the instantaneous-impact model against the spring contact, stroke by stroke."""
+    d = ds[0]
+    fig, ax = plt.subplots(figsize=(6.4, 4.4))
+    diff = d["v_out_impact"] - d["v_out_spring"]
+    ax.plot(d["v_out_spring"], diff, "o")
+    ax.axhspan(-1.0, 1.0, color="g", alpha=0.1, label="1 km/h tolerance of the speed claims")
+    ax.axhline(0.0, color="k", lw=0.8)
+    ax.set_xlabel(_label(d["v_out_spring"]))
+    ax.set_ylabel("impact model - spring contact (km/h)")
+    ax.legend()
+    ax.set_title(title)
+    return fig
+
+
 #: Figure name -> (drawing function, title, extra arguments).
 FIGURES: dict[str, tuple[Callable, str, tuple]] = {
     "fig02_angle_map_L1_0.3": (angle_map, "Fig. 2: v_out over the initial angles", ()),
@@ -247,6 +262,7 @@ FIGURES: dict[str, tuple[Callable, str, tuple]] = {
     ),
     "fig14_elbow_paths": (elbow_paths, "Fig. 14: elbow paths until the contact", ()),
     "study02_stability": (stability, "Stability: isolated contact against stiffness", ()),
+    "study03_ladder": (ladder, "Model ladder: instantaneous impact vs spring contact", ()),
     "study01_work_precision": (work_precision, "Work-precision: error against cost per stroke", ()),
 }
 

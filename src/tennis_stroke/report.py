@@ -200,6 +200,21 @@ def build_report(
         with xr.open_dataset(path) as ds:
             if "max_error_impact_kmh" in ds.attrs:
                 ladder_error = f"{float(ds.attrs['max_error_impact_kmh']):.2f}"
+            elif "outcome" in ds:
+                names = ds["outcome"].attrs["flag_meanings"].split()
+                counts = pd.DataFrame(
+                    [
+                        [int((row == i).sum()) for i in range(len(names))]
+                        for row in ds["outcome"].values
+                    ],
+                    index=[str(c) for c in ds["case"].values],
+                    columns=names,
+                )
+                study_tables.append(
+                    "<h3>Stability: outcomes over k = "
+                    f"{float(ds.k_contact.min()):g} ... "
+                    f"{float(ds.k_contact.max()):g} N/m</h3>" + counts.to_html()
+                )
             else:
                 study_tables.append(ds.to_dataframe().round(4).to_html())
     cols = [*CANDIDATES, "passed", "score"]

@@ -70,6 +70,7 @@ FIGURES = {
     "fig14_elbow_paths": ["results/strokes/elbow_force.nc"],
     "study01_work_precision": ["results/solver_study/work_precision.nc"],
     "study02_stability": ["results/solver_study/stability.nc"],
+    "study03_ladder": ["results/solver_study/ladder.nc"],
 }
 
 

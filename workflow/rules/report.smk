@@ -40,6 +40,7 @@ rule report:
         studies=[
             "results/solver_study/ladder.nc",
             "results/solver_study/optimum_cost.nc",
+            "results/solver_study/stability.nc",
         ],
     output:
         "report/index.html",
