@@ -43,7 +43,7 @@ from numba import njit
 
 # Trig layout (compiled path).
 SIN_TH, COS_TH, SIN_PH, COS_PH, OMEGA1, OMEGA2, THETA, PHI, BALL_S, BALL_W = range(10)
-N_SWING, N_CONTACT = 8, 10
+N_CONTACT = 10  # components in contact; the swing integrates the first 8
 # Angle layout (reference path); OMEGA1/OMEGA2 are not shared with the trig layout.
 A_THETA, A_PHI, A_OMEGA1, A_OMEGA2, A_BALL_S, A_BALL_W = range(6)
 
