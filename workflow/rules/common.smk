@@ -1,21 +1,25 @@
 # Config validation and helpers shared by all rules.
 from pathlib import Path
 
-from snakemake.exceptions import WorkflowError
+import sys
+
 from snakemake.utils import validate
 
-from tennis_stroke.params import ParameterError, resolve_params
+from tennis_stroke.config_check import config_errors
 
+# One line naming the key and the rule it breaks, before any job starts (no traceback).
+_errors = config_errors(
+    config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
+)
+if _errors:
+    sys.stderr.write(f"tennis-stroke config error: {_errors[0]}\n")
+    sys.exit(1)
 validate(config, "../schemas/config.schema.yaml", set_default=True)
-try:  # the package knows the name, unit and bounds of every model parameter
-    resolve_params(config.get("model", {}))
-except ParameterError as exc:
-    raise WorkflowError(f"config key 'model': {exc}") from None
 
 #: The package's sources that simulations run: they rerun when the solver changes (not
 #: when only the claims, figures, report or CLI code changes).
 PACKAGE_DIR = Path(workflow.basedir) / "src" / "tennis_stroke"
-NOT_SIMULATION = {"claims.py", "figures.py", "report.py", "cli.py"}
+NOT_SIMULATION = {"claims.py", "figures.py", "report.py", "cli.py", "config_check.py"}
 PACKAGE_SOURCES = sorted(
     str(p) for p in PACKAGE_DIR.glob("*.py") if p.name not in NOT_SIMULATION
 )

@@ -1,0 +1,105 @@
+"""Bad workflow configs: each stops before any job, with one line naming key and rule."""
+
+import copy
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+
+from tennis_stroke.config_check import config_errors
+
+ROOT = Path(__file__).resolve().parents[1]
+SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+def _set(config, path, value):
+    node = config
+    for key in path[:-1]:
+        node = node[key]
+    if value is _DELETE:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+
+
+_DELETE = object()
+
+BAD = [  # (path, value, fragment of the message)
+    (("threads",), "two", "'threads': 'two' is not of type 'integer'"),
+    (("threads",), 0, "'threads': 0 is less than the minimum"),
+    (("solver", "rtol"), 0.0, "'solver.rtol': 0.0 is less than or equal to the minimum"),
+    (("solver", "rtol"), -1e-6, "'solver.rtol'"),
+    (("solver", "method"), "RK4", "'solver.method': 'RK4' is not one of"),
+    (("solver", "atol"), float("nan"), "'solver.atol': nan is not a finite number"),
+    (("model",), {"M2": -0.3}, "'M2' must be > 0 kg"),
+    (("model",), {"L1": 0.0}, "'L1' must be > 0 m"),
+    (("model",), {"bogus": 1.0}, "unknown parameter 'bogus'"),
+    (("model",), {"k_contact": float("nan")}, "'model.k_contact': nan is not a finite"),
+    (("model",), {"inertia": "hollow"}, "reading 'inertia' must be one of"),
+    (("angle_maps", "theta0", "stop"), 10.0, "'angle_maps.theta0': stop 10.0 is below start"),
+    (("angle_maps", "delta0", "step"), 0.0, "'angle_maps.delta0.step': 0.0 is less than or"),
+    (("angle_maps", "L1"), [], "'angle_maps.L1': [] should be non-empty"),
+    (("angle_maps", "L1"), [-0.3], "'angle_maps.L1.0': -0.3 is less than or equal"),
+    (
+        ("mass_length", "theta0_range"),
+        [120.0, 60.0],
+        "'mass_length.theta0_range': [120.0, 60.0] is empty",
+    ),
+    (("mass_length", "coarse_step"), -2.0, "'mass_length.coarse_step'"),
+    (("torque_delay", "fig7", "tau"), _DELETE, "'torque_delay.fig7.tau' is missing"),
+    (("elbow_force", "F0"), -20.0, "'elbow_force.F0': -20.0 is less than the minimum"),
+    (("fig4", "samples"), 1, "'fig4.samples': 1 is less than the minimum of 2"),
+    (("figure_curves",), "sketch", "'figure_curves': 'sketch' is not one of"),
+    (("unknown_section",), 1, "(unknown key)"),
+    (("solver_study", "stability", "cases"), [], "'solver_study.stability.cases': []"),
+]
+
+
+def test_the_shipped_config_is_good():
+    assert config_errors(GOOD, SCHEMA) == []
+
+
+@pytest.mark.parametrize(
+    "path, value, fragment", BAD, ids=[".".join(map(str, b[0])) + f"={b[1]!r}"[:20] for b in BAD]
+)
+def test_bad_config_gives_one_line_naming_the_key(path, value, fragment):
+    config = copy.deepcopy(GOOD)
+    _set(config, path, value)
+    errors = config_errors(config, SCHEMA)
+    assert errors, "not detected"
+    assert "\n" not in errors[0]
+    assert fragment in errors[0], errors[0]
+
+
+def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
+    config = copy.deepcopy(GOOD)
+    config["solver"]["rtol"] = -1.0
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(config))
+    snakemake = Path(sys.executable).with_name("snakemake")
+    done = subprocess.run(
+        [
+            str(snakemake),
+            "report",
+            "-s",
+            str(ROOT / "Snakefile"),
+            "--directory",
+            str(ROOT),
+            "-n",
+            "--configfile",
+            str(path),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert done.returncode != 0
+    lines = [line for line in done.stderr.splitlines() if "config error" in line]
+    assert lines == [
+        "tennis-stroke config error: config key 'solver.rtol': -1.0 is less "
+        "than or equal to the minimum of 0 (rule: exclusiveMinimum)"
+    ]
+    assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
