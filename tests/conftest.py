@@ -1,5 +1,9 @@
 """Shared fixtures: the paper's default parameters and handy coefficient rows."""
 
+import subprocess
+import sys
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -27,3 +31,22 @@ def coefficient_row(theta0=90.0, delta0=30.0, **overrides):
 def coefficient_tup(theta0=90.0, delta0=30.0, **overrides):
     """The same as a tuple, as the compiled kernels take it."""
     return coefficient_tuple(coefficient_row(theta0, delta0, **overrides))
+
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def run_snakemake(target, workdir, *options, timeout=300):
+    """Run this project's Snakefile on ``target`` in ``workdir`` (target first: options
+    that take several values would swallow it); returns the completed process."""
+    snakemake = Path(sys.executable).with_name("snakemake")
+    command = [
+        str(snakemake),
+        target,
+        "-s",
+        str(ROOT / "Snakefile"),
+        "--directory",
+        str(workdir),
+        *options,
+    ]
+    return subprocess.run(command, capture_output=True, text=True, timeout=timeout)

@@ -1,16 +1,13 @@
 """Bad workflow configs: each stops before any job, with one line naming key and rule."""
 
 import copy
-import subprocess
-import sys
-from pathlib import Path
 
 import pytest
 import yaml
+from conftest import ROOT, run_snakemake
 
 from tennis_stroke.config_check import config_errors
 
-ROOT = Path(__file__).resolve().parents[1]
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
 
@@ -79,23 +76,7 @@ def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
     config["solver"]["rtol"] = -1.0
     path = tmp_path / "bad.yaml"
     path.write_text(yaml.safe_dump(config))
-    snakemake = Path(sys.executable).with_name("snakemake")
-    done = subprocess.run(
-        [
-            str(snakemake),
-            "report",
-            "-s",
-            str(ROOT / "Snakefile"),
-            "--directory",
-            str(ROOT),
-            "-n",
-            "--configfile",
-            str(path),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    done = run_snakemake("report", ROOT, "-n", "--configfile", str(path))
     assert done.returncode != 0
     lines = [line for line in done.stderr.splitlines() if "config error" in line]
     assert lines == [

@@ -1,16 +1,13 @@
 """A tiny end-to-end run of the Snakemake workflow: every rule, small grids."""
 
 import shutil
-import subprocess
-import sys
-from pathlib import Path
 
 import pandas as pd
 import pytest
 import xarray as xr
 import yaml
+from conftest import ROOT, run_snakemake
 
-ROOT = Path(__file__).resolve().parents[1]
 TINY = {
     "threads": 1,
     "angle_maps": {
@@ -72,22 +69,7 @@ def tiny_run(tmp_path_factory):
     (work / "config").mkdir()
     (work / "config" / "config.yaml").write_text(yaml.safe_dump(TINY))
     shutil.copy(ROOT / "config" / "claims.yaml", work / "config" / "claims.yaml")
-    snakemake = Path(sys.executable).with_name("snakemake")
-    done = subprocess.run(
-        [
-            str(snakemake),
-            "-s",
-            str(ROOT / "Snakefile"),
-            "--directory",
-            str(work),
-            "--cores",
-            "2",
-            "report",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=1200,
-    )
+    done = run_snakemake("report", work, "--cores", "2", timeout=1200)
     assert done.returncode == 0, done.stderr[-3000:]
     return work
 
@@ -134,24 +116,7 @@ def test_every_figure_is_drawn(tiny_run):
 
 
 def test_changing_one_parameter_reruns_only_its_jobs(tiny_run):
-    snakemake = Path(sys.executable).with_name("snakemake")
-    # the target first: --config takes several values (../shared/FACTS.md)
-    done = subprocess.run(
-        [
-            str(snakemake),
-            "report",
-            "-s",
-            str(ROOT / "Snakefile"),
-            "--directory",
-            str(tiny_run),
-            "-n",
-            "--config",
-            "figure_curves=with_ball",
-        ],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
+    done = run_snakemake("report", tiny_run, "-n", "--config", "figure_curves=with_ball")
     assert done.returncode == 0, done.stderr[-2000:]
     stats = (done.stdout + done.stderr).split("Job stats:")[1].split("Reasons:")[0]
     rerun = {line.split()[0] for line in stats.splitlines()[3:] if line.strip()}
