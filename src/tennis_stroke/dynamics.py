@@ -353,6 +353,18 @@ def effective_mass(st, ct, sp, cp, cf):
 
 
 @njit(**JIT)
+def contact_duration(st, ct, sp, cp, cf):
+    """Two-body contact duration ``pi sqrt(mu/k)`` (s) at the hitting point.
+
+    ``mu`` is the reduced mass of the ball and the racket's :func:`effective_mass`; the
+    solvers cap their contact steps at a fraction of it, so no contact is stepped over.
+    """
+    m = effective_mass(st, ct, sp, cp, cf)
+    mu = cf[CF_MB] * m / (cf[CF_MB] + m)
+    return math.pi * math.sqrt(mu / cf[CF_K])
+
+
+@njit(**JIT)
 def mechanical_energy(t, y, cf, contact):
     """Kinetic energy of both rods and the ball plus the spring energy, lab frame (J).
 

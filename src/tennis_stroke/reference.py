@@ -24,15 +24,13 @@ from .dynamics import (
     A_OMEGA2,
     A_PHI,
     A_THETA,
-    CF_K,
     CF_LEAD,
-    CF_MB,
     CF_PHI0,
     CF_THETA0,
     CF_VBALL,
     approach_rate,
     coefficients,
-    effective_mass,
+    contact_duration,
     elbow_velocity,
     hit_offset,
     rhs_angles,
@@ -241,9 +239,7 @@ def solve_stroke(
     w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
     if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
         return finish(NO_APPROACH)
-    m_eff = effective_mass(st, ct, sp, cp, cf)
-    mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
-    max_step = math.pi * math.sqrt(mu / cf[CF_K]) / contact_min_steps
+    max_step = contact_duration(st, ct, sp, cp, cf) / contact_min_steps
 
     def separation(t, y):
         return y[A_BALL_S] - hit_offset(math.sin(y[A_THETA]), math.sin(y[A_PHI]), cf)

@@ -20,7 +20,9 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
+from scipy.integrate import solve_ivp
 
+from ._kernels import coefficient_tuple
 from .dynamics import (
     A_BALL_S,
     A_BALL_W,
@@ -37,15 +39,27 @@ from .dynamics import (
     CF_VBALL,
     approach_rate,
     coefficients,
+    contact_duration,
     effective_mass,
     elbow_velocity,
     hit_offset,
+    mechanical_energy,
     rhs_angles,
 )
+from .experiments import mass_length_map
+from .integrate import HISTORY_COLS, METHOD_IDS, N_STATS
 from .io import provenance
 from .params import resolve_params
 from .reference import solve_stroke
-from .stroke import MS_TO_KMH, SolverSettings, next_switch, strike_batch, wrist_torque
+from .stroke import (
+    MS_TO_KMH,
+    S_CONTACT_STEPS,
+    SolverSettings,
+    next_switch,
+    run_phases,
+    strike_batch,
+    wrist_torque,
+)
 
 #: Parameter space of the sampled strokes (uniform ranges).
 STROKE_SPACE = {
@@ -330,14 +344,10 @@ def isolated_contact(method: str, setting: float, k: float, t_end: float = 0.5) 
     Returns ``outcome`` (index into :data:`OUTCOMES`), ``v_exit`` (m/s), ``duration``
     (s), ``energy_change`` (relative), ``expected_duration`` (s, two-body closed form).
     """
-    from .dynamics import mechanical_energy
-    from .integrate import HISTORY_COLS, METHOD_IDS, N_STATS
-    from .stroke import S_CONTACT_STEPS, run_phases
-
     cf, y0 = _isolated_start(k)
-    m = effective_mass(math.sin(_THETA), math.cos(_THETA), math.sin(_PHI), math.cos(_PHI), cf)
-    mu = cf[CF_MB] * m / (cf[CF_MB] + m)
-    expected = math.pi * math.sqrt(mu / k)
+    trig = (math.sin(_THETA), math.cos(_THETA), math.sin(_PHI), math.cos(_PHI))
+    m = effective_mass(*trig, cf)
+    expected = contact_duration(*trig, cf)
     e0 = mechanical_energy(0.0, y0, cf, True)
     family, name = method.split(".", 1)
     duration, y, failed, missed = math.nan, None, False, False
@@ -360,8 +370,6 @@ def isolated_contact(method: str, setting: float, k: float, t_end: float = 0.5) 
             y0[4],
             y0[5],
         )
-        from ._kernels import coefficient_tuple
-
         status, t, yt, _ = run_phases(
             METHOD_IDS[base],
             True,
@@ -390,8 +398,6 @@ def isolated_contact(method: str, setting: float, k: float, t_end: float = 0.5) 
             d = np.empty_like(yy)
             rhs_angles(t, yy, cf, 0.0, True, d)
             return d
-
-        from scipy.integrate import solve_ivp
 
         sol = solve_ivp(fun, (0.0, t_end), y0, method=name, rtol=setting, atol=setting, events=sep)
         failed = sol.status != 1
@@ -529,8 +535,6 @@ def optimum_cost(
     search with a ``reference_step`` fine grid around a 1-degree coarse one.  Errors are the
     largest over the points.
     """
-    from .experiments import mass_length_map
-
     settings = SolverSettings()
     m2, l1 = np.asarray(m2, float), np.asarray(l1, float)
     ref = mass_length_map(m2, l1, 1.0, reference_step, theta0_range, delta0_range, {}, settings)

@@ -31,9 +31,7 @@ from .dynamics import (
     BALL_W,
     CF_C2,
     CF_C2_OFF,
-    CF_K,
     CF_LEAD,
-    CF_MB,
     CF_PHI0,
     CF_TAU,
     CF_THETA0,
@@ -49,7 +47,7 @@ from .dynamics import (
     THETA,
     approach_rate,
     coefficients,
-    effective_mass,
+    contact_duration,
     elbow_velocity,
     hit_offset,
     rhs_trig,
@@ -279,9 +277,7 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     if approach_rate(s_th, c_th, s_ph, c_ph, w1, w2, w, cf) <= 0.0:
         return NO_APPROACH
     y = (s_th, c_th, s_ph, c_ph, w1, w2, y[THETA], y[PHI], hit_offset(s_th, s_ph, cf), w)
-    m_eff = effective_mass(s_th, c_th, s_ph, c_ph, cf)
-    mu = cf[CF_MB] * m_eff / (cf[CF_MB] + m_eff)
-    h_max = math.pi * math.sqrt(mu / cf[CF_K]) / st[S_CONTACT_STEPS]
+    h_max = contact_duration(s_th, c_th, s_ph, c_ph, cf) / st[S_CONTACT_STEPS]
     no_history = history[:1]
     status, t, y, h = run_phases(
         method, True, t_c, y, st[S_TMAX], min(h, h_max), h_max, cf, True, st, stats, no_history
