@@ -6,6 +6,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 
 from tennis_stroke._kernels import coefficient_tuple
 from tennis_stroke.dynamics import coefficients
@@ -36,17 +37,40 @@ def coefficient_tup(theta0=90.0, delta0=30.0, **overrides):
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def run_snakemake(target, workdir, *options, timeout=300):
-    """Run this project's Snakefile on ``target`` in ``workdir`` (target first: options
-    that take several values would swallow it); returns the completed process."""
+def snakemake_command(targets, workdir, *options) -> list[str]:
+    """Command line running this project's Snakefile on ``targets`` (a path or a list) in
+    ``workdir``; targets come first, as options that take several values would swallow
+    them."""
+    targets = [targets] if isinstance(targets, str) else list(targets)
     snakemake = Path(sys.executable).with_name("snakemake")
-    command = [
+    return [
         str(snakemake),
-        target,
+        *targets,
         "-s",
         str(ROOT / "Snakefile"),
         "--directory",
         str(workdir),
         *options,
     ]
+
+
+def run_snakemake(targets, workdir, *options, timeout=300):
+    """Run :func:`snakemake_command`; returns the completed process."""
+    command = snakemake_command(targets, workdir, *options)
     return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+
+
+def assert_same_numbers(path_a, path_b):
+    """Two result files hold the same numbers, bit for bit, in every data variable and
+    coordinate, from the same job configuration; only wall-clock measurements (variables
+    with a ``timing`` attribute) and timestamps may differ."""
+    with xr.open_dataset(path_a) as a, xr.open_dataset(path_b) as b:
+        assert set(a.data_vars) == set(b.data_vars), path_a
+        assert set(a.coords) == set(b.coords), path_a
+        for name in [*a.data_vars, *a.coords]:
+            if "timing" in a[name].attrs:
+                continue
+            np.testing.assert_array_equal(
+                a[name].values, b[name].values, err_msg=f"{path_a}: {name}", strict=True
+            )
+        assert a.attrs["config_sha256_16"] == b.attrs["config_sha256_16"], path_a

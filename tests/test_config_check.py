@@ -25,8 +25,11 @@ def _set(config, path, value):
 _DELETE = object()
 
 BAD = [  # (path, value, fragment of the message)
-    (("threads",), "two", "'threads': 'two' is not of type 'integer'"),
-    (("threads",), 0, "'threads': 0 is less than the minimum"),
+    (("chunks", "angle_map"), 0, "'chunks.angle_map': 0 is less than the minimum of 1"),
+    (("chunks", "delay_map"), 2.5, "'chunks.delay_map': 2.5 is not of type 'integer'"),
+    (("max_failure_share",), 1.5, "'max_failure_share': 1.5 is greater than the maximum"),
+    (("max_failure_share",), "1%", "'max_failure_share': '1%' is not of type 'number'"),
+    (("threads",), 2, "'threads' was unexpected) (unknown key)"),
     (("solver", "rtol"), 0.0, "'solver.rtol': 0.0 is less than or equal to the minimum"),
     (("solver", "rtol"), -1e-6, "'solver.rtol'"),
     (("solver", "method"), "RK4", "'solver.method': 'RK4' is not one of"),

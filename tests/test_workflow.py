@@ -1,15 +1,19 @@
-"""A tiny end-to-end run of the Snakemake workflow: every rule, small grids."""
+"""A tiny end-to-end run of the Snakemake workflow: every rule, small grids; chunked maps,
+a map with too many failed strokes, and a run killed midway and restarted."""
 
+import os
 import shutil
+import signal
+import subprocess
+import time
 
 import pandas as pd
 import pytest
 import xarray as xr
 import yaml
-from conftest import ROOT, run_snakemake
+from conftest import ROOT, assert_same_numbers, run_snakemake, snakemake_command
 
 TINY = {
-    "threads": 1,
     "angle_maps": {
         "L1": [0.3, 0.4],
         "theta0": {"start": 60.0, "stop": 120.0, "step": 30.0},
@@ -63,12 +67,38 @@ TINY = {
 }
 
 
+#: The maps (gathered from chunks).
+MAPS = [
+    "results/angle_maps/L1_0.3.nc",
+    "results/angle_maps/L1_0.4.nc",
+    "results/mass_length/map.nc",
+    "results/torque_delay/fig7.nc",
+    "results/torque_delay/fig8.nc",
+    "results/torque_delay/fig9.nc",
+    "results/elbow_force/map.nc",
+]
+
+
+def workdir(parent, config=TINY):
+    """A working directory holding ``config`` and the claims."""
+    (parent / "config").mkdir(parents=True)
+    (parent / "config" / "config.yaml").write_text(yaml.safe_dump(config))
+    shutil.copy(ROOT / "config" / "claims.yaml", parent / "config" / "claims.yaml")
+    return parent
+
+
+def result_files(work):
+    """The final result files (not the chunks) under ``work``, relative to it."""
+    return sorted(
+        str(p.relative_to(work))
+        for p in (work / "results").rglob("*.nc")
+        if "chunks" not in p.parts
+    )
+
+
 @pytest.fixture(scope="module")
 def tiny_run(tmp_path_factory):
-    work = tmp_path_factory.mktemp("workflow")
-    (work / "config").mkdir()
-    (work / "config" / "config.yaml").write_text(yaml.safe_dump(TINY))
-    shutil.copy(ROOT / "config" / "claims.yaml", work / "config" / "claims.yaml")
+    work = workdir(tmp_path_factory.mktemp("workflow"))
     done = run_snakemake("report", work, "--cores", "2", timeout=1200)
     assert done.returncode == 0, done.stderr[-3000:]
     return work
@@ -94,8 +124,10 @@ def test_report_and_claims_are_built(tiny_run):
 
 
 def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
+    """Units everywhere, and what is needed to rerun: the job's config, versions, commit."""
     files = sorted((tiny_run / "results").rglob("*.nc"))
-    assert len(files) == 14
+    assert len(result_files(tiny_run)) == 14
+    assert len(files) == 14 + len(MAPS)  # one chunk per map by default
     for path in files:
         with xr.open_dataset(path) as ds:
             for name in [*ds.data_vars, *ds.coords]:
@@ -103,6 +135,12 @@ def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
             for key in (
                 "tennis_stroke_version",
                 "git_commit",
+                "python_version",
+                "numpy_version",
+                "numba_version",
+                "scipy_version",
+                "xarray_version",
+                "config",
                 "config_sha256_16",
                 "wall_time_s",
                 "solver_rtol",
@@ -122,3 +160,64 @@ def test_changing_one_parameter_reruns_only_its_jobs(tiny_run):
     rerun = {line.split()[0] for line in stats.splitlines()[3:] if line.strip()}
     assert "fig4_strokes" in rerun and "delay_strokes" in rerun
     assert "angle_map" not in rerun and "mass_length" not in rerun
+
+
+def test_chunked_maps_equal_unchunked_maps_bit_for_bit(tiny_run, tmp_path):
+    chunks = {"angle_map": 3, "mass_length": 2, "delay_map": 2, "elbow_force_map": 4}
+    work = workdir(tmp_path, {**TINY, "chunks": chunks})
+    done = run_snakemake(MAPS, work, "--cores", "2", timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    # fig9 has a single delta0 row: one chunk, whatever was asked
+    expected = dict(zip(MAPS, [3, 3, 2, 2, 2, 1, 4], strict=True))
+    for name in MAPS:
+        with xr.open_dataset(work / name) as ds:
+            assert ds.attrs["chunk_count"] == expected[name], name
+        assert_same_numbers(work / name, tiny_run / name)
+
+
+def test_a_map_with_too_many_failed_strokes_stops_the_run_loudly(tmp_path):
+    work = workdir(tmp_path, {**TINY, "solver": {"t_max": 0.05}})
+    done = run_snakemake("results/torque_delay/fig9.nc", work, "--cores", "1")
+    assert done.returncode != 0
+    lines = [line for line in done.stderr.splitlines() if "tennis-stroke job failed" in line]
+    assert lines == [
+        "tennis-stroke job failed: FailureShareError: results/torque_delay/fig9.nc: 5 of 5 "
+        "strokes failed (100.00 %) (no_phi_zero 5), above max_failure_share 1 % "
+        "(traceback in logs/gather_map/torque_delay/fig9.log)"
+    ]
+    assert "Traceback" not in done.stderr
+    assert not (work / "results/torque_delay/fig9.nc").exists()
+    assert "Traceback" in (work / "logs/gather_map/torque_delay/fig9.log").read_text()
+    with xr.open_dataset(work / "results/chunks/torque_delay/fig9/0-of-1.nc") as chunk:
+        assert (chunk["status"] == 1).all()  # the failures themselves are statuses
+
+
+def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
+    work = workdir(tmp_path)
+    command = snakemake_command("report", work, "--cores", "2")
+    run = subprocess.Popen(
+        command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
+    deadline = time.monotonic() + 600
+    try:
+        while len(list((work / "results").rglob("*.nc"))) < 4:
+            assert run.poll() is None, "the run ended before it could be killed"
+            assert time.monotonic() < deadline, "no results after 600 s"
+            time.sleep(0.05)
+    finally:
+        os.killpg(run.pid, signal.SIGKILL)  # the whole run at once, as a power cut would
+        run.wait()
+    assert not (work / "report" / "index.html").exists()
+    written = sorted((work / "results").rglob("*.nc"))
+    for path in written:  # whatever has a final name is complete
+        with xr.open_dataset(path) as ds:
+            ds.load()
+    # a killed Snakemake leaves its lock: the documented restart is --unlock, then rerun
+    assert run_snakemake("report", work, "--unlock").returncode == 0
+    done = run_snakemake("report", work, "--cores", "2", "--rerun-incomplete", timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert result_files(work) == result_files(tiny_run)
+    for name in result_files(work):
+        assert_same_numbers(work / name, tiny_run / name)
+    claims = pd.read_csv(work / "results/claims.csv")
+    pd.testing.assert_frame_equal(claims, pd.read_csv(tiny_run / "results/claims.csv"))

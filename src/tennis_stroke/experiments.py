@@ -195,15 +195,17 @@ def mass_length_map(
     then a fine grid (``fine_step``) of +-1 coarse step around the coarse optimum, refined
     by parabolas; the fine grid is clipped to the ranges, so an optimum on the edge of
     the range stays there.  ``theta_c`` is ``|theta|`` at ``phi = 0`` of the optimal
-    stroke.
+    stroke.  ``failed_strokes`` counts the strokes of each point's search that failed
+    (attribute ``strokes_per_point``: how many it ran).
     """
     th_c = grid(*theta0_range, coarse_step)
     de_c = grid(*delta0_range, coarse_step)
     mm, ll = np.meshgrid(m2, l1, indexing="ij")
     p = {**params, "M2": mm[..., None, None], "L1": ll[..., None, None]}
-    coarse = _ok(
-        strike_batch(th_c[None, None, :, None], de_c[None, None, None, :], p, settings, threads)
+    coarse_res = strike_batch(
+        th_c[None, None, :, None], de_c[None, None, None, :], p, settings, threads
     )
+    coarse = _ok(coarse_res)
     flat = coarse.reshape(*mm.shape, -1)
     best = np.nanargmax(np.where(np.isnan(flat), -np.inf, flat), axis=-1)
     ti, di = np.unravel_index(best, (th_c.size, de_c.size))
@@ -212,6 +214,8 @@ def mass_length_map(
     de_f = np.clip(de_c[di][..., None, None] + offsets[None, :], *delta0_range)
     fine_res = strike_batch(th_f, de_f, p, settings, threads)
     fine = _ok(fine_res)
+    failed = np.count_nonzero(coarse_res["status"].reshape(*mm.shape, -1), axis=-1)
+    failed += np.count_nonzero(fine_res["status"].reshape(*mm.shape, -1), axis=-1)
     out = {k: np.full(mm.shape, np.nan) for k in ("v", "theta0", "delta0", "theta_c")}
     for idx in np.ndindex(mm.shape):
         f = fine[idx]
@@ -232,7 +236,11 @@ def mass_length_map(
         coords,
         resolve_params(params),
         settings,
-        {"coarse_step_deg": coarse_step, "fine_step_deg": fine_step},
+        {
+            "coarse_step_deg": coarse_step,
+            "fine_step_deg": fine_step,
+            "strokes_per_point": th_c.size * de_c.size + offsets.size**2,
+        },
     )
     meta = {
         "v": ("v_out_best", KMH[0], "fastest rebound speed over the initial angles"),
@@ -242,6 +250,11 @@ def mass_length_map(
     }
     for key, (name, units, long_name) in meta.items():
         ds[name] = (("M2", "L1"), out[key], {"units": units, "long_name": long_name})
+    ds["failed_strokes"] = (
+        ("M2", "L1"),
+        failed.astype(np.int64),
+        {"units": "1", "long_name": "failed strokes of the optimum search at this point"},
+    )
     return ds
 
 

@@ -17,7 +17,9 @@ from collections.abc import Mapping
 from datetime import UTC, datetime
 from pathlib import Path
 
+import numba
 import numpy as np
+import scipy
 import xarray as xr
 
 from .params import PARAMETERS, READINGS, scalar_params
@@ -72,6 +74,9 @@ def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[s
         "git_commit": git_commit(),
         "python_version": platform.python_version(),
         "numpy_version": np.__version__,
+        "numba_version": numba.__version__,
+        "scipy_version": scipy.__version__,
+        "xarray_version": xr.__version__,
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} written by tennis-stroke",
     }
     for name, value in scalar_params(params).items():

@@ -1,17 +1,20 @@
-"""Support for the workflow's thin scripts: settings from params, logging, provenance."""
+"""Support for the workflow's thin scripts: settings, chunks, logging, provenance."""
 
 from __future__ import annotations
 
 import contextlib
 import hashlib
 import json
+import sys
 import time
+import traceback
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
+from .chunking import chunk_rows, mark_chunk
 from .experiments import grid
 from .io import write_netcdf
 from .stroke import SolverSettings
@@ -31,14 +34,29 @@ def axis(spec) -> np.ndarray:
 
 @contextlib.contextmanager
 def logged(log_path: str | Path) -> Iterator[None]:
-    """Send stdout and stderr of a script to its Snakemake log file."""
+    """Send stdout and stderr of a script to its Snakemake log file.
+
+    An exception ends the job with its traceback in the log, one line on stderr naming
+    the problem and the log, and exit status 1 (Snakemake then reports the failed rule).
+    """
     Path(log_path).parent.mkdir(parents=True, exist_ok=True)
-    with (
-        open(log_path, "w") as log,
-        contextlib.redirect_stdout(log),
-        contextlib.redirect_stderr(log),
-    ):
-        yield
+    with open(log_path, "w") as log:
+        try:
+            with contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+                yield
+        except Exception as exc:
+            traceback.print_exc(file=log)
+            message = str(exc).splitlines()[0] if str(exc) else ""
+            problem = f"{type(exc).__name__}: {message}" if message else type(exc).__name__
+        else:
+            return
+    sys.stderr.write(f"tennis-stroke job failed: {problem} (traceback in {log_path})\n")
+    raise SystemExit(1)
+
+
+def chunk(values: np.ndarray, wildcards) -> np.ndarray:
+    """The rows of ``values`` that this job computes (wildcards ``chunk`` of ``chunks``)."""
+    return chunk_rows(values, int(wildcards.chunk), int(wildcards.chunks))
 
 
 class Timer:
@@ -60,8 +78,21 @@ def params_hash(params) -> str:
     return hashlib.sha256(json.dumps(items, sort_keys=True, default=str).encode()).hexdigest()[:16]
 
 
-def save(ds: xr.Dataset, path: str | Path, params, wall_time: float) -> None:
-    """Add the job's provenance (config hash and text, wall time) and write atomically."""
+def save(
+    ds: xr.Dataset,
+    path: str | Path,
+    params,
+    wall_time: float,
+    chunk_of: tuple[str, object] | None = None,
+) -> None:
+    """Add the job's provenance (config hash and text, wall time) and write atomically.
+
+    ``chunk_of = (dim, wildcards)`` marks the file as chunk ``wildcards.chunk`` of
+    ``wildcards.chunks`` along ``dim`` (:func:`tennis_stroke.chunking.mark_chunk`).
+    """
+    if chunk_of is not None:
+        dim, wildcards = chunk_of
+        mark_chunk(ds, dim, int(wildcards.chunk), int(wildcards.chunks))
     items = dict(params.items()) if hasattr(params, "items") else dict(params)
     ds.attrs["config_sha256_16"] = params_hash(items)
     ds.attrs["config"] = json.dumps(items, sort_keys=True, default=str)

@@ -19,6 +19,7 @@ import pandas as pd
 import xarray as xr
 
 from . import __version__
+from .failures import failure_counts
 from .identification import CANDIDATES, paper_row
 from .io import git_commit
 from .params import READINGS
@@ -117,6 +118,11 @@ parabola) against a finer reference search:</p>
 
 <h2>Solver and run</h2>
 <table>{% for k, v in meta.items() %}<tr><td>{{ k }}</td><td>{{ v }}</td></tr>{% endfor %}</table>
+<h3>Failed strokes per result file</h3>
+<p>A stroke that fails is a status in its file, never a crashed job; a map with more
+than {{ max_failure_share }} of its strokes failed stops the run (config
+<code>max_failure_share</code>).</p>
+{{ failure_table }}
 <h3>Per-rule wall time (Snakemake benchmark files)</h3>
 {{ timing_table }}
 </body></html>
@@ -158,6 +164,17 @@ def _timings(directory: Path) -> pd.DataFrame:
             }
         )
     return pd.DataFrame(rows)
+
+
+def _failures(results: Sequence[str]) -> pd.DataFrame:
+    """Strokes, failed strokes and the failing statuses of every result file."""
+    rows = []
+    for path in results:
+        with xr.open_dataset(path) as ds:
+            counts = failure_counts(ds)
+        if counts:
+            rows.append({"file": str(path), **counts})
+    return pd.DataFrame(rows).convert_dtypes()
 
 
 def build_report(
@@ -232,6 +249,8 @@ def build_report(
         sensitivity_table=_sensitivity(readings).to_html(index=False),
         meta=meta,
         timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
+        failure_table=_failures(results).to_html(index=False, na_rep="-"),
+        max_failure_share=f"{100 * float(config.get('max_failure_share', 0.01)):g} %",
         assumptions=Path(assumptions_md).read_text() if assumptions_md else "",
         ladder_error=ladder_error,
         study_tables=study_tables,

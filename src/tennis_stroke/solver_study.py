@@ -73,6 +73,9 @@ STROKE_SPACE = {
 REFERENCE = SolverSettings(rtol=1e-13, atol=1e-13, history=8192)
 #: Strokes per timed batch of the compiled solver.
 TIMING_STROKES = 4000
+#: Attribute of variables that hold wall-clock measurements (the only numbers of a result
+#: file that differ between two runs of the same configuration).
+TIMING = {"timing": "wall-clock measurement: differs between runs"}
 
 
 def sample_strokes(n: int, seed: int = 20261121) -> dict[str, np.ndarray]:
@@ -299,7 +302,7 @@ def work_precision(
             "us_per_stroke": (
                 dims,
                 cost,
-                {"units": "us", "long_name": "cost per stroke, one thread"},
+                {"units": "us", "long_name": "cost per stroke, one thread", **TIMING},
             ),
             "rhs_evals": (dims, evals, {"units": "1", "long_name": "evaluations per stroke"}),
             "failed": (dims, failed, {"units": "1", "long_name": "strokes without status ok"}),
@@ -555,7 +558,15 @@ def optimum_cost(
     }
     ds = xr.Dataset(
         {
-            k: ("search", np.array(v), {"units": meta[k][0], "long_name": meta[k][1]})
+            k: (
+                "search",
+                np.array(v),
+                {
+                    "units": meta[k][0],
+                    "long_name": meta[k][1],
+                    **(TIMING if k == "seconds" else {}),
+                },
+            )
             for k, v in rows.items()
         },
         coords={"search": ("search", labels, {"units": "1", "long_name": "steps"})},

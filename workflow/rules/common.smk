@@ -5,7 +5,9 @@ import sys
 
 from snakemake.utils import validate
 
+from tennis_stroke.chunking import chunk_count
 from tennis_stroke.config_check import config_errors
+from tennis_stroke.experiments import grid
 
 # One line naming the key and the rule it breaks, before any job starts (no traceback).
 _errors = config_errors(
@@ -28,6 +30,38 @@ PACKAGE_SOURCES = sorted(
 def grid_spec(spec):
     """A range of the config as a plain list [start, stop, step] (a params value)."""
     return [float(spec["start"]), float(spec["stop"]), float(spec["step"])]
+
+
+wildcard_constraints:
+    chunk=r"\d+",
+    chunks=r"\d+",
+
+
+#: Maps computed in chunks (paths under results/, without .nc) and gathered by rule
+#: gather_map.
+CHUNKED_MAPS = (
+    r"angle_maps/L1_[^/]+|mass_length/map|torque_delay/fig[789]|elbow_force/map"
+)
+
+
+def map_rows(name):
+    """Rule name and number of rows of the first axis of map ``name`` (CHUNKED_MAPS)."""
+    section, item = name.split("/")
+    if section == "angle_maps":
+        return "angle_map", grid(*grid_spec(config["angle_maps"]["theta0"])).size
+    if section == "mass_length":
+        return "mass_length", grid(*grid_spec(config["mass_length"]["M2"])).size
+    if section == "elbow_force":
+        return "elbow_force_map", grid(*grid_spec(config["elbow_force"]["psi_F"])).size
+    first = config["torque_delay"][item]["C2" if item == "fig7" else "delta0"]
+    return "delay_map", grid(*grid_spec(first)).size if isinstance(first, dict) else 1
+
+
+def chunk_files(wildcards):
+    """The chunk files of a map: the config's chunk count, at most one per row."""
+    rule_name, rows = map_rows(wildcards.map)
+    n = chunk_count(config["chunks"][rule_name], rows)
+    return [f"results/chunks/{wildcards.map}/{i}-of-{n}.nc" for i in range(n)]
 
 
 def model():

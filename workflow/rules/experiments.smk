@@ -1,22 +1,40 @@
-# Simulation rules: one job per experiment, each writing one netCDF file.
+# Simulation rules: one job per experiment (per chunk for the maps), each writing one
+# netCDF file.  Threads, memory and runtime are resources: `--set-threads` or a profile
+# (profiles/slurm) changes them, never the science config.
 
 
 rule angle_map:
     input:
         PACKAGE_SOURCES,
     output:
-        "results/angle_maps/L1_{L1}.nc",
+        "results/chunks/angle_maps/L1_{L1}/{chunk}-of-{chunks}.nc",
     log:
-        "logs/angle_map_L1_{L1}.log",
+        "logs/angle_map/L1_{L1}/{chunk}-of-{chunks}.log",
     benchmark:
-        "benchmarks/workflow/angle_map_L1_{L1}.tsv"
-    threads: config["threads"]
+        "benchmarks/workflow/angle_map_L1_{L1}_{chunk}-of-{chunks}.tsv"
+    threads: 1
     params:
         common=common_params(),
         theta0=grid_spec(config["angle_maps"]["theta0"]),
         delta0=grid_spec(config["angle_maps"]["delta0"]),
     script:
         "../scripts/angle_map.py"
+
+
+rule gather_map:
+    input:
+        chunks=chunk_files,
+        code=[str(PACKAGE_DIR / "chunking.py"), str(PACKAGE_DIR / "failures.py")],
+    output:
+        "results/{map}.nc",
+    log:
+        "logs/gather_map/{map}.log",
+    wildcard_constraints:
+        map=CHUNKED_MAPS,
+    params:
+        max_failure_share=config["max_failure_share"],
+    script:
+        "../scripts/gather_map.py"
 
 
 rule fig4_strokes:
@@ -43,12 +61,12 @@ rule mass_length:
     input:
         PACKAGE_SOURCES,
     output:
-        "results/mass_length/map.nc",
+        "results/chunks/mass_length/map/{chunk}-of-{chunks}.nc",
     log:
-        "logs/mass_length.log",
+        "logs/mass_length/{chunk}-of-{chunks}.log",
     benchmark:
-        "benchmarks/workflow/mass_length.tsv"
-    threads: config["threads"]
+        "benchmarks/workflow/mass_length_{chunk}-of-{chunks}.tsv"
+    threads: 1
     params:
         common=common_params(),
         M2=grid_spec(config["mass_length"]["M2"]),
@@ -65,14 +83,14 @@ rule delay_map:
     input:
         PACKAGE_SOURCES,
     output:
-        "results/torque_delay/{fig}.nc",
+        "results/chunks/torque_delay/{fig}/{chunk}-of-{chunks}.nc",
     log:
-        "logs/delay_map_{fig}.log",
+        "logs/delay_map/{fig}/{chunk}-of-{chunks}.log",
     benchmark:
-        "benchmarks/workflow/delay_map_{fig}.tsv"
+        "benchmarks/workflow/delay_map_{fig}_{chunk}-of-{chunks}.tsv"
     wildcard_constraints:
         fig="fig[789]",
-    threads: config["threads"]
+    threads: 1
     params:
         common=common_params(),
         section=lambda wc: {
@@ -106,12 +124,12 @@ rule elbow_force_map:
     input:
         PACKAGE_SOURCES,
     output:
-        "results/elbow_force/map.nc",
+        "results/chunks/elbow_force/map/{chunk}-of-{chunks}.nc",
     log:
-        "logs/elbow_force_map.log",
+        "logs/elbow_force_map/{chunk}-of-{chunks}.log",
     benchmark:
-        "benchmarks/workflow/elbow_force_map.tsv"
-    threads: config["threads"]
+        "benchmarks/workflow/elbow_force_map_{chunk}-of-{chunks}.tsv"
+    threads: 1
     params:
         common=common_params(),
         force={k: config["elbow_force"][k] for k in ("F0", "t_d")},

@@ -1,11 +1,12 @@
-"""Figs. 2-3: v_out over (theta0, delta0) for one L1."""
+"""Figs. 2-3: v_out over (theta0, delta0) for one L1 (one chunk of theta0 rows)."""
 
 from tennis_stroke.experiments import angle_map
-from tennis_stroke.pipeline import Timer, axis, logged, save, settings
+from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):
     clock = Timer()
     model = {**p.common["model"], "L1": float(snakemake.wildcards.L1)}
-    ds = angle_map(axis(p.theta0), axis(p.delta0), model, settings(p.common), snakemake.threads)
-    save(ds, snakemake.output[0], p, clock())
+    theta0 = chunk(axis(p.theta0), snakemake.wildcards)
+    ds = angle_map(theta0, axis(p.delta0), model, settings(p.common), snakemake.threads)
+    save(ds, snakemake.output[0], p, clock(), chunk_of=("theta0", snakemake.wildcards))

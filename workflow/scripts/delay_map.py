@@ -1,9 +1,10 @@
-"""Figs. 7-9: v_out over the wrist-torque delay and C2 (Fig. 7) or delta0 (Figs. 8-9)."""
+"""Figs. 7-9: v_out over the wrist-torque delay and C2 (Fig. 7) or delta0 (Figs. 8-9),
+one chunk of rows of C2 or delta0."""
 
 import numpy as np
 
 from tennis_stroke.experiments import delay_map
-from tennis_stroke.pipeline import Timer, axis, logged, save, settings
+from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
 
 p = snakemake.params
 s = p.section
@@ -14,7 +15,7 @@ with logged(snakemake.log[0]):
     if isinstance(s["C2"], dict):  # Fig. 7: (C2, tau) at fixed delta0
         ds = delay_map(
             "C2",
-            axis(s["C2"]),
+            chunk(axis(s["C2"]), snakemake.wildcards),
             ("N m", "wrist torque C2"),
             tau,
             s["theta0"],
@@ -29,7 +30,7 @@ with logged(snakemake.log[0]):
         )
         ds = delay_map(
             "delta0",
-            delta0,
+            chunk(delta0, snakemake.wildcards),
             ("degree", "initial angle between the rods"),
             tau,
             s["theta0"],
@@ -38,4 +39,5 @@ with logged(snakemake.log[0]):
             settings(p.common),
             snakemake.threads,
         )
-    save(ds, snakemake.output[0], p, clock())
+    dim = "C2" if isinstance(s["C2"], dict) else "delta0"
+    save(ds, snakemake.output[0], p, clock(), chunk_of=(dim, snakemake.wildcards))

@@ -1,7 +1,8 @@
-"""Fig. 13: v_out over the direction and delay of the extra elbow force (Eq. 14)."""
+"""Fig. 13: v_out over the direction and delay of the extra elbow force (Eq. 14),
+one chunk of psi_F rows."""
 
 from tennis_stroke.experiments import elbow_force_map
-from tennis_stroke.pipeline import Timer, axis, logged, save, settings
+from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
 
 p = snakemake.params
 f, s = p.force, p.stroke
@@ -16,7 +17,7 @@ with logged(snakemake.log[0]):
         "t_d": f["t_d"],
     }
     ds = elbow_force_map(
-        axis(p.psi_F),
+        chunk(axis(p.psi_F), snakemake.wildcards),
         axis(p.tau_F),
         s["tau_H"],
         s["theta0"],
@@ -25,4 +26,4 @@ with logged(snakemake.log[0]):
         settings(p.common),
         snakemake.threads,
     )
-    save(ds, snakemake.output[0], p, clock())
+    save(ds, snakemake.output[0], p, clock(), chunk_of=("psi_F", snakemake.wildcards))

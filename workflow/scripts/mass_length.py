@@ -1,13 +1,14 @@
-"""Figs. 5-6: the fastest rebound over the initial angles at every (M2, L1)."""
+"""Figs. 5-6: the fastest rebound over the initial angles at every (M2, L1), one chunk
+of M2 rows."""
 
 from tennis_stroke.experiments import mass_length_map
-from tennis_stroke.pipeline import Timer, axis, logged, save, settings
+from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):
     clock = Timer()
     ds = mass_length_map(
-        axis(p.M2),
+        chunk(axis(p.M2), snakemake.wildcards),
         axis(p.L1),
         p.coarse_step,
         p.fine_step,
@@ -17,4 +18,4 @@ with logged(snakemake.log[0]):
         settings(p.common),
         snakemake.threads,
     )
-    save(ds, snakemake.output[0], p, clock())
+    save(ds, snakemake.output[0], p, clock(), chunk_of=("M2", snakemake.wildcards))

@@ -1,0 +1,12 @@
+"""One map from its chunks; fails when its share of failed strokes is above the limit."""
+
+from tennis_stroke.chunking import gather_chunks
+from tennis_stroke.failures import check_failure_share
+from tennis_stroke.io import write_netcdf
+from tennis_stroke.pipeline import logged
+
+with logged(snakemake.log[0]):
+    ds = gather_chunks(snakemake.input.chunks)
+    counts = check_failure_share(ds, snakemake.params.max_failure_share, snakemake.output[0])
+    print(f"gathered {len(snakemake.input.chunks)} chunks; strokes: {counts}")
+    write_netcdf(ds, snakemake.output[0])
