@@ -12,7 +12,7 @@ install: $(STAMP)
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,workflow]'
+	$(BIN)/python -m pip install --quiet -e '.[test,workflow,slurm]'
 	touch $(STAMP)
 
 ## The replication: every experiment, figure and claim, then report/index.html; fails
