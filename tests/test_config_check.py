@@ -87,3 +87,20 @@ def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
         "than or equal to the minimum of 0 (rule: exclusiveMinimum)"
     ]
     assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
+
+
+@pytest.mark.parametrize(
+    "path, value, fragment", BAD, ids=[".".join(map(str, b[0])) + f"={b[1]!r}"[:20] for b in BAD]
+)
+def test_every_bad_config_stops_snakemake_with_one_line(path, value, fragment, tmp_path):
+    config = copy.deepcopy(GOOD)
+    _set(config, path, value)
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "config.yaml").write_text(yaml.safe_dump(config))
+    done = run_snakemake("report", tmp_path, "-n")
+    assert done.returncode == 1
+    lines = [line for line in done.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("tennis-stroke config error: "), lines
+    assert fragment in lines[0]
+    assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
+    assert not (tmp_path / "results").exists()
