@@ -1,12 +1,13 @@
 """Bad workflow configs: each stops before any job, with one line naming key and rule."""
 
 import copy
+import shutil
 
 import pytest
 import yaml
 from conftest import ROOT, run_snakemake
 
-from tennis_stroke.config_check import config_errors
+from tennis_stroke.config_check import config_errors, numbers_from_strings
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -104,3 +105,25 @@ def test_every_bad_config_stops_snakemake_with_one_line(path, value, fragment, t
     assert fragment in lines[0]
     assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
     assert not (tmp_path / "results").exists()
+
+
+def test_numbers_given_as_strings_are_numbers_again():
+    given = {"chunks": {"angle_map": "3"}, "solver": {"rtol": "1e-9", "method": "DP54"}}
+    given["angle_maps"] = {"L1": ["0.3", "x"]}
+    assert numbers_from_strings(given) == {
+        "chunks": {"angle_map": 3},
+        "solver": {"rtol": 1e-9, "method": "DP54"},
+        "angle_maps": {"L1": [0.3, "x"]},
+    }
+
+
+def test_nested_command_line_overrides_work(tmp_path):
+    # Snakemake reads the nested values as strings; the workflow takes them as numbers.
+    (tmp_path / "config").mkdir()
+    (tmp_path / "config" / "config.yaml").write_text(yaml.safe_dump(GOOD))
+    shutil.copy(ROOT / "config" / "claims.yaml", tmp_path / "config" / "claims.yaml")
+    done = run_snakemake("report", tmp_path, "-n", "--config", "chunks={angle_map: 3}")
+    assert done.returncode == 0, (done.stdout + done.stderr)[-2000:]
+    stats = (done.stdout + done.stderr).split("Job stats:")[1].split("total")[0]
+    counts = dict(line.split() for line in stats.splitlines()[3:] if line.strip())
+    assert counts["angle_map"] == "6" and counts["gather_map"] == "7"

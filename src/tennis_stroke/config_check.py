@@ -76,6 +76,29 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
         yield f"config key 'model': {exc}"
 
 
+def _number(text: str):
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+def numbers_from_strings(node):
+    """``node`` with every string that spells a number turned into that number.
+
+    Snakemake's ``--config key={a: 2}`` reads nested values with YAML's BaseLoader, as
+    strings (``'2'``); this restores the numbers the YAML file would have given.  No
+    string option of the config spells a number.
+    """
+    if isinstance(node, Mapping):
+        return {key: numbers_from_strings(value) for key, value in node.items()}
+    if isinstance(node, list):
+        return [numbers_from_strings(value) for value in node]
+    return _number(node) if isinstance(node, str) else node
+
+
 def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:
     """Every problem of ``config`` as one-line messages (empty: the config is good)."""
     schema = yaml.safe_load(Path(schema_path).read_text())

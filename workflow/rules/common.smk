@@ -6,9 +6,11 @@ import sys
 from snakemake.utils import validate
 
 from tennis_stroke.chunking import chunk_count
-from tennis_stroke.config_check import config_errors
+from tennis_stroke.config_check import config_errors, numbers_from_strings
 from tennis_stroke.experiments import grid
 
+# Nested --config values arrive as strings: numbers again, as from the YAML file.
+config.update(numbers_from_strings(config))
 # One line naming the key and the rule it breaks, before any job starts (no traceback).
 _errors = config_errors(
     config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
