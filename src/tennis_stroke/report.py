@@ -153,14 +153,19 @@ def _sensitivity(readings: pd.DataFrame) -> pd.DataFrame:
 
 
 def _timings(directory: Path) -> pd.DataFrame:
+    """Per-job timings, with the time each was measured: jobs of an earlier run (e.g.
+    with other chunk counts) keep their files until ``benchmarks/workflow`` is removed."""
     rows = []
     for path in sorted(directory.glob("*.tsv")):
         table = pd.read_csv(path, sep="\t")
         rows.append(
             {
-                "rule": path.stem,
+                "job": path.stem,
                 "wall time (s)": round(float(table["s"].iloc[-1]), 2),
                 "max RSS (MB)": table.get("max_rss", pd.Series([float("nan")])).iloc[-1],
+                "measured (UTC)": datetime.fromtimestamp(path.stat().st_mtime, UTC).isoformat(
+                    timespec="seconds"
+                ),
             }
         )
     return pd.DataFrame(rows)
