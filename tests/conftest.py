@@ -1,5 +1,6 @@
 """Shared fixtures: the paper's default parameters and handy coefficient rows."""
 
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -7,6 +8,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+import yaml
 
 from tennis_stroke._kernels import coefficient_tuple
 from tennis_stroke.dynamics import coefficients
@@ -60,17 +62,55 @@ def run_snakemake(targets, workdir, *options, timeout=300):
     return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
 
 
-def assert_same_numbers(path_a, path_b):
-    """Two result files hold the same numbers, bit for bit, in every data variable and
-    coordinate, from the same job configuration; only wall-clock measurements (variables
-    with a ``timing`` attribute) and timestamps may differ."""
-    with xr.open_dataset(path_a) as a, xr.open_dataset(path_b) as b:
-        assert set(a.data_vars) == set(b.data_vars), path_a
-        assert set(a.coords) == set(b.coords), path_a
-        for name in [*a.data_vars, *a.coords]:
-            if "timing" in a[name].attrs:
-                continue
-            np.testing.assert_array_equal(
-                a[name].values, b[name].values, err_msg=f"{path_a}: {name}", strict=True
-            )
-        assert a.attrs["config_sha256_16"] == b.attrs["config_sha256_16"], path_a
+#: Global attributes that differ between two runs of the same job, and only those: when
+#: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
+#: model ladder's two models).
+RUN_ATTRS = (
+    "history",
+    "wall_time_s",
+    "chunk_wall_times_s",
+    "us_per_stroke_spring",
+    "us_per_stroke_impact_python",
+)
+
+
+def _dataset(source) -> xr.Dataset:
+    if isinstance(source, xr.Dataset):
+        return source
+    with xr.open_dataset(source) as ds:
+        return ds.load()
+
+
+def assert_same_results(a, b, also_differ=()):
+    """Two results (datasets or netCDF paths) are the same: every data variable and
+    coordinate bit for bit (values, dtype, dimensions, attributes), except wall-clock
+    measurements (variables with a ``timing`` attribute), and every global attribute
+    (configuration, parameters, versions, commit) except :data:`RUN_ATTRS` and
+    ``also_differ``."""
+    a, b = _dataset(a), _dataset(b)
+    assert set(a.variables) == set(b.variables)
+    for name in a.variables:
+        if "timing" in a[name].attrs:
+            continue
+        np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name, strict=True)
+        xr.testing.assert_identical(a[name].variable, b[name].variable)
+    differ = {*RUN_ATTRS, *also_differ}
+    kept = [{k: v for k, v in d.attrs.items() if k not in differ} for d in (a, b)]
+    xr.testing.assert_identical(xr.Dataset(attrs=kept[0]), xr.Dataset(attrs=kept[1]))
+
+
+def workdir(parent, config):
+    """A working directory for the Snakefile holding ``config`` and the claims."""
+    (parent / "config").mkdir(parents=True)
+    (parent / "config" / "config.yaml").write_text(yaml.safe_dump(config))
+    shutil.copy(ROOT / "config" / "claims.yaml", parent / "config" / "claims.yaml")
+    return parent
+
+
+def result_files(work, chunks=False):
+    """The result files under ``work`` (relative paths); with ``chunks``, map chunks too."""
+    return sorted(
+        str(p.relative_to(work))
+        for p in (work / "results").rglob("*.nc")
+        if chunks or "chunks" not in p.parts
+    )

@@ -1,11 +1,10 @@
 """Bad workflow configs: each stops before any job, with one line naming key and rule."""
 
 import copy
-import shutil
 
 import pytest
 import yaml
-from conftest import ROOT, run_snakemake
+from conftest import ROOT, run_snakemake, workdir
 
 from tennis_stroke.config_check import config_errors, numbers_from_strings
 
@@ -96,9 +95,7 @@ def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
 def test_every_bad_config_stops_snakemake_with_one_line(path, value, fragment, tmp_path):
     config = copy.deepcopy(GOOD)
     _set(config, path, value)
-    (tmp_path / "config").mkdir()
-    (tmp_path / "config" / "config.yaml").write_text(yaml.safe_dump(config))
-    done = run_snakemake("report", tmp_path, "-n")
+    done = run_snakemake("report", workdir(tmp_path, config), "-n")
     assert done.returncode == 1
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert len(lines) == 1 and lines[0].startswith("tennis-stroke config error: "), lines
@@ -119,10 +116,9 @@ def test_numbers_given_as_strings_are_numbers_again():
 
 def test_nested_command_line_overrides_work(tmp_path):
     # Snakemake reads the nested values as strings; the workflow takes them as numbers.
-    (tmp_path / "config").mkdir()
-    (tmp_path / "config" / "config.yaml").write_text(yaml.safe_dump(GOOD))
-    shutil.copy(ROOT / "config" / "claims.yaml", tmp_path / "config" / "claims.yaml")
-    done = run_snakemake("report", tmp_path, "-n", "--config", "chunks={angle_map: 3}")
+    done = run_snakemake(
+        "report", workdir(tmp_path, GOOD), "-n", "--config", "chunks={angle_map: 3}"
+    )
     assert done.returncode == 0, (done.stdout + done.stderr)[-2000:]
     stats = (done.stdout + done.stderr).split("Job stats:")[1].split("total")[0]
     counts = dict(line.split() for line in stats.splitlines()[3:] if line.strip())

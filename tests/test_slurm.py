@@ -11,9 +11,8 @@ import time
 from pathlib import Path
 
 import pytest
-import xarray as xr
-from conftest import ROOT, run_snakemake
-from test_workflow import TINY, workdir
+from conftest import ROOT, assert_same_results, result_files, run_snakemake, workdir
+from test_workflow import TINY
 
 pytestmark = pytest.mark.slurm
 
@@ -26,11 +25,6 @@ TARGETS = ["results/torque_delay/fig9.nc", "results/angle_maps/L1_0.3.nc"]
 CONFIG = {**TINY, "chunks": {"angle_map": 2}}
 #: A hung run (e.g. job states that never arrive) is killed after this (s).
 TIMEOUT_S = 600
-#: Global attributes that differ between two runs of the same job, and only those: the
-#: time the file was written (``history``) and the job's timings (``wall_time_s``, and
-#: ``chunk_wall_times_s`` of a gathered map).  Everything else (configuration and its
-#: hash, parameters, solver settings, versions, git commit) must be identical.
-RUN_ATTRS = ("history", "wall_time_s", "chunk_wall_times_s")
 
 
 def cluster(command: str) -> subprocess.CompletedProcess:
@@ -96,10 +90,6 @@ def runs(slurm_cluster, tmp_path_factory):
     return {"local": local, "slurm": slurm, "local_s": local_s, "slurm_s": slurm_s}
 
 
-def result_files(work: Path) -> list[str]:
-    return sorted(str(p.relative_to(work)) for p in (work / "results").rglob("*.nc"))
-
-
 def test_jobs_ran_through_slurm(runs):
     # The plugin writes one log per SLURM job (kept: slurm-keep-successful-logs).
     logs = sorted((runs["slurm"] / ".snakemake" / "slurm_logs").rglob("*.log"))
@@ -111,20 +101,9 @@ def test_jobs_ran_through_slurm(runs):
         assert "Finished jobid" in log.read_text(), log
 
 
-def comparable(ds: xr.Dataset) -> xr.Dataset:
-    """``ds`` without the attributes that differ between runs (RUN_ATTRS)."""
-    out = ds.copy(deep=False)
-    out.attrs = {key: value for key, value in ds.attrs.items() if key not in RUN_ATTRS}
-    return out
-
-
 def test_slurm_results_equal_local_results(runs):
-    files = result_files(runs["local"])
+    files = result_files(runs["local"], chunks=True)
     assert set(TARGETS) <= set(files)
-    assert result_files(runs["slurm"]) == files
+    assert result_files(runs["slurm"], chunks=True) == files
     for name in files:
-        with (
-            xr.open_dataset(runs["local"] / name) as local,
-            xr.open_dataset(runs["slurm"] / name) as slurm,
-        ):
-            xr.testing.assert_identical(comparable(local), comparable(slurm))
+        assert_same_results(runs["local"] / name, runs["slurm"] / name)

@@ -44,11 +44,11 @@ def chunk_rows(values: np.ndarray, index: int, count: int) -> np.ndarray:
     return np.array_split(np.asarray(values), count)[index]
 
 
-def mark_chunk(ds: xr.Dataset, dim: str, index: int, count: int) -> xr.Dataset:
-    """Record in ``ds`` which chunk of the map it holds (rows of ``dim``)."""
-    if dim not in ds.dims:
-        raise ValueError(f"chunk dimension {dim!r} is not a dimension of the dataset")
-    ds.attrs.update({"chunk_dim": dim, "chunk_index": int(index), "chunk_count": int(count)})
+def mark_chunk(ds: xr.Dataset, index: int, count: int) -> xr.Dataset:
+    """Record in ``ds`` which chunk of the map it holds: rows of its first dimension."""
+    ds.attrs.update(
+        {"chunk_dim": next(iter(ds.sizes)), "chunk_index": int(index), "chunk_count": int(count)}
+    )
     return ds
 
 

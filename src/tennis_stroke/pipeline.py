@@ -54,9 +54,14 @@ def logged(log_path: str | Path) -> Iterator[None]:
     raise SystemExit(1)
 
 
+def _chunk_of(wildcards) -> tuple[int, int]:
+    """Index and count of this job's chunk (wildcards ``chunk`` of ``chunks``)."""
+    return int(wildcards.chunk), int(wildcards.chunks)
+
+
 def chunk(values: np.ndarray, wildcards) -> np.ndarray:
     """The rows of ``values`` that this job computes (wildcards ``chunk`` of ``chunks``)."""
-    return chunk_rows(values, int(wildcards.chunk), int(wildcards.chunks))
+    return chunk_rows(values, *_chunk_of(wildcards))
 
 
 class Timer:
@@ -83,16 +88,15 @@ def save(
     path: str | Path,
     params,
     wall_time: float,
-    chunk_of: tuple[str, object] | None = None,
+    chunk_of=None,
 ) -> None:
     """Add the job's provenance (config hash and text, wall time) and write atomically.
 
-    ``chunk_of = (dim, wildcards)`` marks the file as chunk ``wildcards.chunk`` of
-    ``wildcards.chunks`` along ``dim`` (:func:`tennis_stroke.chunking.mark_chunk`).
+    ``chunk_of``: the job's wildcards, to mark the file as chunk ``chunk`` of ``chunks``
+    of a map (:func:`tennis_stroke.chunking.mark_chunk`).
     """
     if chunk_of is not None:
-        dim, wildcards = chunk_of
-        mark_chunk(ds, dim, int(wildcards.chunk), int(wildcards.chunks))
+        mark_chunk(ds, *_chunk_of(chunk_of))
     items = dict(params.items()) if hasattr(params, "items") else dict(params)
     ds.attrs["config_sha256_16"] = params_hash(items)
     ds.attrs["config"] = json.dumps(items, sort_keys=True, default=str)

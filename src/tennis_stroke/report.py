@@ -255,7 +255,7 @@ def build_report(
         meta=meta,
         timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
         failure_table=_failures(results).to_html(index=False, na_rep="-"),
-        max_failure_share=f"{100 * float(config.get('max_failure_share', 0.01)):g} %",
+        max_failure_share=f"{100 * float(config['max_failure_share']):g} %",
         assumptions=Path(assumptions_md).read_text() if assumptions_md else "",
         ladder_error=ladder_error,
         study_tables=study_tables,

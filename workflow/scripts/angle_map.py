@@ -9,4 +9,4 @@ with logged(snakemake.log[0]):
     model = {**p.common["model"], "L1": float(snakemake.wildcards.L1)}
     theta0 = chunk(axis(p.theta0), snakemake.wildcards)
     ds = angle_map(theta0, axis(p.delta0), model, settings(p.common), snakemake.threads)
-    save(ds, snakemake.output[0], p, clock(), chunk_of=("theta0", snakemake.wildcards))
+    save(ds, snakemake.output[0], p, clock(), chunk_of=snakemake.wildcards)

@@ -39,5 +39,4 @@ with logged(snakemake.log[0]):
             settings(p.common),
             snakemake.threads,
         )
-    dim = "C2" if isinstance(s["C2"], dict) else "delta0"
-    save(ds, snakemake.output[0], p, clock(), chunk_of=(dim, snakemake.wildcards))
+    save(ds, snakemake.output[0], p, clock(), chunk_of=snakemake.wildcards)

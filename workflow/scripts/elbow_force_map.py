@@ -26,4 +26,4 @@ with logged(snakemake.log[0]):
         settings(p.common),
         snakemake.threads,
     )
-    save(ds, snakemake.output[0], p, clock(), chunk_of=("psi_F", snakemake.wildcards))
+    save(ds, snakemake.output[0], p, clock(), chunk_of=snakemake.wildcards)
