@@ -8,7 +8,7 @@ Measures, in one run on one machine:
   reference is the compiled DOP853 at rtol = atol = 1e-12;
 * the whole ``tennis-stroke sweep`` process on that grid (start-up, cache load, netCDF);
 * ``scipy.integrate.solve_ivp`` (DOP853, events, the same phase splitting:
-  :func:`tennis_stroke.reference.solve_stroke`) on a seeded random subset of the grid, at
+  :func:`tennis_stroke.solver.reference.solve_stroke`) on a seeded random subset of the grid, at
   the loosest tolerance whose largest error on that subset is within ``--target`` km/h
   ("matched accuracy"); its per-stroke cost is a median over the subset.
 
@@ -36,7 +36,7 @@ import numba
 import numpy as np
 
 from tennis_stroke import SolverSettings, strike_batch
-from tennis_stroke.reference import solve_stroke
+from tennis_stroke.solver.reference import solve_stroke
 
 THETA0 = np.linspace(60.0, 120.0, 241)
 DELTA0 = np.linspace(0.0, 90.0, 181)

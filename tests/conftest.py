@@ -10,9 +10,9 @@ import pytest
 import xarray as xr
 import yaml
 
-from tennis_stroke._kernels import coefficient_tuple
-from tennis_stroke.dynamics import coefficients
-from tennis_stroke.params import resolve_params
+from tennis_stroke.model.dynamics import coefficients
+from tennis_stroke.model.params import resolve_params
+from tennis_stroke.solver._kernels import coefficient_tuple
 
 #: The two strokes of the paper's Fig. 4: (theta0, delta0) in degrees.
 FIG4_A = (120.0, 81.5)

@@ -12,7 +12,7 @@ from tennis_stroke.chunking import (
     gather_chunks,
     mark_chunk,
 )
-from tennis_stroke.experiments import angle_map, delay_map, elbow_force_map, mass_length_map
+from tennis_stroke.experiments.maps import angle_map, delay_map, elbow_force_map, mass_length_map
 from tennis_stroke.io import write_netcdf
 
 SETTINGS = SolverSettings()

@@ -5,7 +5,7 @@ import pytest
 import xarray as xr
 import yaml
 
-from tennis_stroke.claims import (
+from tennis_stroke.replication.claims import (
     ClaimError,
     evaluate,
     load_claims,

@@ -9,7 +9,7 @@ import sympy as sp
 from conftest import coefficient_row
 from scipy.integrate import quad, solve_ivp
 
-from tennis_stroke.dynamics import (
+from tennis_stroke.model.dynamics import (
     CF_A1,
     CF_A2,
     CF_C1,

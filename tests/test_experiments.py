@@ -3,8 +3,8 @@
 import numpy as np
 import pytest
 
-from tennis_stroke.experiments import grid, mass_length_map, refine_peak
-from tennis_stroke.stroke import SolverSettings, strike_batch
+from tennis_stroke.experiments.maps import grid, mass_length_map, refine_peak
+from tennis_stroke.solver.stroke import SolverSettings, strike_batch
 
 
 def test_grid_is_inclusive_and_exact():

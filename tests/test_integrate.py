@@ -7,8 +7,8 @@ import pytest
 from conftest import coefficient_row, coefficient_tup
 from scipy.integrate import solve_ivp
 
-from tennis_stroke.dynamics import OMEGA1, OMEGA2, rhs_angles, rhs_trig
-from tennis_stroke.integrate import (
+from tennis_stroke.model.dynamics import OMEGA1, OMEGA2, rhs_angles, rhs_trig
+from tennis_stroke.solver.integrate import (
     HISTORY_COLS,
     METHOD_IDS,
     N_STATS,

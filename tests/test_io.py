@@ -5,8 +5,8 @@ import pytest
 import xarray as xr
 
 from tennis_stroke.io import OutputError, check_writable, result_dataset, write_netcdf
-from tennis_stroke.params import resolve_params
-from tennis_stroke.stroke import SolverSettings, strike_batch
+from tennis_stroke.model.params import resolve_params
+from tennis_stroke.solver.stroke import SolverSettings, strike_batch
 
 
 def _dataset():

@@ -5,7 +5,7 @@ import math
 import numpy as np
 import pytest
 
-from tennis_stroke.params import (
+from tennis_stroke.model.params import (
     PARAMETERS,
     READINGS,
     ParameterError,

@@ -4,7 +4,8 @@ the impact model and the work-precision table."""
 import numpy as np
 import pytest
 
-from tennis_stroke.solver_study import (
+from tennis_stroke.solver.stroke import strike
+from tennis_stroke.studies.solver_study import (
     OUTCOMES,
     fixed_step_stroke,
     impact_model,
@@ -12,7 +13,6 @@ from tennis_stroke.solver_study import (
     sample_strokes,
     work_precision,
 )
-from tennis_stroke.stroke import strike
 
 
 def _outcome(method, setting, k):
@@ -55,8 +55,8 @@ def test_fixed_step_rk4_converges_to_the_compiled_stroke():
 def test_impact_model_is_close_to_but_not_the_spring_contact():
     s = sample_strokes(6, seed=5)
     params = {k: s[k] for k in ("L1", "M2", "C2", "tau")}
-    from tennis_stroke.solver_study import REFERENCE
-    from tennis_stroke.stroke import strike_batch
+    from tennis_stroke.solver.stroke import strike_batch
+    from tennis_stroke.studies.solver_study import REFERENCE
 
     full = strike_batch(s["theta0"], s["delta0"], params, REFERENCE)["v_out_kmh"]
     err = np.abs(impact_model(s["theta0"], s["delta0"], params) - full)

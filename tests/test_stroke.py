@@ -8,10 +8,10 @@ import pytest
 from conftest import FIG4_A, FIG4_B, coefficient_tup
 
 from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
-from tennis_stroke.dynamics import effective_mass, hit_offset
-from tennis_stroke.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
-from tennis_stroke.reference import solve_stroke
-from tennis_stroke.stroke import S_RTOL, run_phases
+from tennis_stroke.model.dynamics import effective_mass, hit_offset
+from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
+from tennis_stroke.solver.reference import solve_stroke
+from tennis_stroke.solver.stroke import S_RTOL, run_phases
 
 TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
 

@@ -19,7 +19,7 @@ from conftest import (
     workdir,
 )
 
-from tennis_stroke.claims import COLUMNS
+from tennis_stroke.replication.claims import COLUMNS
 
 TINY = {
     "angle_maps": {

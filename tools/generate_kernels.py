@@ -1,9 +1,9 @@
-"""Generate ``src/tennis_stroke/_kernels.py``: unrolled Runge-Kutta kernels from tableau data.
+"""Generate ``src/tennis_stroke/solver/_kernels.py``: unrolled Runge-Kutta kernels from tableaux.
 
 The Butcher tableaux of Dormand-Prince 5(4) and 8(5,3) (scipy's ``RK45`` and ``DOP853``
 classes carry the published coefficients) are written out as straight-line code on
 tuples, one set of functions per method and phase (free swing: 8 integrated components;
-contact: 10), all calling :func:`tennis_stroke.dynamics.rhs_trig`.  States are tuples, not
+contact: 10), all calling :func:`tennis_stroke.model.dynamics.rhs_trig`.  States are tuples, not
 arrays, so numba passes them by value (no reference counting per call) and LLVM keeps
 them in registers; zero coefficients disappear.  This makes a step several times faster
 than loops over padded tableau arrays.  The output is committed; a test checks that it is
@@ -21,8 +21,9 @@ from pathlib import Path
 from scipy.integrate import DOP853, RK45
 
 ROOT = Path(__file__).resolve().parents[1]
-TARGET = ROOT / "src" / "tennis_stroke" / "_kernels.py"
-N_STATE = 10  # trig layout with the ball; see tennis_stroke.dynamics
+TARGET = ROOT / "src" / "tennis_stroke" / "solver" / "_kernels.py"
+DYNAMICS = ROOT / "src" / "tennis_stroke" / "model" / "dynamics.py"
+N_STATE = 10  # trig layout with the ball; see tennis_stroke.model.dynamics
 PHASES = {"swing": (8, "False"), "contact": (10, "True")}
 
 
@@ -159,7 +160,7 @@ def _dense_evals() -> list[str]:
 
 
 def render() -> str:
-    spec = importlib.util.spec_from_file_location("dynamics", TARGET.with_name("dynamics.py"))
+    spec = importlib.util.spec_from_file_location("dynamics", DYNAMICS)
     dynamics = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(dynamics)  # the layout only; not the package (it imports us)
     N_CF = dynamics.N_CF  # noqa: N806
@@ -172,7 +173,7 @@ def render() -> str:
         "",
         "from numba import njit",
         "",
-        "from .dynamics import JIT_FAST, rhs_trig",
+        "from ..model.dynamics import JIT_FAST, rhs_trig",
         "",
         "# Indexed by method id (0: DP54, 1: DOP853).",
         f"N_STAGES_BY_ID = ({RK45.n_stages}, {DOP853.n_stages})",

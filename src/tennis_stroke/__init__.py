@@ -8,7 +8,7 @@ Public API
     Method and tolerances of the compiled solver.
 :func:`resolve_params`, :data:`PARAMETERS`, :data:`READINGS`
     Model parameters with units, and the readings of the paper's ambiguities.
-:mod:`tennis_stroke.reference`
+:mod:`tennis_stroke.solver.reference`
     The independent scipy ``solve_ivp`` path on the same equations.
 """
 
@@ -16,8 +16,8 @@ from ._cache import configure_numba_cache
 
 configure_numba_cache()
 
-from .params import PARAMETERS, READINGS, ParameterError, resolve_params  # noqa: E402
-from .stroke import STATUS_NAMES, SolverSettings, strike, strike_batch  # noqa: E402
+from .model.params import PARAMETERS, READINGS, ParameterError, resolve_params  # noqa: E402
+from .solver.stroke import STATUS_NAMES, SolverSettings, strike, strike_batch  # noqa: E402
 
 __version__ = "0.1.0"
 

@@ -31,7 +31,7 @@ def _fail(message: str) -> None:
 
 
 def _parse_set(items: Sequence[str]) -> dict[str, object]:
-    from .params import parse_value
+    from .model.params import parse_value
 
     out: dict[str, object] = {}
     for item in items:
@@ -99,7 +99,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _settings(args: argparse.Namespace):
-    from .stroke import SolverSettings
+    from .solver.stroke import SolverSettings
 
     kwargs = {"method": args.method}
     if args.rtol is not None:
@@ -110,8 +110,8 @@ def _settings(args: argparse.Namespace):
 
 
 def _strike(args: argparse.Namespace) -> int:
-    from .params import resolve_params, scalar_params
-    from .stroke import strike
+    from .model.params import resolve_params, scalar_params
+    from .solver.stroke import strike
 
     overrides = _parse_set(args.set)
     params = resolve_params(overrides)
@@ -133,7 +133,7 @@ def _strike(args: argparse.Namespace) -> int:
         }
         print(json.dumps(payload, indent=2))
         return 0
-    from .stroke import RESULT_FIELDS
+    from .solver.stroke import RESULT_FIELDS
 
     print(
         f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
@@ -147,8 +147,8 @@ def _strike(args: argparse.Namespace) -> int:
 
 def _sweep(args: argparse.Namespace) -> int:
     from .io import check_writable, result_dataset, write_netcdf
-    from .params import resolve_params
-    from .stroke import strike_batch
+    from .model.params import resolve_params
+    from .solver.stroke import strike_batch
 
     theta0 = parse_range(args.theta0, "theta0")
     delta0 = parse_range(args.delta0, "delta0")
@@ -185,7 +185,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tennis-stroke`` console script."""
     args = build_parser().parse_args(argv)
     from .io import OutputError
-    from .params import ParameterError
+    from .model.params import ParameterError
 
     try:
         return _strike(args) if args.command == "strike" else _sweep(args)

@@ -3,7 +3,7 @@
 :func:`config_errors` applies the JSON schema (``workflow/schemas/config.schema.yaml``),
 then what a schema cannot say (a range's ``stop`` below its ``start``, an empty grid, a
 search range the wrong way round), then the model overrides through
-:func:`tennis_stroke.params.resolve_params`, which knows every parameter's unit and
+:func:`tennis_stroke.model.params.resolve_params`, which knows every parameter's unit and
 bounds.  The Snakefile prints the first message and exits before any job starts.
 """
 
@@ -16,7 +16,7 @@ from pathlib import Path
 import jsonschema
 import yaml
 
-from .params import ParameterError, resolve_params
+from .model.params import ParameterError, resolve_params
 
 
 def _path(parts) -> str:

@@ -22,8 +22,8 @@ import numpy as np
 import scipy
 import xarray as xr
 
-from .params import PARAMETERS, READINGS, scalar_params
-from .stroke import RESULT_FIELDS, STATUS_NAMES, SolverSettings
+from .model.params import PARAMETERS, READINGS, scalar_params
+from .solver.stroke import RESULT_FIELDS, STATUS_NAMES, SolverSettings
 
 #: Grid coordinates: name -> (units, long_name).
 COORDINATES: dict[str, tuple[str, str]] = {

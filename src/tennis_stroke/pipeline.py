@@ -15,9 +15,9 @@ import numpy as np
 import xarray as xr
 
 from .chunking import chunk_rows, mark_chunk
-from .experiments import grid
+from .experiments.maps import grid
 from .io import write_netcdf
-from .stroke import SolverSettings
+from .solver.stroke import SolverSettings
 
 
 def settings(common: Mapping[str, object]) -> SolverSettings:

@@ -7,7 +7,7 @@ from snakemake.utils import validate
 
 from tennis_stroke.chunking import chunk_count
 from tennis_stroke.config_check import config_errors, numbers_from_strings
-from tennis_stroke.experiments import grid
+from tennis_stroke.experiments.maps import grid
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
 config.update(numbers_from_strings(config))
@@ -20,13 +20,28 @@ if _errors:
     sys.exit(1)
 validate(config, "../schemas/config.schema.yaml", set_default=True)
 
-#: The package's sources that simulations run: they rerun when the solver changes (not
-#: when only the claims, figures, report or CLI code changes).
+#: The package, by layer (folders) and module; rules declare the sources they run as
+#: inputs, so an edit reruns exactly the jobs that read it (Snakemake does not see code
+#: changes in an imported package).
 PACKAGE_DIR = Path(workflow.basedir) / "src" / "tennis_stroke"
-NOT_SIMULATION = {"claims.py", "figures.py", "report.py", "cli.py", "config_check.py"}
-PACKAGE_SOURCES = sorted(
-    str(p) for p in PACKAGE_DIR.glob("*.py") if p.name not in NOT_SIMULATION
-)
+#: Top-level modules every simulation job runs: package start-up, files, chunks.
+JOB_MODULES = ("__init__.py", "_cache.py", "io.py", "pipeline.py", "chunking.py")
+
+
+def sources(*parts):
+    """Source files of the package's ``parts``: a layer folder (every module in it) or a
+    module path, as sorted absolute paths."""
+    out = set()
+    for part in parts:
+        path = PACKAGE_DIR / part
+        out.update(str(p) for p in (path.glob("*.py") if path.is_dir() else [path]))
+    return sorted(out)
+
+
+#: What a simulation runs: the model, the solver and the experiments.
+SIMULATION_SOURCES = sources("model", "solver", "experiments", *JOB_MODULES)
+#: What a solver study runs: the same and the studies.
+STUDY_SOURCES = sources("model", "solver", "experiments", "studies", *JOB_MODULES)
 
 
 def grid_spec(spec):

@@ -5,7 +5,7 @@
 
 rule angle_map:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/chunks/angle_maps/L1_{L1}/{chunk}-of-{chunks}.nc",
     log:
@@ -24,7 +24,7 @@ rule angle_map:
 rule gather_map:
     input:
         chunks=chunk_files,
-        code=[str(PACKAGE_DIR / "chunking.py"), str(PACKAGE_DIR / "failures.py")],
+        code=sources("chunking.py", "failures.py", "io.py", "pipeline.py"),
     output:
         "results/{map}.nc",
     log:
@@ -39,7 +39,7 @@ rule gather_map:
 
 rule fig4_strokes:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/strokes/fig4.nc",
     log:
@@ -59,7 +59,7 @@ rule fig4_strokes:
 
 rule mass_length:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/chunks/mass_length/map/{chunk}-of-{chunks}.nc",
     log:
@@ -81,7 +81,7 @@ rule mass_length:
 
 rule delay_map:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/chunks/torque_delay/{fig}/{chunk}-of-{chunks}.nc",
     log:
@@ -104,7 +104,7 @@ rule delay_map:
 
 rule delay_strokes:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/strokes/delay.nc",
     log:
@@ -122,7 +122,7 @@ rule delay_strokes:
 
 rule elbow_force_map:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/chunks/elbow_force/map/{chunk}-of-{chunks}.nc",
     log:
@@ -142,7 +142,7 @@ rule elbow_force_map:
 
 rule elbow_force_strokes:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/strokes/elbow_force.nc",
     log:
@@ -161,7 +161,7 @@ rule elbow_force_strokes:
 
 rule identification:
     input:
-        PACKAGE_SOURCES,
+        SIMULATION_SOURCES,
     output:
         "results/identification/readings.csv",
     log:
@@ -177,7 +177,7 @@ rule identification:
 
 rule work_precision:
     input:
-        PACKAGE_SOURCES,
+        STUDY_SOURCES,
     output:
         "results/solver_study/work_precision.nc",
     log:
@@ -194,7 +194,7 @@ rule work_precision:
 
 rule stability:
     input:
-        PACKAGE_SOURCES,
+        STUDY_SOURCES,
     output:
         "results/solver_study/stability.nc",
     log:
@@ -211,7 +211,7 @@ rule stability:
 
 rule model_ladder:
     input:
-        PACKAGE_SOURCES,
+        STUDY_SOURCES,
     output:
         ladder="results/solver_study/ladder.nc",
         optimum="results/solver_study/optimum_cost.nc",

@@ -4,7 +4,7 @@
 rule figure:
     input:
         figure_inputs,
-        str(PACKAGE_DIR / "figures.py"),
+        sources("replication/figures.py", "replication/claims.py"),
     output:
         report(
             "results/figures/{name}.png",

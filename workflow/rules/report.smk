@@ -18,7 +18,7 @@ rule claims:
     input:
         **CLAIM_FILES,
         claims="config/claims.yaml",
-        code=str(PACKAGE_DIR / "claims.py"),
+        code=sources("replication/claims.py"),
     output:
         report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
     log:
@@ -35,7 +35,7 @@ rule report:
         claims="results/claims.csv",
         readings="results/identification/readings.csv",
         results=list(CLAIM_FILES.values()),
-        code=str(PACKAGE_DIR / "report.py"),
+        code=sources("replication/report.py"),
         assumptions=str(Path(workflow.basedir) / "docs" / "assumptions.md"),
         studies=[
             "results/solver_study/ladder.nc",

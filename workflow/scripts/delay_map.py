@@ -3,7 +3,7 @@ one chunk of rows of C2 or delta0."""
 
 import numpy as np
 
-from tennis_stroke.experiments import delay_map
+from tennis_stroke.experiments.maps import delay_map
 from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
 
 p = snakemake.params

@@ -1,7 +1,7 @@
 """Fig. 13: v_out over the direction and delay of the extra elbow force (Eq. 14),
 one chunk of psi_F rows."""
 
-from tennis_stroke.experiments import elbow_force_map
+from tennis_stroke.experiments.maps import elbow_force_map
 from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
 
 p = snakemake.params

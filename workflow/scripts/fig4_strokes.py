@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from tennis_stroke.experiments import trajectories
+from tennis_stroke.experiments.maps import trajectories
 from tennis_stroke.pipeline import Timer, logged, save, settings
 
 p = snakemake.params

@@ -1,7 +1,7 @@
 """Draw one figure from its result files."""
 
-from tennis_stroke.figures import draw
 from tennis_stroke.pipeline import logged
+from tennis_stroke.replication.figures import draw
 
 with logged(snakemake.log[0]):
     data = [p for p in snakemake.input if p.endswith(".nc")]

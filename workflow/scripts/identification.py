@@ -1,6 +1,6 @@
 """Assumption ledger: score every candidate reading against Fig. 4."""
 
-from tennis_stroke.identification import score_readings
+from tennis_stroke.experiments.identification import score_readings
 from tennis_stroke.pipeline import logged, settings
 
 with logged(snakemake.log[0]):

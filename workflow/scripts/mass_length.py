@@ -1,7 +1,7 @@
 """Figs. 5-6: the fastest rebound over the initial angles at every (M2, L1), one chunk
 of M2 rows."""
 
-from tennis_stroke.experiments import mass_length_map
+from tennis_stroke.experiments.maps import mass_length_map
 from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
 
 p = snakemake.params

@@ -1,7 +1,7 @@
 """Build report/index.html from the figures, claims, ledger and run metadata."""
 
 from tennis_stroke.pipeline import logged
-from tennis_stroke.report import build_report
+from tennis_stroke.replication.report import build_report
 
 with logged(snakemake.log[0]):
     build_report(

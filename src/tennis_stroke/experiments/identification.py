@@ -5,7 +5,7 @@ forearm angles at contact, the angular velocities at contact and the rebound spe
 Every combination of candidate readings (moments of inertia, contact lead, collision
 coupling, spring constant, and the instant at which omega and theta are quoted) is
 simulated and scored against those ten numbers with the project's declared tolerances.
-The defaults of :data:`tennis_stroke.params.READINGS` are the best-scoring combination;
+The defaults of :data:`tennis_stroke.model.params.READINGS` are the best-scoring combination;
 ``docs/assumptions.md`` shows the table.
 
 Because these numbers choose the readings, they cannot also confirm them: the claims
@@ -19,7 +19,7 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from .stroke import SolverSettings, strike
+from ..solver.stroke import SolverSettings, strike
 
 
 @dataclass(frozen=True)
@@ -125,7 +125,8 @@ def paper_row() -> dict[str, float]:
 
 
 def main() -> None:
-    """Print the best-scoring combinations (``python -m tennis_stroke.identification``)."""
+    """Print the best-scoring combinations (``python -m
+    tennis_stroke.experiments.identification``)."""
     table = score_readings()
     columns = [*CANDIDATES, "passed", "score", *paper_row()]
     print(f"paper: {paper_row()}")

@@ -4,7 +4,7 @@ import math
 
 from numba import njit
 
-from .dynamics import JIT_FAST, rhs_trig
+from ..model.dynamics import JIT_FAST, rhs_trig
 
 # Indexed by method id (0: DP54, 1: DOP853).
 N_STAGES_BY_ID = (6, 12)

@@ -22,8 +22,9 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import solve_ivp
 
-from ._kernels import coefficient_tuple
-from .dynamics import (
+from ..experiments.maps import mass_length_map
+from ..io import provenance
+from ..model.dynamics import (
     A_BALL_S,
     A_BALL_W,
     A_OMEGA1,
@@ -46,12 +47,11 @@ from .dynamics import (
     mechanical_energy,
     rhs_angles,
 )
-from .experiments import mass_length_map
-from .integrate import HISTORY_COLS, METHOD_IDS, N_STATS
-from .io import provenance
-from .params import resolve_params
-from .reference import solve_stroke
-from .stroke import (
+from ..model.params import resolve_params
+from ..solver._kernels import coefficient_tuple
+from ..solver.integrate import HISTORY_COLS, METHOD_IDS, N_STATS
+from ..solver.reference import solve_stroke
+from ..solver.stroke import (
     MS_TO_KMH,
     S_CONTACT_STEPS,
     SolverSettings,
@@ -534,7 +534,7 @@ def optimum_cost(
     """Accuracy of the nested optimum of Figs. 5-6 against its cost.
 
     For each ``(coarse, fine)`` step pair the optimum at every ``(M2, L1)`` point is found
-    as in :func:`tennis_stroke.experiments.mass_length_map`; the reference is the same
+    as in :func:`tennis_stroke.experiments.maps.mass_length_map`; the reference is the same
     search with a ``reference_step`` fine grid around a 1-degree coarse one.  Errors are the
     largest over the points.
     """

@@ -261,7 +261,8 @@ def evaluate(claims: list[dict], files: Mapping[str, str | Path]) -> pd.DataFram
 
 
 def main(argv: list[str] | None = None) -> int:
-    """``python -m tennis_stroke.claims results/claims.csv``: exit 1 if a claim failed."""
+    """``python -m tennis_stroke.replication.claims results/claims.csv``: exit 1 if a claim
+    failed."""
     import sys
 
     args = sys.argv[1:] if argv is None else argv

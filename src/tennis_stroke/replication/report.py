@@ -18,11 +18,11 @@ import jinja2
 import pandas as pd
 import xarray as xr
 
-from . import __version__
-from .failures import failure_counts
-from .identification import CANDIDATES, paper_row
-from .io import git_commit
-from .params import READINGS
+from .. import __version__
+from ..experiments.identification import CANDIDATES, paper_row
+from ..failures import failure_counts
+from ..io import git_commit
+from ..model.params import READINGS
 
 #: What the paper says about each figure (quoted or closely paraphrased).
 STATEMENTS = {

@@ -1,7 +1,7 @@
 """The independent path: the same stroke with :func:`scipy.integrate.solve_ivp`.
 
-It shares only the physics (:func:`tennis_stroke.dynamics.rhs_angles`, which evaluates
-:func:`~tennis_stroke.dynamics.rhs_trig`) with the compiled path; state layout (angles
+It shares only the physics (:func:`tennis_stroke.model.dynamics.rhs_angles`, which evaluates
+:func:`~tennis_stroke.model.dynamics.rhs_trig`) with the compiled path; state layout (angles
 instead of sines and cosines), integrator, event location and restart at the contact
 start are scipy's.  The phase splitting is the same (torque switches, ``phi = 0``,
 contact start, separation), so the two paths can be compared stroke by stroke.  It is
@@ -17,7 +17,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from .dynamics import (
+from ..model.dynamics import (
     A_BALL_S,
     A_BALL_W,
     A_OMEGA1,
@@ -35,7 +35,7 @@ from .dynamics import (
     hit_offset,
     rhs_angles,
 )
-from .params import resolve_params
+from ..model.params import resolve_params
 from .stroke import (
     EARLY_CONTACT,
     MS_TO_KMH,

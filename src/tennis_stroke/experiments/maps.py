@@ -1,7 +1,7 @@
 """The paper's experiments as functions of plain parameters, each returning a dataset.
 
 Every function takes model overrides (``params``: scalars and readings), solver settings
-and a thread count, runs strokes through :func:`tennis_stroke.stroke.strike_batch` (or the
+and a thread count, runs strokes through :func:`tennis_stroke.solver.stroke.strike_batch` (or the
 reference path for the few trajectories that figures draw) and returns an
 :class:`xarray.Dataset` with CF metadata (:func:`tennis_stroke.io.result_dataset`).  The
 workflow scripts only call these and write the files.
@@ -18,11 +18,11 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from .dynamics import coefficients, elbow_position
-from .io import result_dataset
-from .params import resolve_params
-from .reference import free_swing, solve_stroke
-from .stroke import SolverSettings, strike, strike_batch
+from ..io import result_dataset
+from ..model.dynamics import coefficients, elbow_position
+from ..model.params import resolve_params
+from ..solver.reference import free_swing, solve_stroke
+from ..solver.stroke import SolverSettings, strike, strike_batch
 
 KMH = ("km/h", "rebound speed of the ball towards -x")
 

@@ -8,7 +8,7 @@ Two methods, both explicit, adaptive, with local extrapolation and scipy's error
   & Wanner, *Solving ODEs I*, Sec. II.10.
 
 The tableaux are data (scipy's ``RK45``/``DOP853`` coefficients), turned into
-straight-line kernels by ``tools/generate_kernels.py`` (:mod:`tennis_stroke._kernels`).
+straight-line kernels by ``tools/generate_kernels.py`` (:mod:`tennis_stroke.solver._kernels`).
 This module holds the dispatch to those kernels, the step-size controller and event
 location.  Methods and phases are runtime integers, not closures: numba caches
 module-level functions on disk, but recompiles closures in every new process.
@@ -30,8 +30,8 @@ import math
 import numpy as np
 from numba import njit
 
+from ..model.dynamics import BALL_S, JIT, N_CONTACT, OMEGA2, PHI, SIN_PH, SIN_TH, hit_offset
 from . import _kernels
-from .dynamics import BALL_S, JIT, N_CONTACT, OMEGA2, PHI, SIN_PH, SIN_TH, hit_offset
 
 #: Step-size controller constants (Hairer & Wanner; scipy uses the same).
 SAFETY = 0.9

@@ -26,8 +26,7 @@ import numba
 import numpy as np
 from numba import njit, prange
 
-from ._kernels import N_STAGES_BY_ID, coefficient_tuple
-from .dynamics import (
+from ..model.dynamics import (
     BALL_W,
     CF_C2,
     CF_C2_OFF,
@@ -52,6 +51,8 @@ from .dynamics import (
     hit_offset,
     rhs_trig,
 )
+from ..model.params import ParameterError, resolve_params
+from ._kernels import N_STAGES_BY_ID, coefficient_tuple
 from .integrate import (
     HISTORY_COLS,
     METHOD_IDS,
@@ -68,7 +69,6 @@ from .integrate import (
     peak_omega2,
     rk_step,
 )
-from .params import ParameterError, resolve_params
 
 MS_TO_KMH = 3.6
 
@@ -362,7 +362,7 @@ def solve_coefficients(
     Parameters
     ----------
     cf_rows : ndarray, shape (n, N_CF)
-        From :func:`tennis_stroke.dynamics.coefficients`.
+        From :func:`tennis_stroke.model.dynamics.coefficients`.
     settings : SolverSettings, optional
     threads : int, optional
         Threads to use (default: numba's default, all cores).
@@ -418,7 +418,7 @@ def strike_batch(
         Initial angles ``theta(0)`` and ``delta(0) = phi(0) - theta(0)`` (degrees).
     params : mapping, optional
         Parameter overrides (scalars or arrays) and readings; see
-        :func:`tennis_stroke.params.resolve_params`.
+        :func:`tennis_stroke.model.params.resolve_params`.
     settings : SolverSettings, optional
     threads : int, optional
     progress : bool

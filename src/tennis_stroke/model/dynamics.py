@@ -100,7 +100,7 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
     Parameters
     ----------
     params : mapping
-        Output of :func:`tennis_stroke.params.resolve_params` (scalars or arrays).
+        Output of :func:`tennis_stroke.model.params.resolve_params` (scalars or arrays).
     theta0_deg, delta0_deg : array_like
         Initial angles ``theta(0)`` and ``delta(0) = phi(0) - theta(0)`` (degrees).
 
