@@ -7,9 +7,9 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-import xarray as xr
 import yaml
 
+from tennis_stroke.io import result_differences
 from tennis_stroke.model.dynamics import coefficients
 from tennis_stroke.model.params import resolve_params
 from tennis_stroke.solver._kernels import coefficient_tuple
@@ -62,41 +62,11 @@ def run_snakemake(targets, workdir, *options, timeout=300):
     return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
 
 
-#: Global attributes that differ between two runs of the same job, and only those: when
-#: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
-#: model ladder's two models).
-RUN_ATTRS = (
-    "history",
-    "wall_time_s",
-    "chunk_wall_times_s",
-    "us_per_stroke_spring",
-    "us_per_stroke_impact_python",
-)
-
-
-def _dataset(source) -> xr.Dataset:
-    if isinstance(source, xr.Dataset):
-        return source
-    with xr.open_dataset(source) as ds:
-        return ds.load()
-
-
 def assert_same_results(a, b, also_differ=()):
-    """Two results (datasets or netCDF paths) are the same: every data variable and
-    coordinate bit for bit (values, dtype, dimensions, attributes), except wall-clock
-    measurements (variables with a ``timing`` attribute), and every global attribute
-    (configuration, parameters, versions, commit) except :data:`RUN_ATTRS` and
-    ``also_differ``."""
-    a, b = _dataset(a), _dataset(b)
-    assert set(a.variables) == set(b.variables)
-    for name in a.variables:
-        if "timing" in a[name].attrs:
-            continue
-        np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name, strict=True)
-        xr.testing.assert_identical(a[name].variable, b[name].variable)
-    differ = {*RUN_ATTRS, *also_differ}
-    kept = [{k: v for k, v in d.attrs.items() if k not in differ} for d in (a, b)]
-    xr.testing.assert_identical(xr.Dataset(attrs=kept[0]), xr.Dataset(attrs=kept[1]))
+    """Two results (datasets or netCDF paths) are the same
+    (:func:`tennis_stroke.io.result_differences`)."""
+    problems = result_differences(a, b, also_differ)
+    assert not problems, "; ".join(problems)
 
 
 def workdir(parent, config):

@@ -1,7 +1,7 @@
 """Result files: xarray datasets with CF attributes and provenance, written atomically.
 
 Every variable and coordinate gets ``units`` and ``long_name`` from one table
-(:data:`tennis_stroke.stroke.RESULT_FIELDS` for stroke results, :data:`COORDINATES` for
+(:data:`tennis_stroke.solver.stroke.RESULT_FIELDS` for stroke results, :data:`COORDINATES` for
 the grid axes).  Global attributes record the resolved parameters, the readings, the
 solver settings, the package version and the git commit.  Files are written under a
 temporary name and renamed, so a final name never holds a truncated file.
@@ -13,7 +13,7 @@ import os
 import platform
 import subprocess
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from datetime import UTC, datetime
 from pathlib import Path
 
@@ -32,6 +32,19 @@ COORDINATES: dict[str, tuple[str, str]] = {
 }
 #: File name of a result variable when it differs from the result field name.
 VARIABLE_NAMES = {"v_out_kmh": "v_out"}
+
+
+#: Global attributes that differ between two runs of the same job, and only those: when
+#: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
+#: model ladder's two models).  Variables holding wall-clock measurements carry a
+#: ``timing`` attribute instead.
+RUN_ATTRS = (
+    "history",
+    "wall_time_s",
+    "chunk_wall_times_s",
+    "us_per_stroke_spring",
+    "us_per_stroke_impact_python",
+)
 
 
 class OutputError(OSError):
@@ -173,3 +186,49 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
         Path(tmp).unlink(missing_ok=True)
         raise
     return path
+
+
+def _loaded(source) -> xr.Dataset:
+    if isinstance(source, xr.Dataset):
+        return source
+    with xr.open_dataset(source) as ds:
+        return ds.load()
+
+
+def result_differences(a, b, also_differ: Sequence[str] = ()) -> list[str]:
+    """How two results (datasets or netCDF paths) differ; empty when they are the same.
+
+    The same means: every data variable and coordinate bit for bit (values, dtype,
+    dimensions, attributes), except wall-clock measurements (variables with a ``timing``
+    attribute), and every global attribute (configuration, parameters, versions, commit)
+    except :data:`RUN_ATTRS` and ``also_differ``.
+    """
+    a, b = _loaded(a), _loaded(b)
+    problems = []
+    if set(a.variables) != set(b.variables):
+        only = sorted(set(a.variables) ^ set(b.variables))
+        problems.append(f"variables in one file only: {', '.join(map(str, only))}")
+    for name in sorted(set(a.variables) & set(b.variables), key=str):
+        if "timing" in a[name].attrs:
+            continue
+        va, vb = a[name].variable, b[name].variable
+        if va.dtype != vb.dtype or not _same_value(va.values, vb.values):
+            problems.append(f"variable {name}: values or dtype differ")
+        elif not va.identical(vb):
+            problems.append(f"variable {name}: dimensions or attributes differ")
+    differ = {*RUN_ATTRS, *also_differ}
+    for key in sorted(set(a.attrs) | set(b.attrs)):
+        if key in differ:
+            continue
+        if key not in a.attrs or key not in b.attrs:
+            problems.append(f"global attribute {key}: in one file only")
+        elif not _same_value(a.attrs[key], b.attrs[key]):
+            problems.append(f"global attribute {key}: differs")
+    return problems
+
+
+def _same_value(x, y) -> bool:
+    """Attribute values equal (NaN equals NaN in numbers)."""
+    x, y = np.asarray(x), np.asarray(y)
+    numeric = x.dtype.kind in "fc" and y.dtype.kind in "fc"
+    return x.shape == y.shape and bool(np.array_equal(x, y, equal_nan=numeric))

@@ -1,0 +1,65 @@
+"""Compare two ``results/`` folders file by file: are they the same results?
+
+Usage: ``python tools/compare_results.py OLD_RESULTS NEW_RESULTS [--also-differ ATTR ...]``
+
+netCDF files: every data variable and coordinate bit for bit (values, dtype, dimensions,
+attributes), except wall-clock measurements (variables with a ``timing`` attribute), and
+every global attribute except those that differ between two runs of one job
+(:data:`tennis_stroke.io.RUN_ATTRS`) and ``--also-differ`` (e.g. ``git_commit`` across
+commits).  CSV files: equal cell for cell.  PNG figures are not compared (matplotlib
+output is not a result).  Prints one line per file and exits 1 if any differs or is
+missing on one side.
+"""
+
+from __future__ import annotations
+
+import argparse
+import sys
+from pathlib import Path
+
+import pandas as pd
+
+from tennis_stroke.io import result_differences
+
+
+def compare(old: Path, new: Path, also_differ: list[str]) -> int:
+    names = sorted(
+        {str(p.relative_to(root)) for root in (old, new) for p in root.rglob("*") if p.is_file()}
+    )
+    bad = 0
+    for name in names:
+        if name.endswith(".png"):
+            continue
+        a, b = old / name, new / name
+        if not (a.exists() and b.exists()):
+            print(f"MISSING {name}: only in {'old' if a.exists() else 'new'}")
+            bad += 1
+            continue
+        if name.endswith(".nc"):
+            problems = result_differences(a, b, also_differ)
+        elif name.endswith(".csv"):
+            same = pd.read_csv(a, keep_default_na=False).equals(
+                pd.read_csv(b, keep_default_na=False)
+            )
+            problems = [] if same else ["tables differ"]
+        else:
+            problems = [] if a.read_bytes() == b.read_bytes() else ["bytes differ"]
+        print(f"{'same' if not problems else 'DIFFERS'} {name}")
+        for problem in problems:
+            print(f"    {problem}")
+        bad += bool(problems)
+    print(f"{bad} of {len([n for n in names if not n.endswith('.png')])} files differ")
+    return 1 if bad else 0
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("old", type=Path)
+    parser.add_argument("new", type=Path)
+    parser.add_argument("--also-differ", nargs="*", default=[], metavar="ATTR")
+    args = parser.parse_args()
+    return compare(args.old, args.new, args.also_differ)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
