@@ -19,7 +19,7 @@ $(STAMP): pyproject.toml
 ## when a claim marked `reproduce` in config/claims.yaml fails.
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(JOBS) report
-	$(BIN)/python -m tennis_stroke.replication.claims results/claims.csv
+	$(BIN)/tennis-stroke claims results/claims.csv
 
 ## The test suite (includes a tiny end-to-end workflow run).
 test: $(STAMP)

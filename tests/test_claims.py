@@ -7,11 +7,11 @@ import yaml
 
 from tennis_stroke.replication.claims import (
     ClaimError,
+    check,
     evaluate,
     load_claims,
-    main,
-    measure_delay_threshold,
 )
+from tennis_stroke.replication.measures import measure_delay_threshold
 
 
 def _write(tmp_path, claims):
@@ -71,9 +71,9 @@ def test_statuses(tmp_path):
     assert list(table["status"]) == ["pass", "fail", "known_deviation"]
     csv = tmp_path / "claims.csv"
     table.to_csv(csv, index=False)
-    assert main([str(csv)]) == 1
+    assert check(csv) == 1
     table[table.status != "fail"].to_csv(csv, index=False)
-    assert main([str(csv)]) == 0
+    assert check(csv) == 0
 
 
 def test_delay_threshold_on_a_synthetic_map():

@@ -204,3 +204,29 @@ def test_console_script_runs_as_a_process(tmp_path):
     assert done.returncode == 2
     assert done.stderr.strip() == "tennis-stroke: error: parameter 'M2' must be > 0 kg, got -3"
     assert "Traceback" not in done.stderr
+
+
+def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
+    table = tmp_path / "claims.csv"
+    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,False\n"
+    header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
+    header += "expectation,reason,identification\n"
+    table.write_text(header + row.format(value=1.5, status="fail"))
+    assert main(["claims", str(table)]) == 1
+    assert "FAIL x" in capsys.readouterr().out
+    table.write_text(header + row.format(value=1.05, status="pass"))
+    assert main(["claims", str(table)]) == 0
+
+
+def test_claims_command_without_a_table_is_one_line(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["claims", str(tmp_path / "none.csv")])
+    assert exc.value.code == 2
+    err = capsys.readouterr().err
+    assert err.count("\n") == 1 and "does not exist" in err
+
+
+def test_identify_prints_the_best_readings(capsys):
+    assert main(["identify", "--rows", "2"]) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith("paper:") and len(out) == 4  # paper, header, two rows

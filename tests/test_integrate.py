@@ -10,9 +10,7 @@ from scipy.integrate import solve_ivp
 from tennis_stroke.model.dynamics import OMEGA1, OMEGA2, rhs_angles, rhs_trig
 from tennis_stroke.solver.integrate import (
     HISTORY_COLS,
-    METHOD_IDS,
     N_STATS,
-    ORDERS,
     PHASE_END,
     PHASE_FAIL,
     dense_coefficients,
@@ -21,6 +19,7 @@ from tennis_stroke.solver.integrate import (
     peak_omega2,
     rk_step,
 )
+from tennis_stroke.solver.settings import METHOD_IDS, ORDERS
 
 T_END = 0.15
 

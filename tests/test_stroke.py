@@ -11,7 +11,8 @@ from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
 from tennis_stroke.model.dynamics import effective_mass, hit_offset
 from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
 from tennis_stroke.solver.reference import solve_stroke
-from tennis_stroke.solver.stroke import S_RTOL, run_phases
+from tennis_stroke.solver.settings import S_RTOL
+from tennis_stroke.solver.stroke import run_phases
 
 TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
 

@@ -13,13 +13,14 @@ Public API
 """
 
 from ._cache import configure_numba_cache
+from ._version import __version__
 
 configure_numba_cache()
 
 from .model.params import PARAMETERS, READINGS, ParameterError, resolve_params  # noqa: E402
-from .solver.stroke import STATUS_NAMES, SolverSettings, strike, strike_batch  # noqa: E402
-
-__version__ = "0.1.0"
+from .solver.results import STATUS_NAMES  # noqa: E402
+from .solver.settings import SolverSettings  # noqa: E402
+from .solver.stroke import strike, strike_batch  # noqa: E402
 
 __all__ = [
     "PARAMETERS",

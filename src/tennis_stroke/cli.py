@@ -1,4 +1,6 @@
-"""The ``tennis-stroke`` command: one stroke (``strike``) or a grid of strokes (``sweep``).
+"""The ``tennis-stroke`` command: one stroke (``strike``), a grid of strokes (``sweep``),
+the check of the claims table (``claims``), the readings scored against Fig. 4
+(``identify``).
 
 Bad input ends with one line ``tennis-stroke: error: ...`` on stderr and exit status 2,
 before any output file is created.
@@ -95,11 +97,19 @@ def build_parser() -> argparse.ArgumentParser:
     sweep.add_argument("--threads", type=int, default=None, help="threads (default: all)")
     sweep.add_argument("--no-progress", action="store_true", help="no progress bar")
     common(sweep)
+
+    claims = sub.add_parser(
+        "claims", help="check a claims table: exit 1 if a claim marked reproduce failed"
+    )
+    claims.add_argument("csv", nargs="?", default="results/claims.csv", metavar="CLAIMS.csv")
+
+    identify = sub.add_parser("identify", help="score the readings of the paper against Fig. 4")
+    identify.add_argument("--rows", type=int, default=10, help="best combinations to print")
     return parser
 
 
 def _settings(args: argparse.Namespace):
-    from .solver.stroke import SolverSettings
+    from .solver.settings import SolverSettings
 
     kwargs = {"method": args.method}
     if args.rtol is not None:
@@ -133,7 +143,7 @@ def _strike(args: argparse.Namespace) -> int:
         }
         print(json.dumps(payload, indent=2))
         return 0
-    from .solver.stroke import RESULT_FIELDS
+    from .solver.results import RESULT_FIELDS
 
     print(
         f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
@@ -181,14 +191,34 @@ def _sweep(args: argparse.Namespace) -> int:
     return 0
 
 
+def _claims(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    from .replication.claims import check
+
+    if not Path(args.csv).is_file():
+        raise ValueError(f"claims table {args.csv!r} does not exist (run the workflow first)")
+    return check(args.csv)
+
+
+def _identify(args: argparse.Namespace) -> int:
+    from .experiments.identification import best_readings
+
+    if args.rows < 1:
+        raise ValueError(f"--rows must be >= 1, got {args.rows}")
+    print(best_readings(rows=args.rows))
+    return 0
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tennis-stroke`` console script."""
     args = build_parser().parse_args(argv)
     from .io import OutputError
     from .model.params import ParameterError
 
+    commands = {"strike": _strike, "sweep": _sweep, "claims": _claims, "identify": _identify}
     try:
-        return _strike(args) if args.command == "strike" else _sweep(args)
+        return commands[args.command](args)
     except (ParameterError, OutputError, ValueError) as exc:
         _fail(str(exc))
     return EXIT_USAGE

@@ -16,7 +16,7 @@ from __future__ import annotations
 import numpy as np
 import xarray as xr
 
-from .solver.stroke import STATUS_NAMES
+from .solver.results import STATUS_NAMES
 
 
 class FailureShareError(RuntimeError):

@@ -22,8 +22,10 @@ import numpy as np
 import scipy
 import xarray as xr
 
+from ._version import __version__
 from .model.params import PARAMETERS, READINGS, scalar_params
-from .solver.stroke import RESULT_FIELDS, STATUS_NAMES, SolverSettings
+from .solver.results import RESULT_FIELDS, STATUS_NAMES
+from .solver.settings import SolverSettings
 
 #: Grid coordinates: name -> (units, long_name).
 COORDINATES: dict[str, tuple[str, str]] = {
@@ -77,8 +79,6 @@ def git_commit() -> str:
 
 def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[str, object]:
     """Global attributes: parameters (``param_*`` with units), readings, solver, versions."""
-    from . import __version__
-
     attrs: dict[str, object] = {
         "Conventions": "CF-1.10",
         "title": "Youn double-pendulum tennis stroke with ball collision",

@@ -1,4 +1,9 @@
-"""Support for the workflow's thin scripts: settings, chunks, logging, provenance."""
+"""Support for the workflow's thin scripts: settings, chunks, logging, provenance.
+
+A script reads ``snakemake.params`` and ``snakemake.wildcards``, makes one package call
+and saves its result with :func:`save`; :func:`logged` turns any exception into one
+line on stderr and the traceback in the job's log.
+"""
 
 from __future__ import annotations
 
@@ -15,21 +20,13 @@ import numpy as np
 import xarray as xr
 
 from .chunking import chunk_rows, mark_chunk
-from .experiments.maps import grid
 from .io import write_netcdf
-from .solver.stroke import SolverSettings
+from .solver.settings import SolverSettings
 
 
 def settings(common: Mapping[str, object]) -> SolverSettings:
     """Solver settings from the ``common`` params of a rule."""
     return SolverSettings(**common["solver"])
-
-
-def axis(spec) -> np.ndarray:
-    """A ``[start, stop, step]`` params list (or a config range dict) as a grid."""
-    if isinstance(spec, Mapping):
-        spec = [spec["start"], spec["stop"], spec["step"]]
-    return grid(*map(float, spec))
 
 
 @contextlib.contextmanager
@@ -54,14 +51,14 @@ def logged(log_path: str | Path) -> Iterator[None]:
     raise SystemExit(1)
 
 
-def _chunk_of(wildcards) -> tuple[int, int]:
+def chunk_of(wildcards) -> tuple[int, int]:
     """Index and count of this job's chunk (wildcards ``chunk`` of ``chunks``)."""
     return int(wildcards.chunk), int(wildcards.chunks)
 
 
 def chunk(values: np.ndarray, wildcards) -> np.ndarray:
     """The rows of ``values`` that this job computes (wildcards ``chunk`` of ``chunks``)."""
-    return chunk_rows(values, *_chunk_of(wildcards))
+    return chunk_rows(values, *chunk_of(wildcards))
 
 
 class Timer:
@@ -96,7 +93,7 @@ def save(
     of a map (:func:`tennis_stroke.chunking.mark_chunk`).
     """
     if chunk_of is not None:
-        mark_chunk(ds, *_chunk_of(chunk_of))
+        mark_chunk(ds, *chunk_of(chunk_of))
     items = dict(params.items()) if hasattr(params, "items") else dict(params)
     ds.attrs["config_sha256_16"] = params_hash(items)
     ds.attrs["config"] = json.dumps(items, sort_keys=True, default=str)

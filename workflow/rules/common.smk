@@ -7,7 +7,8 @@ from snakemake.utils import validate
 
 from tennis_stroke.chunking import chunk_count
 from tennis_stroke.config_check import config_errors, numbers_from_strings
-from tennis_stroke.experiments.maps import grid
+from tennis_stroke.experiments.grids import grid
+from tennis_stroke.replication.registry import FIGURES, PAPER_RESULTS, RESULT_FILES
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
 config.update(numbers_from_strings(config))
@@ -104,30 +105,17 @@ def delay_stroke():
     }
 
 
+def delay_section(wildcards):
+    """The config of one Sec. V map (fig7, fig8 or fig9) with the shared L1 and theta0."""
+    d = config["torque_delay"]
+    return {**d[wildcards.fig], "L1": d["L1"], "theta0": d["theta0"]}
+
+
 def common_params():
     """Params every simulation script needs."""
     return {"model": model(), "solver": solver()}
 
 
-FIGURES = {
-    "fig02_angle_map_L1_0.3": ["results/angle_maps/L1_0.3.nc"],
-    "fig03_angle_map_L1_0.4": ["results/angle_maps/L1_0.4.nc"],
-    "fig04_omegas": ["results/strokes/fig4.nc"],
-    "fig05_mass_length_vout": ["results/mass_length/map.nc"],
-    "fig06_mass_length_theta_c": ["results/mass_length/map.nc"],
-    "fig07_torque_delay": ["results/torque_delay/fig7.nc"],
-    "fig08_delay_delta0": ["results/torque_delay/fig8.nc"],
-    "fig09_v_tau": ["results/torque_delay/fig9.nc"],
-    "fig10_omegas_delay": ["results/strokes/delay.nc"],
-    "fig11_strobe_tau_H": ["results/strokes/delay.nc"],
-    "fig12_strobe_tau_L": ["results/strokes/delay.nc"],
-    "fig13_elbow_force": ["results/elbow_force/map.nc"],
-    "fig14_elbow_paths": ["results/strokes/elbow_force.nc"],
-    "study01_work_precision": ["results/solver_study/work_precision.nc"],
-    "study02_stability": ["results/solver_study/stability.nc"],
-    "study03_ladder": ["results/solver_study/ladder.nc"],
-}
-
-
 def figure_inputs(wildcards):
-    return FIGURES[wildcards.name]
+    """The result files a figure is drawn from (the registry)."""
+    return FIGURES[wildcards.name].inputs

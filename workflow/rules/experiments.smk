@@ -41,7 +41,7 @@ rule fig4_strokes:
     input:
         SIMULATION_SOURCES,
     output:
-        "results/strokes/fig4.nc",
+        RESULT_FILES["fig4"],
     log:
         "logs/fig4_strokes.log",
     benchmark:
@@ -93,11 +93,7 @@ rule delay_map:
     threads: 1
     params:
         common=common_params(),
-        section=lambda wc: {
-            **config["torque_delay"][wc.fig],
-            "L1": config["torque_delay"]["L1"],
-            "theta0": config["torque_delay"]["theta0"],
-        },
+        section=delay_section,
     script:
         "../scripts/delay_map.py"
 
@@ -106,7 +102,7 @@ rule delay_strokes:
     input:
         SIMULATION_SOURCES,
     output:
-        "results/strokes/delay.nc",
+        RESULT_FILES["delay"],
     log:
         "logs/delay_strokes.log",
     benchmark:
@@ -144,7 +140,7 @@ rule elbow_force_strokes:
     input:
         SIMULATION_SOURCES,
     output:
-        "results/strokes/elbow_force.nc",
+        RESULT_FILES["elbow"],
     log:
         "logs/elbow_force_strokes.log",
     benchmark:
@@ -179,7 +175,7 @@ rule work_precision:
     input:
         STUDY_SOURCES,
     output:
-        "results/solver_study/work_precision.nc",
+        RESULT_FILES["work_precision"],
     log:
         "logs/work_precision.log",
     benchmark:
@@ -196,7 +192,7 @@ rule stability:
     input:
         STUDY_SOURCES,
     output:
-        "results/solver_study/stability.nc",
+        RESULT_FILES["stability"],
     log:
         "logs/stability.log",
     benchmark:
@@ -213,8 +209,8 @@ rule model_ladder:
     input:
         STUDY_SOURCES,
     output:
-        ladder="results/solver_study/ladder.nc",
-        optimum="results/solver_study/optimum_cost.nc",
+        ladder=RESULT_FILES["ladder"],
+        optimum=RESULT_FILES["optimum_cost"],
     log:
         "logs/model_ladder.log",
     benchmark:

@@ -4,7 +4,11 @@
 rule figure:
     input:
         figure_inputs,
-        sources("replication/figures.py", "replication/claims.py"),
+        sources(
+            "replication/figures.py",
+            "replication/measures.py",
+            "replication/registry.py",
+        ),
     output:
         report(
             "results/figures/{name}.png",

@@ -1,7 +1,8 @@
 """Figs. 2-3: v_out over (theta0, delta0) for one L1 (one chunk of theta0 rows)."""
 
+from tennis_stroke.experiments.grids import axis
 from tennis_stroke.experiments.maps import angle_map
-from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
+from tennis_stroke.pipeline import Timer, chunk, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

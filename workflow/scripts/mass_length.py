@@ -1,8 +1,9 @@
 """Figs. 5-6: the fastest rebound over the initial angles at every (M2, L1), one chunk
 of M2 rows."""
 
+from tennis_stroke.experiments.grids import axis
 from tennis_stroke.experiments.maps import mass_length_map
-from tennis_stroke.pipeline import Timer, axis, chunk, logged, save, settings
+from tennis_stroke.pipeline import Timer, chunk, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

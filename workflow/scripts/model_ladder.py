@@ -1,7 +1,9 @@
 """Model ladder (spring contact vs instantaneous impact) and the optimum-search cost."""
 
 from tennis_stroke.pipeline import Timer, logged, save
-from tennis_stroke.studies.solver_study import ladder, optimum_cost, sample_strokes
+from tennis_stroke.studies.ladder import ladder
+from tennis_stroke.studies.optimum_cost import optimum_cost
+from tennis_stroke.studies.sampling import sample_strokes
 
 p = snakemake.params
 with logged(snakemake.log[0]):

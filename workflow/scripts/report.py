@@ -14,4 +14,5 @@ with logged(snakemake.log[0]):
         output=snakemake.output[0],
         assumptions_md=snakemake.input.assumptions,
         studies=list(snakemake.input.studies),
+        statements_yaml=snakemake.input.statements,
     )

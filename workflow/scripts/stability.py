@@ -3,7 +3,7 @@
 import numpy as np
 
 from tennis_stroke.pipeline import Timer, logged, save
-from tennis_stroke.studies.solver_study import stability_map
+from tennis_stroke.studies.stability import stability_map
 
 p = snakemake.params
 s = p.stability

@@ -1,7 +1,8 @@
 """Speed against accuracy: the work-precision table of every integrator."""
 
 from tennis_stroke.pipeline import Timer, logged, save
-from tennis_stroke.studies.solver_study import sample_strokes, work_precision
+from tennis_stroke.studies.sampling import sample_strokes
+from tennis_stroke.studies.work_precision import work_precision
 
 p = snakemake.params
 s = p.study

@@ -19,7 +19,8 @@ from dataclasses import dataclass
 
 import pandas as pd
 
-from ..solver.stroke import SolverSettings, strike
+from ..solver.settings import SolverSettings
+from ..solver.stroke import strike
 
 
 @dataclass(frozen=True)
@@ -124,14 +125,9 @@ def paper_row() -> dict[str, float]:
     return {t.name: t.paper for t in TARGETS}
 
 
-def main() -> None:
-    """Print the best-scoring combinations (``python -m
-    tennis_stroke.experiments.identification``)."""
-    table = score_readings()
+def best_readings(settings: SolverSettings | None = None, rows: int = 10) -> str:
+    """The paper's values and the ``rows`` best-scoring combinations, as text
+    (``tennis-stroke identify``)."""
+    table = score_readings(settings)
     columns = [*CANDIDATES, "passed", "score", *paper_row()]
-    print(f"paper: {paper_row()}")
-    print(table[columns].head(10).round(3).to_string(index=False))
-
-
-if __name__ == "__main__":
-    main()
+    return f"paper: {paper_row()}\n" + table[columns].head(rows).round(3).to_string(index=False)

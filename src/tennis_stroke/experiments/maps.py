@@ -1,60 +1,28 @@
-"""The paper's experiments as functions of plain parameters, each returning a dataset.
+"""The paper's maps as functions of plain parameters, each returning a dataset.
 
 Every function takes model overrides (``params``: scalars and readings), solver settings
-and a thread count, runs strokes through :func:`tennis_stroke.solver.stroke.strike_batch` (or the
-reference path for the few trajectories that figures draw) and returns an
-:class:`xarray.Dataset` with CF metadata (:func:`tennis_stroke.io.result_dataset`).  The
-workflow scripts only call these and write the files.
-
-Optima found on a grid are refined by a parabola through the best grid point and its two
-neighbours along each axis (:func:`refine_peak`), so their accuracy is much finer than the
-grid; the grid spacing is recorded with every optimum.
+and a thread count, runs strokes through :func:`tennis_stroke.solver.stroke.strike_batch`
+and returns an :class:`xarray.Dataset` with CF metadata
+(:func:`tennis_stroke.io.result_dataset`).  The first axis of every map can be computed
+in chunks of rows (:mod:`tennis_stroke.chunking`); the workflow's scripts only call
+these and write the files.
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping, Sequence
+from collections.abc import Mapping
 
 import numpy as np
 import xarray as xr
 
+from ..chunking import chunk_rows
 from ..io import result_dataset
-from ..model.dynamics import coefficients, elbow_position
 from ..model.params import resolve_params
-from ..solver.reference import free_swing, solve_stroke
-from ..solver.stroke import SolverSettings, strike, strike_batch
+from ..solver.settings import SolverSettings
+from ..solver.stroke import strike_batch
+from .grids import axis, grid, ok_speeds, refine_peak
 
 KMH = ("km/h", "rebound speed of the ball towards -x")
-
-
-def grid(start: float, stop: float, step: float) -> np.ndarray:
-    """Inclusive grid ``start, start + step, ..., stop`` (rounded to the step's decimals)."""
-    n = int(round((stop - start) / step)) + 1
-    return np.round(start + step * np.arange(n), 10)
-
-
-def refine_peak(x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
-    """Location and value of the maximum of samples ``v(x)`` (NaN = failed stroke).
-
-    A parabola through the best sample and its neighbours refines both; at the edge of
-    the grid the best sample itself is returned.
-    """
-    if not np.any(np.isfinite(v)):
-        return np.nan, np.nan
-    i = int(np.nanargmax(v))
-    if 0 < i < len(x) - 1 and np.all(np.isfinite(v[i - 1 : i + 2])):
-        y0, y1, y2 = v[i - 1 : i + 2]
-        denom = y0 - 2.0 * y1 + y2
-        if denom < 0.0:
-            shift = 0.5 * (y0 - y2) / denom
-            h = x[i + 1] - x[i]
-            return float(x[i] + shift * h), float(y1 - 0.25 * (y0 - y2) * shift)
-    return float(x[i]), float(v[i])
-
-
-def _ok(res: Mapping[str, np.ndarray]) -> np.ndarray:
-    """v_out with failed strokes as NaN."""
-    return np.where(res["status"] == 0, res["v_out_kmh"], np.nan)
 
 
 def angle_map(
@@ -70,7 +38,7 @@ def angle_map(
     """
     res = strike_batch(theta0[:, None], delta0[None, :], params, settings, threads)
     ds = result_dataset(res, {"theta0": theta0, "delta0": delta0}, resolve_params(params), settings)
-    v = _ok(res)
+    v = ok_speeds(res)
     best = np.array([refine_peak(delta0, row) for row in v])
     ds["best_delta0"] = (
         "theta0",
@@ -82,98 +50,6 @@ def angle_map(
         best[:, 1],
         {"units": KMH[0], "long_name": "fastest rebound speed"},
     )
-    return ds
-
-
-#: How the curves of omega(t) are drawn: the free swing without the ball (the paper
-#: computes the swing and the collision separately, Sec. II) or the stroke with the ball.
-CURVES = ("free_swing", "with_ball")
-
-
-def trajectories(
-    strokes: Sequence[tuple[float, float, Mapping[str, object]]],
-    labels: Sequence[str],
-    times: np.ndarray,
-    params: Mapping[str, object],
-    settings: SolverSettings,
-    curves: str = "free_swing",
-) -> xr.Dataset:
-    """Figs. 4, 10-12, 14: omega1, omega2, theta, phi and the elbow path over time.
-
-    Each stroke is ``(theta0, delta0, extra params)``.  Curves come from the reference path
-    (dense output up to ``times[-1]``): the free swing, or with ``curves="with_ball"``
-    the stroke with the contact and the follow-through.  The stroke numbers come from the
-    compiled path.  Curves are NaN outside the simulated span.
-    """
-    if curves not in CURVES:
-        raise ValueError(f"curves must be one of {', '.join(CURVES)}, got {curves!r}")
-    samples = {k: [] for k in ("omega1", "omega2", "theta", "phi", "x_elbow", "y_elbow")}
-    numbers: dict[str, list] = {}
-    for theta0, delta0, extra in strokes:
-        p = {**params, **extra}
-        res = strike(theta0, delta0, p, settings)
-        for key, value in res.items():
-            if key != "status_name":
-                numbers.setdefault(key, []).append(value)
-        if curves == "free_swing":
-            ref = free_swing(theta0, delta0, float(times[-1]), p)
-        else:
-            ref = solve_stroke(
-                theta0,
-                delta0,
-                p,
-                rtol=1e-10,
-                atol=1e-10,
-                follow_through=max(times[-1] - res["t_separation"], 0.0)
-                if res["status"] == 0
-                else 0.0,
-            )
-        sampled = ref.sample(times)
-        for key in ("omega1", "omega2"):
-            samples[key].append(sampled[key])
-        samples["theta"].append(np.degrees(sampled["theta"]))
-        samples["phi"].append(np.degrees(sampled["phi"]))
-        cf = coefficients(resolve_params(p), theta0, delta0)[0]
-        path = np.array([elbow_position(t, cf) for t in times])
-        samples["x_elbow"].append(path[:, 0])
-        samples["y_elbow"].append(path[:, 1])
-    meta = {
-        "omega1": ("rad/s", "rod-1 angular velocity (clockwise)"),
-        "omega2": ("rad/s", "rod-2 angular velocity (clockwise)"),
-        "theta": ("degree", "rod-1 angle from -y"),
-        "phi": ("degree", "rod-2 angle from -y"),
-        "x_elbow": ("m", "elbow x position"),
-        "y_elbow": ("m", "elbow y position"),
-    }
-    results = {k: np.asarray(v) for k, v in numbers.items()}
-    ds = result_dataset(
-        results,
-        {"stroke": (np.arange(len(strokes)), "1", "stroke index")},
-        resolve_params(params),
-        settings,
-    )
-    ds = ds.assign_coords(
-        label=("stroke", list(labels)),
-        theta0=(
-            "stroke",
-            [s[0] for s in strokes],
-            {"units": "degree", "long_name": "initial rod-1 angle"},
-        ),
-        delta0=(
-            "stroke",
-            [s[1] for s in strokes],
-            {"units": "degree", "long_name": "initial angle between the rods"},
-        ),
-    )
-    ds["label"].attrs = {"units": "1", "long_name": "stroke label"}
-    ds = ds.assign_coords(time=("time", times, {"units": "s", "long_name": "time"}))
-    ds.attrs["curves"] = curves
-    for key, values in samples.items():
-        ds[key] = (
-            ("stroke", "time"),
-            np.asarray(values),
-            {"units": meta[key][0], "long_name": meta[key][1]},
-        )
     return ds
 
 
@@ -205,7 +81,7 @@ def mass_length_map(
     coarse_res = strike_batch(
         th_c[None, None, :, None], de_c[None, None, None, :], p, settings, threads
     )
-    coarse = _ok(coarse_res)
+    coarse = ok_speeds(coarse_res)
     flat = coarse.reshape(*mm.shape, -1)
     best = np.nanargmax(np.where(np.isnan(flat), -np.inf, flat), axis=-1)
     ti, di = np.unravel_index(best, (th_c.size, de_c.size))
@@ -213,7 +89,7 @@ def mass_length_map(
     th_f = np.clip(th_c[ti][..., None, None] + offsets[:, None], *theta0_range)
     de_f = np.clip(de_c[di][..., None, None] + offsets[None, :], *delta0_range)
     fine_res = strike_batch(th_f, de_f, p, settings, threads)
-    fine = _ok(fine_res)
+    fine = ok_speeds(fine_res)
     failed = np.count_nonzero(coarse_res["status"].reshape(*mm.shape, -1), axis=-1)
     failed += np.count_nonzero(fine_res["status"].reshape(*mm.shape, -1), axis=-1)
     out = {k: np.full(mm.shape, np.nan) for k in ("v", "theta0", "delta0", "theta_c")}
@@ -292,7 +168,7 @@ def delay_map(
         resolve_params(params),
         settings,
     )
-    v = _ok(res)
+    v = ok_speeds(res)
     best = np.array([refine_peak(tau, row) for row in v])
     ds["best_tau"] = (
         axis_name,
@@ -342,4 +218,89 @@ def elbow_force_map(
         resolve_params(params),
         settings,
         {"t_ref_s": t_ref},
+    )
+
+
+def torque_delay_map(
+    section: Mapping[str, object],
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    rows: tuple[int, int] | None = None,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Figs. 7-9 from their config section: ``L1``, ``theta0``, ``tau`` (a range) and
+    ``C2``, ``delta0``, one of them a range (the map's first axis: ``C2`` for Fig. 7,
+    ``delta0`` for Figs. 8-9) and the other a number (a number ``delta0`` with a number
+    ``C2`` gives a one-row map, Fig. 9).
+
+    ``rows``: ``(index, count)``, only that chunk of the first axis
+    (:func:`tennis_stroke.chunking.chunk_rows`).
+    """
+    model = {**params, "L1": section["L1"]}
+    tau = axis(section["tau"])
+
+    def first(values):
+        return values if rows is None else chunk_rows(values, *rows)
+
+    if isinstance(section["C2"], Mapping):  # Fig. 7: (C2, tau) at fixed delta0
+        return delay_map(
+            "C2",
+            first(axis(section["C2"])),
+            ("N m", "wrist torque C2"),
+            tau,
+            section["theta0"],
+            section["delta0"],
+            model,
+            settings,
+            threads,
+        )
+    delta0 = section["delta0"]  # Figs. 8-9: (delta0, tau) at fixed C2
+    delta0 = axis(delta0) if isinstance(delta0, Mapping) else np.array([float(delta0)])
+    return delay_map(
+        "delta0",
+        first(delta0),
+        ("degree", "initial angle between the rods"),
+        tau,
+        section["theta0"],
+        None,
+        {**model, "C2": section["C2"]},
+        settings,
+        threads,
+    )
+
+
+def elbow_force_section_map(
+    force: Mapping[str, float],
+    psi_f,
+    tau_f,
+    stroke: Mapping[str, float],
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    rows: tuple[int, int] | None = None,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Fig. 13 from the config: the force ``{F0, t_d}`` of Eq. 14 in the directions
+    ``psi_f`` (degrees) centred at ``tau_H + tau_f`` (s; both ranges ``[start, stop,
+    step]``), on the Sec. V stroke ``{L1, C2, tau_H, theta0, delta0}``.
+
+    ``rows``: ``(index, count)``, only that chunk of the ``psi_F`` axis.
+    """
+    psi = axis(psi_f)
+    model = {
+        **params,
+        "L1": stroke["L1"],
+        "C2": stroke["C2"],
+        "tau": stroke["tau_H"],
+        "F0": force["F0"],
+        "t_d": force["t_d"],
+    }
+    return elbow_force_map(
+        psi if rows is None else chunk_rows(psi, *rows),
+        axis(tau_f),
+        stroke["tau_H"],
+        stroke["theta0"],
+        stroke["delta0"],
+        model,
+        settings,
+        threads,
     )

@@ -86,6 +86,8 @@ A_THETA, A_PHI, A_OMEGA1, A_OMEGA2, A_BALL_S, A_BALL_W = range(6)
 N_CF = 33
 
 _COUPLING_FACTOR = {"newton": 1.0, "paper_eq8": 2.0}
+#: m/s -> km/h (the paper quotes rebound speeds in km/h).
+MS_TO_KMH = 3.6
 
 #: numba options of every compiled function: cached on disk; numpy's float semantics
 #: (division by zero gives inf/nan, the integrator rejects such steps).
@@ -210,6 +212,25 @@ def elbow_position(t, cf):
     return x + cf[CF_FX] * second, y + cf[CF_FY] * second
 
 
+@njit(**JIT)
+def next_switch(t, cf, t_limit):
+    """First switch of the wrist torque (``tau`` or ``C2_off``) after ``t`` (s), or
+    ``t_limit``: the torque schedule's phase boundaries."""
+    nxt = t_limit
+    for s in (cf[CF_TAU], cf[CF_C2_OFF]):
+        if t < s < nxt:
+            nxt = s
+    return nxt
+
+
+@njit(**JIT)
+def wrist_torque(t_a, t_b, cf):
+    """Wrist torque (N m) on an interval ``(t_a, t_b)`` that contains no switch: ``C2``
+    from ``tau`` until ``C2_off``, else 0."""
+    mid = 0.5 * (t_a + t_b)
+    return cf[CF_C2] if cf[CF_TAU] <= mid < cf[CF_C2_OFF] else 0.0
+
+
 @njit(**JIT_FAST)
 def rhs_trig(t, y, cf, c2, contact):
     """Right-hand side ``dy/dt`` in the trig layout: Eqs. 6-8 from the Lagrangian.
@@ -296,6 +317,45 @@ def hit_offset(st, sp, cf):
 
 
 @njit(**JIT)
+def swing_event(y, cf):
+    """``phi`` (rad), trig layout: the free swing ends where it falls through 0 (``t0``)."""
+    return y[PHI]
+
+
+@njit(**JIT)
+def compression(y, cf):
+    """Compression ``x_b - x_H`` of the strings (m), trig layout: positive while the ball
+    presses on them; the contact ends where it falls through 0 (separation)."""
+    return y[BALL_S] - hit_offset(y[SIN_TH], y[SIN_PH], cf)
+
+
+@njit(**JIT)
+def swing_event_angles(y, cf):
+    """:func:`swing_event` in the angle layout: ``phi`` (rad)."""
+    return y[A_PHI]
+
+
+@njit(**JIT)
+def compression_angles(y, cf):
+    """:func:`compression` in the angle layout (m)."""
+    return y[A_BALL_S] - hit_offset(math.sin(y[A_THETA]), math.sin(y[A_PHI]), cf)
+
+
+@njit(**JIT)
+def incoming_ball(t, st, sp, cf):
+    """Ball state ``(s, w)`` relative to the elbow at the contact start ``t`` (s): at the
+    hitting point (zero compression), moving at ``ball_speed`` along +x (lab frame)."""
+    return hit_offset(st, sp, cf), cf[CF_VBALL] - elbow_velocity(t, cf)[0]
+
+
+@njit(**JIT)
+def rebound_speed_kmh(t, w, cf):
+    """Speed of the ball towards ``-x`` (km/h), lab frame, from its velocity ``w`` (m/s)
+    relative to the elbow at time ``t`` (s)."""
+    return -MS_TO_KMH * (w + elbow_velocity(t, cf)[0])
+
+
+@njit(**JIT)
 def to_trig(y_angles):
     """Angle layout (4 or 6 components) -> trig-layout tuple of 10."""
     th, ph = y_angles[A_THETA], y_angles[A_PHI]
@@ -315,6 +375,20 @@ def to_trig(y_angles):
     )
 
 
+def to_angles(y_trig) -> np.ndarray:
+    """Trig-layout tuple of 10 -> angle-layout array of 6 (contact state)."""
+    return np.array(
+        [
+            y_trig[THETA],
+            y_trig[PHI],
+            y_trig[OMEGA1],
+            y_trig[OMEGA2],
+            y_trig[BALL_S],
+            y_trig[BALL_W],
+        ]
+    )
+
+
 @njit(**JIT)
 def rhs_angles(t, y, cf, c2, contact, dydt):
     """``dy/dt`` in the angle layout (reference path): :func:`rhs_trig` plus the kinematics
@@ -330,6 +404,19 @@ def rhs_angles(t, y, cf, c2, contact, dydt):
     if y.size > 4:
         dydt[A_BALL_S] = d[BALL_S]
         dydt[A_BALL_W] = d[BALL_W]
+
+
+def angle_rhs(cf, c2: float, contact: bool):
+    """The right-hand side of :func:`rhs_angles` as ``f(t, y) -> dy/dt`` (a new array),
+    for generic integrators (``solve_ivp``, fixed-step RK4) in one phase with wrist torque
+    ``c2`` (N m)."""
+
+    def fun(t, y):
+        dydt = np.empty_like(y)
+        rhs_angles(t, y, cf, c2, contact, dydt)
+        return dydt
+
+    return fun
 
 
 @njit(**JIT)
@@ -381,7 +468,7 @@ def mechanical_energy(t, y, cf, contact):
     energy += 0.5 * (cf[CF_M2] * (v2x * v2x + v2y * v2y) + cf[CF_I2] * w2 * w2)
     if contact:
         vb = y[A_BALL_W] + vex
-        c = y[A_BALL_S] - hit_offset(math.sin(th), math.sin(ph), cf)
+        c = compression_angles(y, cf)
         energy += 0.5 * cf[CF_MB] * vb * vb + 0.5 * cf[CF_K] * c * c
     return energy
 
@@ -411,6 +498,5 @@ def input_power(t, y, cf, c2, contact):
     fex = cf[CF_M1] * a1x + cf[CF_M2] * a2x
     fey = cf[CF_M1] * a1y + cf[CF_M2] * a2y
     if contact:
-        compression_m = y[A_BALL_S] - hit_offset(st, sp, cf)
-        fex -= cf[CF_K] * compression_m * cf[CF_COUPLING]
+        fex -= cf[CF_K] * compression_angles(y, cf) * cf[CF_COUPLING]
     return cf[CF_C1] * w1 + c2 * (w2 - w1) + fex * vex + fey * vey

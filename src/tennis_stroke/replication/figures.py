@@ -1,6 +1,7 @@
 """The paper's figures, drawn from the result files (never re-simulating).
 
-:func:`draw` maps a figure name to its drawing function; axis labels and colour-bar labels
+:func:`draw` draws a figure of the registry (:mod:`tennis_stroke.replication.registry`)
+with its drawing function; axis labels and colour-bar labels
 come from the files' ``long_name`` and ``units`` attributes.
 """
 
@@ -16,7 +17,8 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-from .claims import measure_delay_threshold  # noqa: E402
+from .measures import measure_delay_threshold  # noqa: E402
+from .registry import FIGURES  # noqa: E402
 
 DPI = 110
 
@@ -234,44 +236,30 @@ def ladder(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     return fig
 
 
-#: Figure name -> (drawing function, title, extra arguments).
-FIGURES: dict[str, tuple[Callable, str, tuple]] = {
-    "fig02_angle_map_L1_0.3": (angle_map, "Fig. 2: v_out over the initial angles", ()),
-    "fig03_angle_map_L1_0.4": (angle_map, "Fig. 3: v_out over the initial angles", ()),
-    "fig04_omegas": (omegas, "Fig. 4: angular velocities of two strokes", ()),
-    "fig05_mass_length_vout": (mass_length, "Fig. 5: fastest v_out over (M2, L1)", ("v_out_best",)),
-    "fig06_mass_length_theta_c": (
+#: The drawing functions by name (:attr:`tennis_stroke.replication.registry.Figure.draw`).
+DRAWERS: dict[str, Callable[..., plt.Figure]] = {
+    fn.__name__: fn
+    for fn in (
+        angle_map,
+        omegas,
         mass_length,
-        "Fig. 6: theta_c of the fastest stroke",
-        ("theta_c",),
-    ),
-    "fig07_torque_delay": (
         delay_map,
-        "Fig. 7: v_out over (C2, tau), theta0 = 90, delta0 = 26.1",
-        (),
-    ),
-    "fig08_delay_delta0": (delay_map, "Fig. 8: v_out over (delta0, tau), C2 = 5 N m", ()),
-    "fig09_v_tau": (v_tau, "Fig. 9: v_out over the delay tau", ()),
-    "fig10_omegas_delay": (omegas, "Fig. 10: angular velocities for tau_L and tau_H", ()),
-    "fig11_strobe_tau_H": (strobe, "Fig. 11: stroke with tau_H", ("tau_H",)),
-    "fig12_strobe_tau_L": (strobe, "Fig. 12: stroke with tau_L", ("tau_L",)),
-    "fig13_elbow_force": (
+        v_tau,
+        strobe,
         elbow_force,
-        "Fig. 13: v_out over the elbow force direction and delay",
-        (),
-    ),
-    "fig14_elbow_paths": (elbow_paths, "Fig. 14: elbow paths until the contact", ()),
-    "study02_stability": (stability, "Stability: isolated contact against stiffness", ()),
-    "study03_ladder": (ladder, "Model ladder: instantaneous impact vs spring contact", ()),
-    "study01_work_precision": (work_precision, "Work-precision: error against cost per stroke", ()),
+        elbow_paths,
+        work_precision,
+        stability,
+        ladder,
+    )
 }
 
 
 def draw(name: str, inputs: Sequence[str | Path], output: str | Path) -> None:
     """Draw figure ``name`` from its result files into ``output`` (PNG)."""
-    function, title, extra = FIGURES[name]
+    figure = FIGURES[name]
     datasets = [xr.load_dataset(p) for p in inputs]
-    fig = function(datasets, title, *extra)
+    fig = DRAWERS[figure.draw](datasets, figure.title, *figure.args)
     fig.tight_layout()
     fig.savefig(output, dpi=DPI)
     plt.close(fig)

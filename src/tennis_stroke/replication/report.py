@@ -18,46 +18,12 @@ import jinja2
 import pandas as pd
 import xarray as xr
 
-from .. import __version__
+from .._version import __version__
 from ..experiments.identification import CANDIDATES, paper_row
 from ..failures import failure_counts
 from ..io import git_commit
 from ..model.params import READINGS
-
-#: What the paper says about each figure (quoted or closely paraphrased).
-STATEMENTS = {
-    "fig02": "Fig. 2 (L1 = 0.3 m): 'As theta0 changes from 60 to 120 deg, the delta0 [of the "
-    "maximum speed] becomes smaller and reaches 20 deg.'",
-    "fig03": "Fig. 3 (L1 = 0.4 m): 'the delta0 is smaller as compared to the case when L1 = "
-    "0.3 m. When theta0 is 120 deg, the racket and the first rod should be in the "
-    "same line.'",
-    "fig04": "Fig. 4: stroke a (120, 81.5) contacts at 0.198 s with omega1 = 11.34 rad/s, b "
-    "(75, 39) at 0.220 s with omega1 = 17.9 rad/s; omega2 is about 37.98 rad/s for "
-    "both; v_out = 156 and 141 km/h; omega2 of b increases even after the collision.",
-    "fig05": "Fig. 5: 'If the mass of the racket is about 0.2 kg, the speed of the rebound "
-    "ball is decreased as the projected length ... is increased. However, if the "
-    "racket mass is getting heavier, the speed of the rebound ball increases.'",
-    "fig06": "Fig. 6: 'Regardless of the racket mass, the forearm angle theta_c decrease[s] "
-    "to 20 deg as the length L1 increase[s]'; for a folded arm it 'should be about "
-    "90 deg'.",
-    "fig07": "Fig. 7: 'If the torque C2 is less than 1.56 N, the maximum speed ... is "
-    "obtained when the delay time tau is zero'; above it there is always a non-zero "
-    "best delay.",
-    "fig08": "Fig. 8: 'The new optimum condition ... is the time lag tau = 0.185 s and the "
-    "initial angle delta0 = 52.5 deg.'",
-    "fig09": "Fig. 9: v_L = 136.6 km/h at tau_L = 0, maximum v_H = 164.4 km/h at tau_H = "
-    "0.185 s: about 20 % faster.",
-    "fig10": "Fig. 10: contact times of tau_L and tau_H differ by less than 10 ms; the racket "
-    "hits the ball before omega2 peaks; when omega2H peaks, omega1 is almost zero.",
-    "fig11": "Fig. 11: with tau_H the racket stays back, then hits the ball with theta_c = "
-    "53.3 deg (contact in red).",
-    "fig12": "Fig. 12: with a constant torque (tau_L = 0) the racket rotates less rapidly at "
-    "the contact than with tau_H.",
-    "fig13": "Fig. 13: 'we can obtain the maximum speed of the rebound ball when the angle is "
-    "76 deg'; psi_F = 180 deg gives almost the speed without force.",
-    "fig14": "Fig. 14: elbow paths P_NF (no force), P_forward (180 deg), P_max (76 deg), "
-    "P_min (275 deg) until the contact.",
-}
+from .claims import load_statements
 
 TEMPLATE = jinja2.Template("""<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
@@ -192,9 +158,13 @@ def build_report(
     output: str,
     assumptions_md: str | None = None,
     studies: Sequence[str] = (),
+    statements_yaml: str | None = None,
 ) -> None:
-    """Write the report page to ``output`` (``assumptions_md``: the ledger's text)."""
+    """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
+    ``statements_yaml``: ``config/claims.yaml``, whose ``statements`` quote the paper on
+    each figure)."""
     claims = pd.read_csv(claims_csv, keep_default_na=False)
+    statements = load_statements(statements_yaml) if statements_yaml else {}
     claims["reproduced_value"] = claims["reproduced_value"].astype(float)
     readings = pd.read_csv(readings_csv)
     figs = []
@@ -203,7 +173,7 @@ def build_report(
         figs.append(
             {
                 "name": name,
-                "statement": STATEMENTS.get(name[:5], ""),
+                "statement": statements.get(name[:5], ""),
                 "data": base64.b64encode(Path(path).read_bytes()).decode(),
             }
         )

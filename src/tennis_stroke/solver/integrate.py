@@ -30,8 +30,9 @@ import math
 import numpy as np
 from numba import njit
 
-from ..model.dynamics import BALL_S, JIT, N_CONTACT, OMEGA2, PHI, SIN_PH, SIN_TH, hit_offset
+from ..model.dynamics import JIT, N_CONTACT, OMEGA2, compression, swing_event
 from . import _kernels
+from .settings import METHOD_DP54
 
 #: Step-size controller constants (Hairer & Wanner; scipy uses the same).
 SAFETY = 0.9
@@ -51,35 +52,6 @@ N_STATS = 4
 #: Columns of a history row: start time, step, running max of omega2 before the step,
 #: then the state ``y`` and ``f`` at the start.
 HISTORY_COLS = 3 + 2 * N_CONTACT
-
-#: Method ids (runtime integers of the compiled code) and orders of the solution.
-METHOD_DP54, METHOD_DOP853 = 0, 1
-METHOD_IDS = {"DP54": METHOD_DP54, "DOP853": METHOD_DOP853}
-ORDERS = {"DP54": 5, "DOP853": 8}
-
-
-@njit(**JIT)
-def swing_event_value(y, cf):
-    """``phi`` (rad): the swing ends where it falls through 0."""
-    return y[PHI]
-
-
-@njit(**JIT)
-def swing_event_crossed(y0, y1, cf):
-    """Whether ``phi`` fell through 0 during the step ``y0 -> y1``."""
-    return y0[PHI] > 0.0 and y1[PHI] <= 0.0
-
-
-@njit(**JIT)
-def contact_event_value(y, cf):
-    """Compression ``x_b - x_H`` of the strings (m); falls through 0 at separation."""
-    return y[BALL_S] - hit_offset(y[SIN_TH], y[SIN_PH], cf)
-
-
-@njit(**JIT)
-def contact_event_crossed(y0, y1, cf):
-    """Whether the ball left the strings during the step ``y0 -> y1``."""
-    return contact_event_value(y0, cf) > 0.0 and contact_event_value(y1, cf) <= 0.0
 
 
 @njit(**JIT)
@@ -168,18 +140,18 @@ def dense_value(method, x, y, z):
 
 @njit(**JIT)
 def event_value(contact, y, cf):
-    """The phase's event function: ``sin(phi)`` (swing) or the compression (contact)."""
+    """The phase's terminal event function (model functions of
+    :mod:`tennis_stroke.model.dynamics`): ``phi`` in the swing, the compression of the
+    strings in the contact."""
     if contact:
-        return contact_event_value(y, cf)
-    return swing_event_value(y, cf)
+        return compression(y, cf)
+    return swing_event(y, cf)
 
 
 @njit(**JIT)
 def event_crossed(contact, y0, y1, cf):
-    """Whether the phase's event happened during the step ``y0 -> y1``."""
-    if contact:
-        return contact_event_crossed(y0, y1, cf)
-    return swing_event_crossed(y0, y1, cf)
+    """Whether the phase's event value fell through 0 during the step ``y0 -> y1``."""
+    return event_value(contact, y0, cf) > 0.0 and event_value(contact, y1, cf) <= 0.0
 
 
 @njit(**JIT)

@@ -1,7 +1,9 @@
 """The independent path: the same stroke with :func:`scipy.integrate.solve_ivp`.
 
-It shares only the physics (:func:`tennis_stroke.model.dynamics.rhs_angles`, which evaluates
-:func:`~tennis_stroke.model.dynamics.rhs_trig`) with the compiled path; state layout (angles
+It shares only the model with the compiled path (:mod:`tennis_stroke.model.dynamics`:
+the equations through :func:`~tennis_stroke.model.dynamics.rhs_angles`, the torque
+schedule, the events, the ball at the contact start and the rebound speed), never the
+compiled driver; state layout (angles
 instead of sines and cosines), integrator, event location and restart at the contact
 start are scipy's.  The phase splitting is the same (torque switches, ``phi = 0``,
 contact start, separation), so the two paths can be compared stroke by stroke.  It is
@@ -18,7 +20,6 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..model.dynamics import (
-    A_BALL_S,
     A_BALL_W,
     A_OMEGA1,
     A_OMEGA2,
@@ -27,18 +28,19 @@ from ..model.dynamics import (
     CF_LEAD,
     CF_PHI0,
     CF_THETA0,
-    CF_VBALL,
+    angle_rhs,
     approach_rate,
     coefficients,
+    compression_angles,
     contact_duration,
-    elbow_velocity,
-    hit_offset,
-    rhs_angles,
+    incoming_ball,
+    next_switch,
+    rebound_speed_kmh,
+    wrist_torque,
 )
 from ..model.params import resolve_params
-from .stroke import (
+from .results import (
     EARLY_CONTACT,
-    MS_TO_KMH,
     NO_APPROACH,
     NO_PHI_ZERO,
     NO_RELEASE,
@@ -46,8 +48,6 @@ from .stroke import (
     RESULT_FIELDS,
     STATUS_NAMES,
     STEP_FAILURE,
-    next_switch,
-    wrist_torque,
 )
 
 #: Samples per phase for ``omega2_max`` on the reference path.
@@ -93,15 +93,6 @@ class ReferenceStroke:
         return out
 
 
-def _phase_fun(cf, c2, contact):
-    def fun(t, y):
-        dydt = np.empty_like(y)
-        rhs_angles(t, y, cf, c2, contact, dydt)
-        return dydt
-
-    return fun
-
-
 def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segments):
     """solve_ivp through the torque switches; returns (t, y, event_hit, nfev, ok)."""
     nfev = 0
@@ -109,7 +100,7 @@ def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segmen
         t_seg = next_switch(t, cf, t_stop)
         c2 = wrist_torque(t, t_seg, cf)
         sol = solve_ivp(
-            _phase_fun(cf, c2, contact),
+            angle_rhs(cf, c2, contact),
             (t, t_seg),
             y,
             method=method,
@@ -236,16 +227,16 @@ def solve_stroke(
         math.sin(yc[A_PHI]),
         math.cos(yc[A_PHI]),
     )
-    w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
+    s_ball, w = incoming_ball(t_c, st, sp, cf)
     if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
         return finish(NO_APPROACH)
     max_step = contact_duration(st, ct, sp, cp, cf) / contact_min_steps
 
     def separation(t, y):
-        return y[A_BALL_S] - hit_offset(math.sin(y[A_THETA]), math.sin(y[A_PHI]), cf)
+        return compression_angles(y, cf)
 
     separation.terminal, separation.direction = True, -1
-    y = np.array([*yc, hit_offset(st, sp, cf), w])
+    y = np.array([*yc, s_ball, w])
     t_sep, y, hit, nfev, ok = _run(
         t_c, y, t_max, cf, True, [separation], method, rtol, atol, max_step, ref.segments
     )
@@ -255,7 +246,7 @@ def solve_stroke(
     if not hit:
         return finish(NO_RELEASE)
     res["t_separation"] = t_sep
-    res["v_out_kmh"] = -MS_TO_KMH * (y[A_BALL_W] + elbow_velocity(t_sep, cf)[0])
+    res["v_out_kmh"] = rebound_speed_kmh(t_sep, y[A_BALL_W], cf)
     if follow_through > 0.0:
         _, _, _, nfev, ok = _run(
             t_sep,

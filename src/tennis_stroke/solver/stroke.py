@@ -20,7 +20,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import asdict, dataclass
 
 import numba
 import numpy as np
@@ -28,13 +27,9 @@ from numba import njit, prange
 
 from ..model.dynamics import (
     BALL_W,
-    CF_C2,
-    CF_C2_OFF,
     CF_LEAD,
     CF_PHI0,
-    CF_TAU,
     CF_THETA0,
-    CF_VBALL,
     COS_PH,
     COS_TH,
     JIT,
@@ -47,17 +42,21 @@ from ..model.dynamics import (
     approach_rate,
     coefficients,
     contact_duration,
-    elbow_velocity,
-    hit_offset,
+    incoming_ball,
+    next_switch,
+    rebound_speed_kmh,
     rhs_trig,
+    to_angles,
+    to_trig,
+    wrist_torque,
 )
 from ..model.params import ParameterError, resolve_params
 from ._kernels import N_STAGES_BY_ID, coefficient_tuple
 from .integrate import (
     HISTORY_COLS,
-    METHOD_IDS,
     N_STATS,
     PHASE_END,
+    PHASE_EVENT,
     PHASE_FAIL,
     ST_NFEV,
     ST_NSTEP,
@@ -69,153 +68,43 @@ from .integrate import (
     peak_omega2,
     rk_step,
 )
-
-MS_TO_KMH = 3.6
-
-# Statuses of a stroke.
-OK, NO_PHI_ZERO, EARLY_CONTACT, NO_APPROACH, NO_RELEASE, STEP_FAILURE, LEAD_TOO_LONG = range(7)
-#: Status codes and their meanings (written to every result file).
-STATUS_NAMES = {
-    OK: "ok",
-    NO_PHI_ZERO: "no_phi_zero",  # phi never reached 0 before t_max
-    EARLY_CONTACT: "early_contact",  # t0 - contact_lead < 0
-    NO_APPROACH: "no_approach",  # at contact start the racket does not approach the ball
-    NO_RELEASE: "no_release",  # the ball was not released before t_max
-    STEP_FAILURE: "step_failure",  # step size underflow, too many steps, non-finite state
-    LEAD_TOO_LONG: "lead_too_long",  # contact_lead spans more swing steps than recorded
-}
-
-# Output columns of the compiled solver.
-(
-    O_STATUS,
-    O_VOUT,
-    O_T_PHI0,
-    O_T_CONTACT,
-    O_T_SEP,
-    O_THETA_PHI0,
-    O_W1_PHI0,
-    O_W2_PHI0,
-    O_THETA_CONTACT,
-    O_W1_CONTACT,
-    O_W2_CONTACT,
-    O_W2_MAX,
+from .results import (
+    EARLY_CONTACT,
+    LEAD_TOO_LONG,
+    N_OUT,
+    NO_APPROACH,
+    NO_PHI_ZERO,
+    NO_RELEASE,
     O_NFEV,
     O_NSTEP,
-) = range(14)
-N_OUT = 14
-
-#: Result fields: name -> (output column, unit, long name).  The one table of CF metadata.
-RESULT_FIELDS: dict[str, tuple[int, str, str]] = {
-    "status": (O_STATUS, "1", "stroke status code (see attribute flag_meanings)"),
-    "v_out_kmh": (O_VOUT, "km/h", "rebound speed of the ball towards -x"),
-    "t_phi0": (O_T_PHI0, "s", "time at which phi reaches 0 in the free swing (t0)"),
-    "t_contact_start": (O_T_CONTACT, "s", "time at which ball contact starts (t_c)"),
-    "t_separation": (O_T_SEP, "s", "time at which the ball leaves the strings"),
-    "theta_deg_at_phi0": (O_THETA_PHI0, "degree", "rod-1 angle theta at phi = 0"),
-    "omega1_phi0": (O_W1_PHI0, "rad/s", "rod-1 angular velocity at phi = 0"),
-    "omega2_phi0": (O_W2_PHI0, "rad/s", "rod-2 angular velocity at phi = 0"),
-    "theta_deg_contact": (O_THETA_CONTACT, "degree", "rod-1 angle theta at contact start"),
-    "omega1_contact": (O_W1_CONTACT, "rad/s", "rod-1 angular velocity at contact start"),
-    "omega2_contact": (O_W2_CONTACT, "rad/s", "rod-2 angular velocity at contact start"),
-    "omega2_max": (O_W2_MAX, "rad/s", "maximum rod-2 angular velocity over the stroke"),
-    "rhs_evals": (O_NFEV, "1", "right-hand-side evaluations of the stroke"),
-    "steps": (O_NSTEP, "1", "accepted integration steps of the stroke"),
-}
-_DEGREE_FIELDS = ("theta_deg_at_phi0", "theta_deg_contact")
-
-# Layout of the settings array.
-S_RTOL, S_ATOL, S_TMAX, S_FIRST_STEP, S_MAX_STEPS, S_CONTACT_STEPS, S_FOLLOW = range(7)
-
-
-@dataclass(frozen=True)
-class SolverSettings:
-    """Settings of the compiled solver.
-
-    Attributes
-    ----------
-    method : {"DOP853", "DP54"}
-        Embedded Runge-Kutta pair.
-    rtol, atol : float
-        Relative and absolute tolerance of the local error (scaled RMS norm).  The
-        defaults keep every stroke of the benchmark grid within 1e-5 km/h of an rtol
-        1e-12 solution (``benchmarks/bench_sweep.py``).
-    t_max : float
-        Longest simulated stroke (s); no ``phi = 0`` or no release before it is a status.
-    first_step : float
-        First trial step (s).
-    max_steps : int
-        Largest number of accepted steps per stroke.
-    contact_min_steps : float
-        The contact phase takes steps no longer than (two-body contact duration at the
-        hitting point's effective mass) / ``contact_min_steps``, so no step can jump over
-        the contact.
-    follow_through : float
-        Free swing simulated after separation for ``omega2_max`` (s).
-    history : int
-        Swing steps remembered to restart at the contact start.
-    """
-
-    method: str = "DOP853"
-    rtol: float = 5e-8
-    atol: float = 5e-8
-    t_max: float = 1.0
-    first_step: float = 0.02
-    max_steps: int = 100_000
-    contact_min_steps: float = 2.0
-    follow_through: float = 0.0
-    history: int = 512
-
-    def __post_init__(self) -> None:
-        if self.method not in METHOD_IDS:
-            raise ParameterError(
-                f"solver method must be one of {', '.join(METHOD_IDS)}, got {self.method!r}"
-            )
-        for name in ("rtol", "atol", "t_max", "first_step", "contact_min_steps"):
-            value = getattr(self, name)
-            if not (isinstance(value, int | float) and math.isfinite(value) and value > 0):
-                raise ParameterError(f"solver setting {name!r} must be > 0, got {value!r}")
-        if not (math.isfinite(self.follow_through) and self.follow_through >= 0):
-            raise ParameterError(
-                f"solver setting 'follow_through' must be >= 0, got {self.follow_through!r}"
-            )
-        for name in ("max_steps", "history"):
-            if int(getattr(self, name)) < 1:
-                raise ParameterError(f"solver setting {name!r} must be >= 1")
-
-    def as_array(self) -> np.ndarray:
-        """The numeric settings in the compiled layout ``S_*``."""
-        return np.array(
-            [
-                self.rtol,
-                self.atol,
-                self.t_max,
-                self.first_step,
-                float(self.max_steps),
-                self.contact_min_steps,
-                self.follow_through,
-            ]
-        )
-
-    def as_dict(self) -> dict[str, object]:
-        """Plain dict (for file attributes and JSON)."""
-        return asdict(self)
-
-
-@njit(**JIT)
-def next_switch(t, cf, t_limit):
-    """First torque switch (``tau`` or ``C2_off``) after ``t`` (s), or ``t_limit``."""
-    nxt = t_limit
-    for s in (cf[CF_TAU], cf[CF_C2_OFF]):
-        if t < s < nxt:
-            nxt = s
-    return nxt
-
-
-@njit(**JIT)
-def wrist_torque(t_a, t_b, cf):
-    """Wrist torque (N m) on an interval ``(t_a, t_b)`` that contains no switch."""
-    mid = 0.5 * (t_a + t_b)
-    return cf[CF_C2] if cf[CF_TAU] <= mid < cf[CF_C2_OFF] else 0.0
+    O_STATUS,
+    O_T_CONTACT,
+    O_T_PHI0,
+    O_T_SEP,
+    O_THETA_CONTACT,
+    O_THETA_PHI0,
+    O_VOUT,
+    O_W1_CONTACT,
+    O_W1_PHI0,
+    O_W2_CONTACT,
+    O_W2_MAX,
+    O_W2_PHI0,
+    OK,
+    STATUS_NAMES,
+    STEP_FAILURE,
+    results_from_output,
+)
+from .settings import (
+    METHOD_IDS,
+    S_ATOL,
+    S_CONTACT_STEPS,
+    S_FIRST_STEP,
+    S_FOLLOW,
+    S_MAX_STEPS,
+    S_RTOL,
+    S_TMAX,
+    SolverSettings,
+)
 
 
 @njit(**JIT)
@@ -273,10 +162,10 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     out[O_THETA_CONTACT] = y[THETA]
     out[O_W1_CONTACT] = w1
     out[O_W2_CONTACT] = w2
-    w = cf[CF_VBALL] - elbow_velocity(t_c, cf)[0]
+    s, w = incoming_ball(t_c, s_th, s_ph, cf)
     if approach_rate(s_th, c_th, s_ph, c_ph, w1, w2, w, cf) <= 0.0:
         return NO_APPROACH
-    y = (s_th, c_th, s_ph, c_ph, w1, w2, y[THETA], y[PHI], hit_offset(s_th, s_ph, cf), w)
+    y = (s_th, c_th, s_ph, c_ph, w1, w2, y[THETA], y[PHI], s, w)
     h_max = contact_duration(s_th, c_th, s_ph, c_ph, cf) / st[S_CONTACT_STEPS]
     no_history = history[:1]
     status, t, y, h = run_phases(
@@ -287,7 +176,7 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     if status == PHASE_END:
         return NO_RELEASE
     out[O_T_SEP] = t
-    out[O_VOUT] = -MS_TO_KMH * (y[BALL_W] + elbow_velocity(t, cf)[0])
+    out[O_VOUT] = rebound_speed_kmh(t, y[BALL_W], cf)
     if st[S_FOLLOW] > 0.0:
         status, t, y, h = run_phases(
             method, False, t, y, t + st[S_FOLLOW], h, np.inf, cf, False, st, stats, no_history
@@ -389,19 +278,6 @@ def solve_coefficients(
     return out
 
 
-def results_from_output(out: np.ndarray, shape: tuple[int, ...]) -> dict[str, np.ndarray]:
-    """Named result arrays of ``shape`` from compiled output rows (angles in degrees)."""
-    res = {}
-    for name, (col, _, _) in RESULT_FIELDS.items():
-        values = out[:, col].reshape(shape)
-        if name in ("status", "rhs_evals", "steps"):
-            values = values.astype(np.int64)
-        elif name in _DEGREE_FIELDS:
-            values = np.degrees(values)
-        res[name] = values
-    return res
-
-
 def strike_batch(
     theta0_deg,
     delta0_deg,
@@ -453,3 +329,47 @@ def strike(
     out: dict[str, object] = {k: v.item() for k, v in res.items()}
     out["status_name"] = STATUS_NAMES[out["status"]]
     return out
+
+
+def solve_contact(
+    cf_row: np.ndarray, y_angles: np.ndarray, t_end: float, settings: SolverSettings
+) -> tuple[bool, float, np.ndarray]:
+    """The contact phase alone, from a given state, with the compiled integrator.
+
+    Parameters
+    ----------
+    cf_row : ndarray, shape (N_CF,)
+        Stroke coefficients (:func:`tennis_stroke.model.dynamics.coefficients`).
+    y_angles : ndarray, shape (6,)
+        Start state in the angle layout (pendulum and ball).
+    t_end : float
+        Time (s) by which the ball must have left.
+    settings : SolverSettings
+        Method and tolerances; contact steps are capped at the two-body contact time over
+        ``settings.contact_min_steps``.
+
+    Returns
+    -------
+    separated, t, y
+        Whether the ball left before ``t_end``, the time reached (s) and the state there
+        (angle layout).
+    """
+    cf = coefficient_tuple(cf_row)
+    y = to_trig(y_angles)
+    st = settings.as_array()
+    h_max = contact_duration(y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], cf) / st[S_CONTACT_STEPS]
+    status, t, y, _ = run_phases(
+        METHOD_IDS[settings.method],
+        True,
+        0.0,
+        y,
+        t_end,
+        min(settings.first_step, h_max),
+        h_max,
+        cf,
+        True,
+        st,
+        np.zeros(N_STATS),
+        np.zeros((1, HISTORY_COLS)),
+    )
+    return status == PHASE_EVENT, t, to_angles(y)

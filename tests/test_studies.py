@@ -4,15 +4,13 @@ the impact model and the work-precision table."""
 import numpy as np
 import pytest
 
-from tennis_stroke.solver.stroke import strike
-from tennis_stroke.studies.solver_study import (
-    OUTCOMES,
-    fixed_step_stroke,
-    impact_model,
-    isolated_contact,
-    sample_strokes,
-    work_precision,
-)
+from tennis_stroke.solver.rk4 import fixed_step_stroke
+from tennis_stroke.solver.stroke import strike, strike_batch
+from tennis_stroke.studies.ladder import impact_model
+from tennis_stroke.studies.methods import parse_method
+from tennis_stroke.studies.sampling import REFERENCE, sample_strokes
+from tennis_stroke.studies.stability import OUTCOMES, isolated_contact, stability_map
+from tennis_stroke.studies.work_precision import work_precision
 
 
 def _outcome(method, setting, k):
@@ -55,8 +53,6 @@ def test_fixed_step_rk4_converges_to_the_compiled_stroke():
 def test_impact_model_is_close_to_but_not_the_spring_contact():
     s = sample_strokes(6, seed=5)
     params = {k: s[k] for k in ("L1", "M2", "C2", "tau")}
-    from tennis_stroke.solver.stroke import strike_batch
-    from tennis_stroke.studies.solver_study import REFERENCE
 
     full = strike_batch(s["theta0"], s["delta0"], params, REFERENCE)["v_out_kmh"]
     err = np.abs(impact_model(s["theta0"], s["delta0"], params) - full)
@@ -70,3 +66,20 @@ def test_work_precision_table_shape_and_order():
     compiled = ds["error_kmh"].isel(method=1)
     assert float(compiled.sel(setting=1e-8)) < float(compiled.sel(setting=1e-4))
     assert float(ds["failed"].sum()) == 0
+
+
+def test_the_contact_step_cap_is_what_keeps_a_loose_tolerance_accurate():
+    """At rtol 0.1 the error estimate alone lets DOP853 take contact steps as long as the
+    contact; the cap (half the two-body contact time) keeps it accurate."""
+    capped = isolated_contact("tennis_stroke.DOP853", 0.1, 1e6)
+    free = isolated_contact("tennis_stroke.DOP853", 0.1, 1e6, step_limit=False)
+    assert OUTCOMES[capped["outcome"]] == "ok"
+    assert OUTCOMES[free["outcome"]] == "inaccurate"
+
+
+@pytest.mark.parametrize("name", ["fixed.RK5", "scipy.Euler", "tennis_stroke.RK4", "DOP853", ""])
+def test_unknown_methods_are_refused_by_name(name):
+    with pytest.raises(ValueError, match="unknown method"):
+        parse_method(name)
+    with pytest.raises(ValueError, match="unknown method"):
+        stability_map([(name, 1e-3)], np.array([1e4]))

@@ -1,0 +1,50 @@
+"""Grids of the experiments and the refinement of optima found on them.
+
+Optima found on a grid are refined by a parabola through the best grid point and its two
+neighbours along each axis (:func:`refine_peak`), so their accuracy is much finer than
+the grid; the grid spacing is recorded with every optimum.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+
+
+def grid(start: float, stop: float, step: float) -> np.ndarray:
+    """Inclusive grid ``start, start + step, ..., stop`` (rounded to the step's decimals)."""
+    n = int(round((stop - start) / step)) + 1
+    return np.round(start + step * np.arange(n), 10)
+
+
+def axis(spec) -> np.ndarray:
+    """A range ``[start, stop, step]`` or ``{start, stop, step}`` (the config's form) as an
+    inclusive :func:`grid`."""
+    if isinstance(spec, Mapping):
+        spec = [spec["start"], spec["stop"], spec["step"]]
+    return grid(*map(float, spec))
+
+
+def refine_peak(x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+    """Location and value of the maximum of samples ``v(x)`` (NaN = failed stroke).
+
+    A parabola through the best sample and its neighbours refines both; at the edge of
+    the grid the best sample itself is returned.
+    """
+    if not np.any(np.isfinite(v)):
+        return np.nan, np.nan
+    i = int(np.nanargmax(v))
+    if 0 < i < len(x) - 1 and np.all(np.isfinite(v[i - 1 : i + 2])):
+        y0, y1, y2 = v[i - 1 : i + 2]
+        denom = y0 - 2.0 * y1 + y2
+        if denom < 0.0:
+            shift = 0.5 * (y0 - y2) / denom
+            h = x[i + 1] - x[i]
+            return float(x[i] + shift * h), float(y1 - 0.25 * (y0 - y2) * shift)
+    return float(x[i]), float(v[i])
+
+
+def ok_speeds(res: Mapping[str, np.ndarray]) -> np.ndarray:
+    """v_out with failed strokes as NaN."""
+    return np.where(res["status"] == 0, res["v_out_kmh"], np.nan)

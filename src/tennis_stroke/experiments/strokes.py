@@ -1,0 +1,190 @@
+"""The paper's single strokes over time (Figs. 4, 10-12, 14 and Table I), each a dataset
+of curves and stroke numbers."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..io import result_dataset
+from ..model.dynamics import coefficients, elbow_position
+from ..model.params import resolve_params
+from ..solver.reference import free_swing, solve_stroke
+from ..solver.settings import SolverSettings
+from ..solver.stroke import strike
+
+#: How the curves of omega(t) are drawn: the free swing without the ball (the paper
+#: computes the swing and the collision separately, Sec. II) or the stroke with the ball.
+CURVES = ("free_swing", "with_ball")
+
+
+def trajectories(
+    strokes: Sequence[tuple[float, float, Mapping[str, object]]],
+    labels: Sequence[str],
+    times: np.ndarray,
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    curves: str = "free_swing",
+) -> xr.Dataset:
+    """Figs. 4, 10-12, 14: omega1, omega2, theta, phi and the elbow path over time.
+
+    Each stroke is ``(theta0, delta0, extra params)``.  Curves come from the reference path
+    (dense output up to ``times[-1]``): the free swing, or with ``curves="with_ball"``
+    the stroke with the contact and the follow-through.  The stroke numbers come from the
+    compiled path.  Curves are NaN outside the simulated span.
+    """
+    if curves not in CURVES:
+        raise ValueError(f"curves must be one of {', '.join(CURVES)}, got {curves!r}")
+    samples = {k: [] for k in ("omega1", "omega2", "theta", "phi", "x_elbow", "y_elbow")}
+    numbers: dict[str, list] = {}
+    for theta0, delta0, extra in strokes:
+        p = {**params, **extra}
+        res = strike(theta0, delta0, p, settings)
+        for key, value in res.items():
+            if key != "status_name":
+                numbers.setdefault(key, []).append(value)
+        if curves == "free_swing":
+            ref = free_swing(theta0, delta0, float(times[-1]), p)
+        else:
+            ref = solve_stroke(
+                theta0,
+                delta0,
+                p,
+                rtol=1e-10,
+                atol=1e-10,
+                follow_through=max(times[-1] - res["t_separation"], 0.0)
+                if res["status"] == 0
+                else 0.0,
+            )
+        sampled = ref.sample(times)
+        for key in ("omega1", "omega2"):
+            samples[key].append(sampled[key])
+        samples["theta"].append(np.degrees(sampled["theta"]))
+        samples["phi"].append(np.degrees(sampled["phi"]))
+        cf = coefficients(resolve_params(p), theta0, delta0)[0]
+        path = np.array([elbow_position(t, cf) for t in times])
+        samples["x_elbow"].append(path[:, 0])
+        samples["y_elbow"].append(path[:, 1])
+    meta = {
+        "omega1": ("rad/s", "rod-1 angular velocity (clockwise)"),
+        "omega2": ("rad/s", "rod-2 angular velocity (clockwise)"),
+        "theta": ("degree", "rod-1 angle from -y"),
+        "phi": ("degree", "rod-2 angle from -y"),
+        "x_elbow": ("m", "elbow x position"),
+        "y_elbow": ("m", "elbow y position"),
+    }
+    results = {k: np.asarray(v) for k, v in numbers.items()}
+    ds = result_dataset(
+        results,
+        {"stroke": (np.arange(len(strokes)), "1", "stroke index")},
+        resolve_params(params),
+        settings,
+    )
+    ds = ds.assign_coords(
+        label=("stroke", list(labels)),
+        theta0=(
+            "stroke",
+            [s[0] for s in strokes],
+            {"units": "degree", "long_name": "initial rod-1 angle"},
+        ),
+        delta0=(
+            "stroke",
+            [s[1] for s in strokes],
+            {"units": "degree", "long_name": "initial angle between the rods"},
+        ),
+    )
+    ds["label"].attrs = {"units": "1", "long_name": "stroke label"}
+    ds = ds.assign_coords(time=("time", times, {"units": "s", "long_name": "time"}))
+    ds.attrs["curves"] = curves
+    for key, values in samples.items():
+        ds[key] = (
+            ("stroke", "time"),
+            np.asarray(values),
+            {"units": meta[key][0], "long_name": meta[key][1]},
+        )
+    return ds
+
+
+def _times(spec: Mapping[str, object]) -> np.ndarray:
+    """Sample times ``0 ... t_end`` (s), ``samples`` of them."""
+    return np.linspace(0.0, spec["t_end"], spec["samples"])
+
+
+def fig4_strokes(
+    strokes: Sequence[Sequence[float]],
+    t_end: float,
+    samples: int,
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    curves: str = "free_swing",
+) -> xr.Dataset:
+    """Fig. 4: the strokes ``(theta0, delta0)`` (degrees) over ``0 ... t_end`` (s)."""
+    return trajectories(
+        [(a, b, {}) for a, b in strokes],
+        [f"({a:g}, {b:g})" for a, b in strokes],
+        _times({"t_end": t_end, "samples": samples}),
+        params,
+        settings,
+        curves,
+    )
+
+
+def delay_strokes(
+    stroke: Mapping[str, object],
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    curves: str = "free_swing",
+) -> xr.Dataset:
+    """Figs. 10-12: the Sec. V stroke (``L1, theta0, C2, delta0``) with the wrist torque
+    delayed by ``tau_L`` and by ``tau_H`` (s)."""
+    extra = {"L1": stroke["L1"], "C2": stroke["C2"]}
+    cases = [
+        (stroke["theta0"], stroke["delta0"], {**extra, "tau": stroke[k]})
+        for k in ("tau_L", "tau_H")
+    ]
+    ds = trajectories(cases, ["tau_L", "tau_H"], _times(stroke), params, settings, curves)
+    ds["tau"] = (
+        "stroke",
+        [stroke["tau_L"], stroke["tau_H"]],
+        {"units": "s", "long_name": "delay of C2"},
+    )
+    return ds
+
+
+def elbow_force_strokes(
+    force: Mapping[str, object],
+    stroke: Mapping[str, object],
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    curves: str = "free_swing",
+) -> xr.Dataset:
+    """Table I and Fig. 14: the ``tau_H`` stroke with the elbow force of Eq. 14 (``F0``,
+    ``t_d``, centred at ``tau_H``) in each direction of ``table1_psi`` (degrees), and
+    without it (the last stroke)."""
+    base = {
+        "L1": stroke["L1"],
+        "C2": stroke["C2"],
+        "tau": stroke["tau_H"],
+        "t_d": force["t_d"],
+        "t_F": stroke["tau_H"],
+    }
+    psi = list(force["table1_psi"])
+    cases = [{**base, "F0": force["F0"], "psi_F_deg": p} for p in psi] + [{**base, "F0": 0.0}]
+    labels = [f"F0={force['F0']:g} N, psi={p:g} deg" for p in psi] + ["no force"]
+    ds = trajectories(
+        [(stroke["theta0"], stroke["delta0"], case) for case in cases],
+        labels,
+        _times(stroke),
+        params,
+        settings,
+        curves,
+    )
+    ds["psi_F"] = ("stroke", [*psi, np.nan], {"units": "degree", "long_name": "force direction"})
+    ds["F0"] = (
+        "stroke",
+        [force["F0"]] * len(psi) + [0.0],
+        {"units": "N", "long_name": "force amplitude"},
+    )
+    return ds

@@ -1,0 +1,169 @@
+"""The one registry of result files and figures, read by the workflow and the report.
+
+:data:`RESULT_FILES` names every result file by the key that claims
+(``config/claims.yaml``) and figures use.  :data:`FIGURES` gives every figure its
+section of the paper, the files it is drawn from, the drawing function of
+:mod:`tennis_stroke.replication.figures` with its extra arguments, and its title.  What
+the paper says about a figure, with its numbers, is in ``config/claims.yaml``
+(``statements``), the only home of the paper's numbers.
+
+Pure data: the Snakefile imports it without loading the plotting libraries.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+#: The paper's result files (the claims read these), by key.
+PAPER_RESULTS = {
+    "fig2": "results/angle_maps/L1_0.3.nc",
+    "fig3": "results/angle_maps/L1_0.4.nc",
+    "fig4": "results/strokes/fig4.nc",
+    "ml": "results/mass_length/map.nc",
+    "fig7": "results/torque_delay/fig7.nc",
+    "fig8": "results/torque_delay/fig8.nc",
+    "fig9": "results/torque_delay/fig9.nc",
+    "delay": "results/strokes/delay.nc",
+    "elbow_map": "results/elbow_force/map.nc",
+    "elbow": "results/strokes/elbow_force.nc",
+}
+#: The speed-against-accuracy studies' result files, by key.
+STUDY_RESULTS = {
+    "work_precision": "results/solver_study/work_precision.nc",
+    "stability": "results/solver_study/stability.nc",
+    "ladder": "results/solver_study/ladder.nc",
+    "optimum_cost": "results/solver_study/optimum_cost.nc",
+}
+RESULT_FILES = {**PAPER_RESULTS, **STUDY_RESULTS}
+
+
+@dataclass(frozen=True)
+class Figure:
+    """One figure: file name (without ``.png``), section of the paper (``III`` ... ``VI``,
+    or ``study``), result files (keys of :data:`RESULT_FILES`), drawing function of
+    :mod:`tennis_stroke.replication.figures` and its extra arguments, title."""
+
+    name: str
+    section: str
+    files: tuple[str, ...]
+    draw: str
+    title: str
+    args: tuple = ()
+
+    @property
+    def inputs(self) -> list[str]:
+        """The result files it is drawn from (paths relative to the workflow)."""
+        return [RESULT_FILES[key] for key in self.files]
+
+
+FIGURES: dict[str, Figure] = {
+    f.name: f
+    for f in [
+        Figure(
+            "fig02_angle_map_L1_0.3",
+            "III",
+            ("fig2",),
+            "angle_map",
+            "Fig. 2: v_out over the initial angles",
+        ),
+        Figure(
+            "fig03_angle_map_L1_0.4",
+            "III",
+            ("fig3",),
+            "angle_map",
+            "Fig. 3: v_out over the initial angles",
+        ),
+        Figure(
+            "fig04_omegas", "III", ("fig4",), "omegas", "Fig. 4: angular velocities of two strokes"
+        ),
+        Figure(
+            "fig05_mass_length_vout",
+            "IV",
+            ("ml",),
+            "mass_length",
+            "Fig. 5: fastest v_out over (M2, L1)",
+            ("v_out_best",),
+        ),
+        Figure(
+            "fig06_mass_length_theta_c",
+            "IV",
+            ("ml",),
+            "mass_length",
+            "Fig. 6: theta_c of the fastest stroke",
+            ("theta_c",),
+        ),
+        Figure(
+            "fig07_torque_delay",
+            "V",
+            ("fig7",),
+            "delay_map",
+            "Fig. 7: v_out over (C2, tau), theta0 = 90, delta0 = 26.1",
+        ),
+        Figure(
+            "fig08_delay_delta0",
+            "V",
+            ("fig8",),
+            "delay_map",
+            "Fig. 8: v_out over (delta0, tau), C2 = 5 N m",
+        ),
+        Figure("fig09_v_tau", "V", ("fig9",), "v_tau", "Fig. 9: v_out over the delay tau"),
+        Figure(
+            "fig10_omegas_delay",
+            "V",
+            ("delay",),
+            "omegas",
+            "Fig. 10: angular velocities for tau_L and tau_H",
+        ),
+        Figure(
+            "fig11_strobe_tau_H",
+            "V",
+            ("delay",),
+            "strobe",
+            "Fig. 11: stroke with tau_H",
+            ("tau_H",),
+        ),
+        Figure(
+            "fig12_strobe_tau_L",
+            "V",
+            ("delay",),
+            "strobe",
+            "Fig. 12: stroke with tau_L",
+            ("tau_L",),
+        ),
+        Figure(
+            "fig13_elbow_force",
+            "VI",
+            ("elbow_map",),
+            "elbow_force",
+            "Fig. 13: v_out over the elbow force direction and delay",
+        ),
+        Figure(
+            "fig14_elbow_paths",
+            "VI",
+            ("elbow",),
+            "elbow_paths",
+            "Fig. 14: elbow paths until the contact",
+        ),
+        Figure(
+            "study01_work_precision",
+            "study",
+            ("work_precision",),
+            "work_precision",
+            "Work-precision: error against cost per stroke",
+        ),
+        Figure(
+            "study02_stability",
+            "study",
+            ("stability",),
+            "stability",
+            "Stability: isolated contact against stiffness",
+        ),
+        Figure(
+            "study03_ladder",
+            "study",
+            ("ladder",),
+            "ladder",
+            "Model ladder: instantaneous impact vs spring contact",
+        ),
+    ]
+}

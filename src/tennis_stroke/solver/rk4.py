@@ -1,0 +1,128 @@
+"""Classical fixed-step RK4 through the same phases as the compiled path.
+
+A third, deliberately simple integrator for the speed-against-accuracy studies: the
+steps never change size, and events are found by a sign change between steps (linear
+interpolation).  A contact shorter than one step is jumped over (``missed_contact``),
+and a step beyond the explicit stability limit blows up: the stability study shows
+both.  Phases end at the torque switches, as on the other paths.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping
+
+import numpy as np
+
+from ..model.dynamics import (
+    A_BALL_W,
+    A_OMEGA1,
+    A_OMEGA2,
+    A_PHI,
+    A_THETA,
+    CF_LEAD,
+    CF_PHI0,
+    CF_THETA0,
+    angle_rhs,
+    approach_rate,
+    coefficients,
+    compression_angles,
+    incoming_ball,
+    next_switch,
+    rebound_speed_kmh,
+    swing_event_angles,
+    wrist_torque,
+)
+from ..model.params import resolve_params
+
+#: Outcomes of :func:`fixed_step_stroke`.
+STATUSES = ("ok", "missed_contact", "no_phi_zero", "no_approach", "non_finite", "no_release")
+
+
+def rk4_step(fun: Callable, t: float, y: np.ndarray, h: float) -> np.ndarray:
+    """One classical Runge-Kutta step of size ``h`` (s) of ``dy/dt = fun(t, y)``."""
+    k1 = fun(t, y)
+    k2 = fun(t + h / 2, y + h / 2 * k1)
+    k3 = fun(t + h / 2, y + h / 2 * k2)
+    k4 = fun(t + h, y + h * k3)
+    return y + h / 6 * (k1 + 2 * k2 + 2 * k3 + k4)
+
+
+def fixed_phase(cf, t, y, t_stop, h, contact, event=None, max_steps=None):
+    """RK4 with step ``h`` (s) through the torque switches until ``event(y, cf)`` falls
+    through 0, ``t_stop``, or ``max_steps`` steps (angle layout).
+
+    Returns ``(t, y, hit, evaluations)``; at an event the state is interpolated linearly
+    between the two steps around it.
+    """
+    evals = steps = 0
+    while t < t_stop:
+        t_seg = next_switch(t, cf, t_stop)
+        fun = angle_rhs(cf, wrist_torque(t, t_seg, cf), contact)
+        while t < t_seg:
+            if max_steps is not None and steps >= max_steps:
+                return t, y, False, evals
+            step = min(h, t_seg - t)
+            y_new = rk4_step(fun, t, y, step)
+            evals += 4
+            steps += 1
+            if event is not None:
+                g0, g1 = event(y, cf), event(y_new, cf)
+                if g0 > 0.0 >= g1:
+                    x = g0 / (g0 - g1)
+                    return t + x * step, y + x * (y_new - y), True, evals
+            t, y = t + step, y_new
+    return t, y, False, evals
+
+
+def contact_missed(cf, t: float, y: np.ndarray, h: float, t_stop: float):
+    """Whether the first RK4 step of a contact starting at ``(t, y)`` already ends with
+    the ball off the strings (the contact is shorter than the step, so the separation
+    event, which needs a positive compression first, would never fire).
+
+    Returns ``(missed, state after the first step, evaluations)``.
+    """
+    _, first, _, evals = fixed_phase(cf, t, y, t_stop, h, True, max_steps=1)
+    missed = bool(np.all(np.isfinite(first)) and compression_angles(first, cf) <= 0.0)
+    return missed, first, evals
+
+
+def fixed_step_stroke(
+    theta0_deg: float, delta0_deg: float, params: Mapping[str, object], h: float, t_max: float = 1.0
+) -> dict[str, float]:
+    """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (one of
+    :data:`STATUSES`), ``v_out_kmh`` and ``rhs_evals``.
+
+    The contact state at ``t_c`` is the RK4 state of the step before, advanced by one
+    step of the remaining size.
+    """
+    cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
+    out = {"status": "ok", "v_out_kmh": math.nan, "rhs_evals": 0}
+    y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
+    t0, y, hit, evals = fixed_phase(cf, 0.0, y0, t_max, h, False, swing_event_angles)
+    out["rhs_evals"] += evals
+    if not hit:
+        out["status"] = "no_phi_zero" if np.all(np.isfinite(y)) else "non_finite"
+        return out
+    t_c = t0 - cf[CF_LEAD]
+    _, yc, _, evals = fixed_phase(cf, 0.0, y0, t_c, h, False)
+    out["rhs_evals"] += evals
+    st, sp = math.sin(yc[A_THETA]), math.sin(yc[A_PHI])
+    ct, cp = math.cos(yc[A_THETA]), math.cos(yc[A_PHI])
+    s, w = incoming_ball(t_c, st, sp, cf)
+    if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
+        out["status"] = "no_approach"
+        return out
+    y = np.array([*yc, s, w])
+    missed, _, evals = contact_missed(cf, t_c, y, h, t_max)
+    if missed:
+        out["status"] = "missed_contact"
+        out["rhs_evals"] += evals
+        return out
+    t_s, y, hit, evals = fixed_phase(cf, t_c, y, t_max, h, True, compression_angles)
+    out["rhs_evals"] += evals
+    if not hit or not np.all(np.isfinite(y)):
+        out["status"] = "non_finite" if not np.all(np.isfinite(y)) else "no_release"
+        return out
+    out["v_out_kmh"] = rebound_speed_kmh(t_s, y[A_BALL_W], cf)
+    return out

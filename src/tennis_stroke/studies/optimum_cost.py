@@ -1,0 +1,73 @@
+"""Cost against accuracy of the optimum search of Figs. 5-6 (coarse grid, fine grid,
+parabola), for several step pairs against a finer reference search."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..experiments.maps import mass_length_map
+from ..io import provenance
+from ..model.params import resolve_params
+from ..solver.settings import SolverSettings
+from .sampling import REFERENCE
+from .timing import TIMING, median_time
+
+
+def optimum_cost(
+    m2: Sequence[float],
+    l1: Sequence[float],
+    steps: Sequence[tuple[float, float]],
+    reference_step: float = 0.05,
+    theta0_range=(60.0, 120.0),
+    delta0_range=(0.0, 100.0),
+) -> xr.Dataset:
+    """Accuracy of the nested optimum of Figs. 5-6 against its cost.
+
+    For each ``(coarse, fine)`` step pair the optimum at every ``(M2, L1)`` point is found
+    as in :func:`tennis_stroke.experiments.maps.mass_length_map`; the reference is the same
+    search with a ``reference_step`` fine grid around a 1-degree coarse one.  Errors are the
+    largest over the points.
+    """
+    settings = SolverSettings()
+    m2, l1 = np.asarray(m2, float), np.asarray(l1, float)
+    ref = mass_length_map(m2, l1, 1.0, reference_step, theta0_range, delta0_range, {}, settings)
+    rows = {k: [] for k in ("v_err", "theta0_err", "delta0_err", "seconds")}
+    for coarse, fine in steps:
+        seconds, ds = median_time(
+            lambda c=coarse, f=fine: mass_length_map(
+                m2, l1, c, f, theta0_range, delta0_range, {}, settings
+            ),
+            1,
+        )
+        rows["seconds"].append(seconds)
+        rows["v_err"].append(float(np.nanmax(np.abs(ds["v_out_best"] - ref["v_out_best"]))))
+        rows["theta0_err"].append(float(np.nanmax(np.abs(ds["theta0_best"] - ref["theta0_best"]))))
+        rows["delta0_err"].append(float(np.nanmax(np.abs(ds["delta0_best"] - ref["delta0_best"]))))
+    labels = [f"coarse {c:g} deg, fine {f:g} deg" for c, f in steps]
+    meta = {
+        "v_err": ("km/h", "largest error of the best v_out"),
+        "theta0_err": ("degree", "largest error of the best theta0"),
+        "delta0_err": ("degree", "largest error of the best delta0"),
+        "seconds": ("s", "wall time of the search over all points (all threads)"),
+    }
+    ds = xr.Dataset(
+        {
+            k: (
+                "search",
+                np.array(v),
+                {
+                    "units": meta[k][0],
+                    "long_name": meta[k][1],
+                    **(TIMING if k == "seconds" else {}),
+                },
+            )
+            for k, v in rows.items()
+        },
+        coords={"search": ("search", labels, {"units": "1", "long_name": "steps"})},
+        attrs={"points": m2.size * l1.size, "reference_fine_step_deg": reference_step},
+    )
+    ds.attrs.update(provenance(resolve_params(), REFERENCE))
+    return ds

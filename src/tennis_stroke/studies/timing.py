@@ -1,0 +1,50 @@
+"""One timing harness for the studies: wall-clock medians, and the compiled solver's
+cost per stroke on one thread."""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Mapping
+
+import numpy as np
+
+from ..solver.settings import SolverSettings
+from ..solver.stroke import strike_batch
+
+#: Strokes per timed batch of the compiled solver: the batch's fixed cost (thread
+#: start, about 1 ms) then does not count per stroke.
+TIMING_STROKES = 4000
+#: Attribute of variables that hold wall-clock measurements (the only numbers of a
+#: result file that differ between two runs of the same configuration).
+TIMING = {"timing": "wall-clock measurement: differs between runs"}
+
+
+def median_time(fn: Callable[[], object], repeats: int) -> tuple[float, object]:
+    """Median wall time (s) of ``repeats`` calls of ``fn`` and the last call's result."""
+    times, out = [], None
+    for _ in range(repeats):
+        start = time.perf_counter()
+        out = fn()
+        times.append(time.perf_counter() - start)
+    return float(np.median(times)), out
+
+
+def compiled_cost(
+    theta0: np.ndarray,
+    delta0: np.ndarray,
+    params: Mapping[str, np.ndarray],
+    settings: SolverSettings | None,
+    repeats: int,
+) -> tuple[float, dict[str, np.ndarray]]:
+    """Microseconds per stroke of the compiled solver on one thread, and the results.
+
+    The strokes (one parameter value per stroke) are repeated up to
+    :data:`TIMING_STROKES` and timed as one batch (median of ``repeats``); the results
+    returned are those of the given strokes.
+    """
+    n = theta0.size
+    reps = max(1, TIMING_STROKES // n)
+    big = {k: np.tile(v, reps) for k, v in params.items()}
+    th, de = np.tile(theta0, reps), np.tile(delta0, reps)
+    wall, res = median_time(lambda: strike_batch(th, de, big, settings, threads=1), repeats)
+    return wall / th.size * 1e6, {k: v[:n] for k, v in res.items()}
