@@ -38,3 +38,19 @@ def test_chunk_takes_the_rows_of_the_wildcards():
     parts = [chunk(values, SimpleNamespace(chunk=str(i), chunks="3")) for i in range(3)]
     np.testing.assert_array_equal(np.concatenate(parts), values)
     assert [p.size for p in parts] == [3, 2, 2]
+
+
+def test_save_marks_a_chunk_with_its_position(tmp_path):
+    """A chunk file records which chunk of its map it is (the workflow's map scripts)."""
+    import xarray as xr
+
+    from tennis_stroke.pipeline import save
+
+    class Wildcards:
+        chunk, chunks = "1", "3"
+
+    ds = xr.Dataset({"v": ("theta0", [1.0, 2.0])}, coords={"theta0": [60.0, 61.0]})
+    save(ds, tmp_path / "c.nc", {"x": 1}, 0.5, chunk_of=Wildcards())
+    with xr.open_dataset(tmp_path / "c.nc") as out:
+        assert (out.attrs["chunk_index"], out.attrs["chunk_count"]) == (1, 3)
+        assert out.attrs["chunk_dim"] == "theta0"

@@ -51,14 +51,14 @@ def logged(log_path: str | Path) -> Iterator[None]:
     raise SystemExit(1)
 
 
-def chunk_of(wildcards) -> tuple[int, int]:
+def chunk_position(wildcards) -> tuple[int, int]:
     """Index and count of this job's chunk (wildcards ``chunk`` of ``chunks``)."""
     return int(wildcards.chunk), int(wildcards.chunks)
 
 
 def chunk(values: np.ndarray, wildcards) -> np.ndarray:
     """The rows of ``values`` that this job computes (wildcards ``chunk`` of ``chunks``)."""
-    return chunk_rows(values, *chunk_of(wildcards))
+    return chunk_rows(values, *chunk_position(wildcards))
 
 
 class Timer:
@@ -93,7 +93,7 @@ def save(
     of a map (:func:`tennis_stroke.chunking.mark_chunk`).
     """
     if chunk_of is not None:
-        mark_chunk(ds, *chunk_of(chunk_of))
+        mark_chunk(ds, *chunk_position(chunk_of))
     items = dict(params.items()) if hasattr(params, "items") else dict(params)
     ds.attrs["config_sha256_16"] = params_hash(items)
     ds.attrs["config"] = json.dumps(items, sort_keys=True, default=str)
