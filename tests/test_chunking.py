@@ -54,9 +54,7 @@ EXPERIMENTS = {
         "theta0",
     ),
     "delay_map": (
-        lambda rows: delay_map(
-            "C2", rows, ("N m", "C2"), np.array([0.0, 0.1]), 90.0, 26.1, {}, SETTINGS, 1
-        ),
+        lambda rows: delay_map("C2", rows, np.array([0.0, 0.1]), 90.0, 26.1, {}, SETTINGS, 1),
         np.array([1.0, 2.5, 5.0]),
         "C2",
     ),

@@ -105,6 +105,12 @@ def build_parser() -> argparse.ArgumentParser:
 
     identify = sub.add_parser("identify", help="score the readings of the paper against Fig. 4")
     identify.add_argument("--rows", type=int, default=10, help="best combinations to print")
+    identify.add_argument(
+        "--claims", default="config/claims.yaml", help="claims (the Fig. 4 fit targets)"
+    )
+    identify.add_argument(
+        "--config", default="config/config.yaml", help="workflow config (the Fig. 4 strokes)"
+    )
     return parser
 
 
@@ -202,11 +208,24 @@ def _claims(args: argparse.Namespace) -> int:
 
 
 def _identify(args: argparse.Namespace) -> int:
-    from .experiments.identification import best_readings
+    from pathlib import Path
+
+    import yaml
+
+    from .experiments.identification import best_readings, targets_from_claims
+    from .replication.claims import ClaimError, load_claims
 
     if args.rows < 1:
         raise ValueError(f"--rows must be >= 1, got {args.rows}")
-    print(best_readings(rows=args.rows))
+    for path in (args.claims, args.config):
+        if not Path(path).is_file():
+            raise ValueError(f"{path!r} does not exist (run from the project's folder)")
+    try:
+        strokes = yaml.safe_load(Path(args.config).read_text())["fig4"]["strokes"]
+        targets = targets_from_claims(load_claims(args.claims), strokes)
+    except (ClaimError, KeyError, TypeError, yaml.YAMLError) as exc:
+        raise ValueError(f"cannot read the Fig. 4 targets: {exc}") from None
+    print(best_readings(targets, rows=args.rows))
     return 0
 
 

@@ -1,10 +1,10 @@
 """Result files: xarray datasets with CF attributes and provenance, written atomically.
 
 Every variable and coordinate gets ``units`` and ``long_name`` from one table
-(:data:`tennis_stroke.solver.stroke.RESULT_FIELDS` for stroke results, :data:`COORDINATES` for
-the grid axes).  Global attributes record the resolved parameters, the readings, the
-solver settings, the package version and the git commit.  Files are written under a
-temporary name and renamed, so a final name never holds a truncated file.
+(:data:`tennis_stroke.solver.results.VARIABLES`).  Global attributes record the resolved
+parameters, the readings, the solver settings, the package version and the git commit.
+Files are written under a temporary name and renamed, so a final name never holds a
+truncated file.
 """
 
 from __future__ import annotations
@@ -24,17 +24,8 @@ import xarray as xr
 
 from ._version import __version__
 from .model.params import PARAMETERS, READINGS, scalar_params
-from .solver.results import RESULT_FIELDS, STATUS_NAMES
+from .solver.results import FILE_NAMES, STATUS_NAMES, cf_attrs
 from .solver.settings import SolverSettings
-
-#: Grid coordinates: name -> (units, long_name).
-COORDINATES: dict[str, tuple[str, str]] = {
-    "theta0": ("degree", "initial rod-1 angle theta(0) from -y"),
-    "delta0": ("degree", "initial angle delta(0) = phi(0) - theta(0) between the rods"),
-}
-#: File name of a result variable when it differs from the result field name.
-VARIABLE_NAMES = {"v_out_kmh": "v_out"}
-
 
 #: Global attributes that differ between two runs of the same job, and only those: when
 #: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
@@ -117,8 +108,7 @@ def result_dataset(
     results : mapping of str to ndarray
         Result fields (:data:`RESULT_FIELDS`) shaped like the grid.
     coords : mapping of str to 1-D ndarray
-        Grid axes in order (names should be in :data:`COORDINATES` or carry their own
-        ``(values, units, long_name)`` tuple).
+        Grid axes in order, each named in :data:`tennis_stroke.solver.results.VARIABLES`.
     params : mapping
         Resolved parameters (scalars become attributes).
     settings : SolverSettings
@@ -128,23 +118,14 @@ def result_dataset(
     dims = list(coords)
     coord_vars = {}
     for name, values in coords.items():
-        if isinstance(values, tuple):
-            values, units, long_name = values
-        else:
-            units, long_name = COORDINATES[name]
-        coord_vars[name] = (
-            name,
-            np.asarray(values, dtype=float),
-            {"units": units, "long_name": long_name},
-        )
+        coord_vars[name] = (name, np.asarray(values, dtype=float), cf_attrs(name))
     data_vars = {}
     for field, values in results.items():
-        _, units, long_name = RESULT_FIELDS[field]
-        attrs = {"units": units, "long_name": long_name}
+        attrs = cf_attrs(FILE_NAMES.get(field, field))
         if field == "status":
             attrs["flag_values"] = np.array(sorted(STATUS_NAMES), dtype=np.int64)
             attrs["flag_meanings"] = " ".join(STATUS_NAMES[k] for k in sorted(STATUS_NAMES))
-        data_vars[VARIABLE_NAMES.get(field, field)] = (dims, np.asarray(values), attrs)
+        data_vars[FILE_NAMES.get(field, field)] = (dims, np.asarray(values), attrs)
     ds = xr.Dataset(data_vars, coords=coord_vars)
     ds.attrs.update(provenance(params, settings))
     ds.attrs.update(extra_attrs or {})

@@ -1,4 +1,5 @@
 # Config validation and helpers shared by all rules.
+from dataclasses import asdict
 from pathlib import Path
 
 import sys
@@ -8,6 +9,8 @@ from snakemake.utils import validate
 from tennis_stroke.chunking import chunk_count
 from tennis_stroke.config_check import config_errors, numbers_from_strings
 from tennis_stroke.experiments.grids import grid
+from tennis_stroke.experiments.identification import targets_from_claims
+from tennis_stroke.replication.claims import load_claims
 from tennis_stroke.replication.registry import FIGURES, PAPER_RESULTS, RESULT_FILES
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
@@ -109,6 +112,13 @@ def delay_section(wildcards):
     """The config of one Sec. V map (fig7, fig8 or fig9) with the shared L1 and theta0."""
     d = config["torque_delay"]
     return {**d[wildcards.fig], "L1": d["L1"], "theta0": d["theta0"]}
+
+
+def identification_targets():
+    """The Fig. 4 claims that choose the readings (plain dicts: a params value), from
+    config/claims.yaml and the Fig. 4 strokes of the config."""
+    claims = load_claims(Path("config") / "claims.yaml")
+    return [asdict(t) for t in targets_from_claims(claims, config["fig4"]["strokes"])]
 
 
 def common_params():

@@ -167,6 +167,7 @@ rule identification:
     threads: 1
     params:
         common=common_params(),
+        targets=identification_targets(),
     script:
         "../scripts/identification.py"
 

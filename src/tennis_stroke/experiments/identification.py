@@ -1,7 +1,9 @@
 """Identification of the paper's readings: score every candidate against Fig. 4.
 
 The paper states, for the two strokes of its Fig. 4 (Sec. III), the contact times, the
-forearm angles at contact, the angular velocities at contact and the rebound speeds.
+forearm angles at contact, the angular velocities at contact and the rebound speeds: the
+claims of ``config/claims.yaml`` marked ``identification: true``
+(:func:`targets_from_claims`), with their declared tolerances.
 Every combination of candidate readings (moments of inertia, contact lead, collision
 coupling, spring constant, and the instant at which omega and theta are quoted) is
 simulated and scored against those ten numbers with the project's declared tolerances.
@@ -15,6 +17,7 @@ report marks them as used for identification.
 from __future__ import annotations
 
 import itertools
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 
 import pandas as pd
@@ -35,26 +38,53 @@ class Target:
     unit: str
 
 
-FIG4_A = (120.0, 81.5)
-FIG4_B = (75.0, 39.0)
+#: Which simulated number a claim's file variable stands for: ``theta``/``omega`` are
+#: read at the instant a ``*_quoted_at`` candidate names (the paper calls both the
+#: contact start and ``phi = 0`` "the contact time"); the others are result fields.
+_QUANTITY_OF_VARIABLE = {
+    "t_phi0": "t_phi0",
+    "v_out": "v_out_kmh",
+    "theta_deg_at_phi0": "theta@quoted",
+    "theta_deg_contact": "theta@quoted",
+    "omega1_phi0": "omega1@quoted",
+    "omega1_contact": "omega1@quoted",
+    "omega2_phi0": "omega2@quoted",
+    "omega2_contact": "omega2@quoted",
+}
 
-#: The Fig. 4 numbers (Sec. III).  ``theta@quoted`` and ``omega*@quoted`` are read at the
-#: instants given by the ``theta_quoted_at`` and ``omega_quoted_at`` candidates (contact
-#: start or phi = 0: the paper calls both "the contact time").  Tolerances: the
-#: project's declared ones (times 2 ms, angles 1 degree, angular velocities 0.5 rad/s,
-#: speeds 1 km/h).
-TARGETS = (
-    Target("t_a", FIG4_A, "t_phi0", 0.198, 2e-3, "s"),
-    Target("t_b", FIG4_B, "t_phi0", 0.220, 2e-3, "s"),
-    Target("theta_c_a", FIG4_A, "theta@quoted", 11.5, 1.0, "degree"),
-    Target("theta_c_b", FIG4_B, "theta@quoted", 87.1, 1.0, "degree"),
-    Target("omega1_a", FIG4_A, "omega1@quoted", 11.34, 0.5, "rad/s"),
-    Target("omega1_b", FIG4_B, "omega1@quoted", 17.9, 0.5, "rad/s"),
-    Target("omega2_a", FIG4_A, "omega2@quoted", 37.98, 0.5, "rad/s"),
-    Target("omega2_b", FIG4_B, "omega2@quoted", 37.98, 0.5, "rad/s"),
-    Target("v_out_a", FIG4_A, "v_out_kmh", 156.0, 1.0, "km/h"),
-    Target("v_out_b", FIG4_B, "v_out_kmh", 141.0, 1.0, "km/h"),
-)
+
+def targets_from_claims(claims: Sequence[Mapping], strokes: Sequence[Sequence[float]]):
+    """The fit targets: every claim marked ``identification: true`` (``config/claims.yaml``,
+    the only home of the paper's numbers), on the Fig. 4 strokes ``(theta0, delta0)``
+    (degrees) its ``measure.sel.stroke`` indexes.
+
+    Raises
+    ------
+    ValueError
+        A marked claim does not read a single Fig. 4 stroke variable this identification
+        knows (one line, with the claim's id).
+    """
+    targets = []
+    for c in claims:
+        if not c.get("identification"):
+            continue
+        m = c["measure"]
+        var = m.get("var")
+        if m.get("file") != "fig4" or var not in _QUANTITY_OF_VARIABLE or "sel" not in m:
+            raise ValueError(f"claim {c['id']!r}: identification needs a Fig. 4 stroke variable")
+        stroke = tuple(float(x) for x in strokes[int(m["sel"]["stroke"])])
+        targets.append(
+            Target(
+                c["id"],
+                stroke,
+                _QUANTITY_OF_VARIABLE[var],
+                float(c["paper_value"]),
+                float(c["tolerance"]),
+                c["unit"],
+            )
+        )
+    return tuple(targets)
+
 
 #: Candidate values of each reading (the spring constant and the quoting instant are
 #: readings of the figures, not model options).
@@ -90,8 +120,11 @@ def _value(result: dict, quantity: str, quoting: dict[str, str]) -> float:
     return result[quantity]
 
 
-def score_readings(settings: SolverSettings | None = None) -> pd.DataFrame:
-    """Score every combination of :data:`CANDIDATES` against :data:`TARGETS`.
+def score_readings(
+    targets: Sequence[Target | Mapping], settings: SolverSettings | None = None
+) -> pd.DataFrame:
+    """Score every combination of :data:`CANDIDATES` against ``targets``
+    (:func:`targets_from_claims`).
 
     Returns
     -------
@@ -100,16 +133,21 @@ def score_readings(settings: SolverSettings | None = None) -> pd.DataFrame:
         ``score`` (RMS of error / tolerance) and one column per target with the
         simulated value; sorted best first (most passed, then lowest score).
     """
+    targets = [
+        t if isinstance(t, Target) else Target(**{**t, "stroke": tuple(t["stroke"])})
+        for t in targets
+    ]
     rows = []
     model_keys = [k for k in CANDIDATES if k not in QUOTING]
     for combo in itertools.product(*(CANDIDATES[k] for k in model_keys)):
         readings = dict(zip(model_keys, combo, strict=True))
-        results = {stroke: strike(*stroke, readings, settings) for stroke in (FIG4_A, FIG4_B)}
+        strokes = dict.fromkeys(t.stroke for t in targets)
+        results = {stroke: strike(*stroke, readings, settings) for stroke in strokes}
         for instants in itertools.product(*(CANDIDATES[k] for k in QUOTING)):
             quoting = dict(zip(QUOTING, instants, strict=True))
             row = {**readings, **quoting}
             normalised = []
-            for target in TARGETS:
+            for target in targets:
                 value = _value(results[target.stroke], target.quantity, quoting)
                 row[target.name] = value
                 normalised.append((value - target.paper) / target.tolerance)
@@ -120,14 +158,18 @@ def score_readings(settings: SolverSettings | None = None) -> pd.DataFrame:
     return table.sort_values(["passed", "score"], ascending=[False, True], ignore_index=True)
 
 
-def paper_row() -> dict[str, float]:
-    """The paper's values of :data:`TARGETS`, for printing beside the table."""
-    return {t.name: t.paper for t in TARGETS}
+def paper_row(targets: Sequence[Target]) -> dict[str, float]:
+    """The paper's values of ``targets``, for printing beside the table."""
+    return {t.name: t.paper for t in targets}
 
 
-def best_readings(settings: SolverSettings | None = None, rows: int = 10) -> str:
+def best_readings(
+    targets: Sequence[Target], settings: SolverSettings | None = None, rows: int = 10
+) -> str:
     """The paper's values and the ``rows`` best-scoring combinations, as text
     (``tennis-stroke identify``)."""
-    table = score_readings(settings)
-    columns = [*CANDIDATES, "passed", "score", *paper_row()]
-    return f"paper: {paper_row()}\n" + table[columns].head(rows).round(3).to_string(index=False)
+    table = score_readings(targets, settings)
+    columns = [*CANDIDATES, "passed", "score", *paper_row(targets)]
+    return f"paper: {paper_row(targets)}\n" + table[columns].head(rows).round(3).to_string(
+        index=False
+    )

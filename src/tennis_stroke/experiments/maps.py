@@ -18,11 +18,10 @@ import xarray as xr
 from ..chunking import chunk_rows
 from ..io import result_dataset
 from ..model.params import resolve_params
+from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 from .grids import axis, grid, ok_speeds, refine_peak
-
-KMH = ("km/h", "rebound speed of the ball towards -x")
 
 
 def angle_map(
@@ -40,16 +39,8 @@ def angle_map(
     ds = result_dataset(res, {"theta0": theta0, "delta0": delta0}, resolve_params(params), settings)
     v = ok_speeds(res)
     best = np.array([refine_peak(delta0, row) for row in v])
-    ds["best_delta0"] = (
-        "theta0",
-        best[:, 0],
-        {"units": "degree", "long_name": "delta0 of the fastest rebound"},
-    )
-    ds["best_v_out"] = (
-        "theta0",
-        best[:, 1],
-        {"units": KMH[0], "long_name": "fastest rebound speed"},
-    )
+    ds["best_delta0"] = ("theta0", best[:, 0], cf_attrs("best_delta0"))
+    ds["best_v_out"] = ("theta0", best[:, 1], cf_attrs("best_v_out"))
     return ds
 
 
@@ -103,10 +94,7 @@ def mass_length_map(
         out["v"][idx] = max(v_t, v_d)
         out["theta0"][idx], out["delta0"][idx] = t_opt, d_opt
         out["theta_c"][idx] = abs(fine_res["theta_deg_at_phi0"][idx][i, j])
-    coords = {
-        "M2": (m2, "kg", "mass of rod 2 (hand+racket)"),
-        "L1": (l1, "m", "length of rod 1 (elbow to hand, projected)"),
-    }
+    coords = {"M2": m2, "L1": l1}
     ds = result_dataset(
         {},
         coords,
@@ -118,26 +106,17 @@ def mass_length_map(
             "strokes_per_point": th_c.size * de_c.size + offsets.size**2,
         },
     )
-    meta = {
-        "v": ("v_out_best", KMH[0], "fastest rebound speed over the initial angles"),
-        "theta0": ("theta0_best", "degree", "theta0 of the fastest rebound"),
-        "delta0": ("delta0_best", "degree", "delta0 of the fastest rebound"),
-        "theta_c": ("theta_c", "degree", "|theta| at phi = 0 of the fastest rebound"),
-    }
-    for key, (name, units, long_name) in meta.items():
-        ds[name] = (("M2", "L1"), out[key], {"units": units, "long_name": long_name})
-    ds["failed_strokes"] = (
-        ("M2", "L1"),
-        failed.astype(np.int64),
-        {"units": "1", "long_name": "failed strokes of the optimum search at this point"},
-    )
+    names = {"v": "v_out_best", "theta0": "theta0_best", "delta0": "delta0_best"}
+    for key, values in out.items():
+        name = names.get(key, key)
+        ds[name] = (("M2", "L1"), values, cf_attrs(name))
+    ds["failed_strokes"] = (("M2", "L1"), failed.astype(np.int64), cf_attrs("failed_strokes"))
     return ds
 
 
 def delay_map(
     axis_name: str,
     axis: np.ndarray,
-    axis_meta: tuple[str, str],
     tau: np.ndarray,
     theta0: float,
     delta0,
@@ -162,29 +141,15 @@ def delay_map(
             settings,
             threads,
         )
-    ds = result_dataset(
-        res,
-        {axis_name: (axis, *axis_meta), "tau": (tau, "s", "delay of the wrist torque C2")},
-        resolve_params(params),
-        settings,
-    )
+    fixed = {"theta0_deg": float(theta0)}
+    if delta0 is not None:
+        fixed["delta0_deg"] = float(delta0)
+    ds = result_dataset(res, {axis_name: axis, "tau": tau}, resolve_params(params), settings, fixed)
     v = ok_speeds(res)
     best = np.array([refine_peak(tau, row) for row in v])
-    ds["best_tau"] = (
-        axis_name,
-        best[:, 0],
-        {"units": "s", "long_name": "delay of the fastest rebound"},
-    )
-    ds["best_v_out"] = (
-        axis_name,
-        best[:, 1],
-        {"units": KMH[0], "long_name": "fastest rebound speed"},
-    )
-    ds["v_out_tau0"] = (
-        axis_name,
-        v[:, 0],
-        {"units": KMH[0], "long_name": "rebound speed at tau = 0"},
-    )
+    ds["best_tau"] = (axis_name, best[:, 0], cf_attrs("best_tau"))
+    ds["best_v_out"] = (axis_name, best[:, 1], cf_attrs("best_v_out"))
+    ds["v_out_tau0"] = (axis_name, v[:, 0], cf_attrs("v_out_tau0"))
     return ds
 
 
@@ -211,10 +176,7 @@ def elbow_force_map(
     )
     return result_dataset(
         res,
-        {
-            "psi_F": (psi, "degree", "direction of the elbow force from +x"),
-            "tau_F": (tau_f, "s", "delay of the force pulse after tau_H"),
-        },
+        {"psi_F": psi, "tau_F": tau_f},
         resolve_params(params),
         settings,
         {"t_ref_s": t_ref},
@@ -246,7 +208,6 @@ def torque_delay_map(
         return delay_map(
             "C2",
             first(axis(section["C2"])),
-            ("N m", "wrist torque C2"),
             tau,
             section["theta0"],
             section["delta0"],
@@ -259,7 +220,6 @@ def torque_delay_map(
     return delay_map(
         "delta0",
         first(delta0),
-        ("degree", "initial angle between the rods"),
         tau,
         section["theta0"],
         None,

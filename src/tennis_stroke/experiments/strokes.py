@@ -12,6 +12,7 @@ from ..io import result_dataset
 from ..model.dynamics import coefficients, elbow_position
 from ..model.params import resolve_params
 from ..solver.reference import free_swing, solve_stroke
+from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike
 
@@ -67,42 +68,26 @@ def trajectories(
         path = np.array([elbow_position(t, cf) for t in times])
         samples["x_elbow"].append(path[:, 0])
         samples["y_elbow"].append(path[:, 1])
-    meta = {
-        "omega1": ("rad/s", "rod-1 angular velocity (clockwise)"),
-        "omega2": ("rad/s", "rod-2 angular velocity (clockwise)"),
-        "theta": ("degree", "rod-1 angle from -y"),
-        "phi": ("degree", "rod-2 angle from -y"),
-        "x_elbow": ("m", "elbow x position"),
-        "y_elbow": ("m", "elbow y position"),
-    }
     results = {k: np.asarray(v) for k, v in numbers.items()}
     ds = result_dataset(
         results,
-        {"stroke": (np.arange(len(strokes)), "1", "stroke index")},
+        {"stroke": np.arange(len(strokes))},
         resolve_params(params),
         settings,
     )
     ds = ds.assign_coords(
         label=("stroke", list(labels)),
-        theta0=(
-            "stroke",
-            [s[0] for s in strokes],
-            {"units": "degree", "long_name": "initial rod-1 angle"},
-        ),
-        delta0=(
-            "stroke",
-            [s[1] for s in strokes],
-            {"units": "degree", "long_name": "initial angle between the rods"},
-        ),
+        theta0=("stroke", [s[0] for s in strokes], cf_attrs("theta0")),
+        delta0=("stroke", [s[1] for s in strokes], cf_attrs("delta0")),
     )
-    ds["label"].attrs = {"units": "1", "long_name": "stroke label"}
-    ds = ds.assign_coords(time=("time", times, {"units": "s", "long_name": "time"}))
+    ds["label"].attrs = cf_attrs("label")
+    ds = ds.assign_coords(time=("time", times, cf_attrs("time", standard_name="time")))
     ds.attrs["curves"] = curves
     for key, values in samples.items():
         ds[key] = (
             ("stroke", "time"),
             np.asarray(values),
-            {"units": meta[key][0], "long_name": meta[key][1]},
+            cf_attrs(key),
         )
     return ds
 
@@ -148,7 +133,7 @@ def delay_strokes(
     ds["tau"] = (
         "stroke",
         [stroke["tau_L"], stroke["tau_H"]],
-        {"units": "s", "long_name": "delay of C2"},
+        cf_attrs("tau"),
     )
     return ds
 
@@ -181,10 +166,10 @@ def elbow_force_strokes(
         settings,
         curves,
     )
-    ds["psi_F"] = ("stroke", [*psi, np.nan], {"units": "degree", "long_name": "force direction"})
+    ds["psi_F"] = ("stroke", [*psi, np.nan], cf_attrs("psi_F"))
     ds["F0"] = (
         "stroke",
         [force["F0"]] * len(psi) + [0.0],
-        {"units": "N", "long_name": "force amplitude"},
+        cf_attrs("F0"),
     )
     return ds

@@ -52,7 +52,7 @@ def angle_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     )
     ax.plot(d["theta0"], d["best_delta0"], "r-", lw=2, label="best delta0")
     ax.legend(loc="upper right")
-    ax.set_title(f"{title}: L1 = {d.attrs['param_L1']:g} m")
+    ax.set_title(title)
     return fig
 
 
@@ -214,6 +214,7 @@ def stability(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     )
     ax.set_yticks(np.arange(d.sizes["case"]), [str(c) for c in d["case"].values], fontsize=7)
     ax.set_xlabel("log10 k_contact (N/m)")
+    ax.set_ylabel(_label(d["case"]))
     ax.axvspan(np.log10(188), np.log10(19000), color="k", alpha=0.08, label="paper's k range")
     bar = plt.colorbar(mesh, ax=ax, ticks=np.arange(len(names)))
     bar.ax.set_yticklabels(names, fontsize=8)
@@ -234,6 +235,15 @@ def ladder(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     ax.legend()
     ax.set_title(title)
     return fig
+
+
+def title(template: str, ds: xr.Dataset) -> str:
+    """A figure's title from its registry template and the values its file records:
+    the resolved parameters (``{L1}`` for ``param_L1``) and the other scalar global
+    attributes (``{theta0_deg}``)."""
+    context = {k: v for k, v in ds.attrs.items() if np.ndim(v) == 0}
+    context.update({k.removeprefix("param_"): v for k, v in context.items()})
+    return template.format(**context)
 
 
 #: The drawing functions by name (:attr:`tennis_stroke.replication.registry.Figure.draw`).
@@ -259,7 +269,7 @@ def draw(name: str, inputs: Sequence[str | Path], output: str | Path) -> None:
     """Draw figure ``name`` from its result files into ``output`` (PNG)."""
     figure = FIGURES[name]
     datasets = [xr.load_dataset(p) for p in inputs]
-    fig = DRAWERS[figure.draw](datasets, figure.title, *figure.args)
+    fig = DRAWERS[figure.draw](datasets, title(figure.title, datasets[0]), *figure.args)
     fig.tight_layout()
     fig.savefig(output, dpi=DPI)
     plt.close(fig)

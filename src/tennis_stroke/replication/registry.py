@@ -41,7 +41,9 @@ RESULT_FILES = {**PAPER_RESULTS, **STUDY_RESULTS}
 class Figure:
     """One figure: file name (without ``.png``), section of the paper (``III`` ... ``VI``,
     or ``study``), result files (keys of :data:`RESULT_FILES`), drawing function of
-    :mod:`tennis_stroke.replication.figures` and its extra arguments, title."""
+    :mod:`tennis_stroke.replication.figures` and its extra arguments, and its title: a
+    template filled from the first file's attributes (``{L1}`` is ``param_L1``), so a
+    title never states a value the file does not hold."""
 
     name: str
     section: str
@@ -64,14 +66,14 @@ FIGURES: dict[str, Figure] = {
             "III",
             ("fig2",),
             "angle_map",
-            "Fig. 2: v_out over the initial angles",
+            "Fig. 2: v_out over the initial angles: L1 = {L1:g} m",
         ),
         Figure(
             "fig03_angle_map_L1_0.4",
             "III",
             ("fig3",),
             "angle_map",
-            "Fig. 3: v_out over the initial angles",
+            "Fig. 3: v_out over the initial angles: L1 = {L1:g} m",
         ),
         Figure(
             "fig04_omegas", "III", ("fig4",), "omegas", "Fig. 4: angular velocities of two strokes"
@@ -97,14 +99,14 @@ FIGURES: dict[str, Figure] = {
             "V",
             ("fig7",),
             "delay_map",
-            "Fig. 7: v_out over (C2, tau), theta0 = 90, delta0 = 26.1",
+            "Fig. 7: v_out over (C2, tau), theta0 = {theta0_deg:g}, delta0 = {delta0_deg:g}",
         ),
         Figure(
             "fig08_delay_delta0",
             "V",
             ("fig8",),
             "delay_map",
-            "Fig. 8: v_out over (delta0, tau), C2 = 5 N m",
+            "Fig. 8: v_out over (delta0, tau), C2 = {C2:g} N m",
         ),
         Figure("fig09_v_tau", "V", ("fig9",), "v_tau", "Fig. 9: v_out over the delay tau"),
         Figure(

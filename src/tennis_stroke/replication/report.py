@@ -19,7 +19,7 @@ import pandas as pd
 import xarray as xr
 
 from .._version import __version__
-from ..experiments.identification import CANDIDATES, paper_row
+from ..experiments.identification import CANDIDATES
 from ..failures import failure_counts
 from ..io import git_commit
 from ..model.params import READINGS
@@ -95,7 +95,7 @@ than {{ max_failure_share }} of its strokes failed stops the run (config
 """)
 
 
-def _sensitivity(readings: pd.DataFrame) -> pd.DataFrame:
+def _sensitivity(readings: pd.DataFrame, targets: Sequence[str]) -> pd.DataFrame:
     """Each candidate of each reading with the others at the best row's values."""
     best = readings.iloc[0]
     rows = []
@@ -112,7 +112,7 @@ def _sensitivity(readings: pd.DataFrame) -> pd.DataFrame:
                         "reading": key,
                         "value": value,
                         "passed": row["passed"],
-                        **{k: round(row[k], 3) for k in paper_row()},
+                        **{k: round(row[k], 3) for k in targets},
                     }
                 )
     return pd.DataFrame(rows)
@@ -167,6 +167,7 @@ def build_report(
     statements = load_statements(statements_yaml) if statements_yaml else {}
     claims["reproduced_value"] = claims["reproduced_value"].astype(float)
     readings = pd.read_csv(readings_csv)
+    targets = list(claims.loc[claims["identification"].astype(str) == "True", "id"])
     figs = []
     for path in figures:
         name = Path(path).stem
@@ -221,7 +222,7 @@ def build_report(
         readings=list(READINGS.values()),
         n_combos=len(readings),
         best_table=readings[cols].head(8).round(3).to_html(index=False),
-        sensitivity_table=_sensitivity(readings).to_html(index=False),
+        sensitivity_table=_sensitivity(readings, targets).to_html(index=False),
         meta=meta,
         timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
         failure_table=_failures(results).to_html(index=False, na_rep="-"),

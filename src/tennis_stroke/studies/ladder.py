@@ -12,6 +12,7 @@ from ..io import provenance
 from ..model.dynamics import coefficients
 from ..model.impact import impact_rebound_kmh
 from ..model.params import resolve_params
+from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 from .sampling import REFERENCE, stroke_params
@@ -51,15 +52,15 @@ def ladder(strokes: Mapping[str, np.ndarray], repeats: int = 3) -> xr.Dataset:
             "v_out_spring": (
                 "stroke",
                 spring["v_out_kmh"],
-                {"units": "km/h", "long_name": "v_out, spring contact (paper)"},
+                cf_attrs("v_out_spring"),
             ),
             "v_out_impact": (
                 "stroke",
                 impact,
-                {"units": "km/h", "long_name": "v_out, instantaneous impact at phi=0"},
+                cf_attrs("v_out_impact"),
             ),
         },
-        coords={"stroke": ("stroke", np.arange(th.size), {"units": "1", "long_name": "stroke"})},
+        coords={"stroke": ("stroke", np.arange(th.size), cf_attrs("stroke"))},
         attrs={
             "us_per_stroke_spring": us_spring,
             "us_per_stroke_impact_python": t_impact / th.size * 1e6,

@@ -11,6 +11,7 @@ import xarray as xr
 from ..experiments.maps import mass_length_map
 from ..io import provenance
 from ..model.params import resolve_params
+from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from .sampling import REFERENCE
 from .timing import TIMING, median_time
@@ -47,26 +48,16 @@ def optimum_cost(
         rows["theta0_err"].append(float(np.nanmax(np.abs(ds["theta0_best"] - ref["theta0_best"]))))
         rows["delta0_err"].append(float(np.nanmax(np.abs(ds["delta0_best"] - ref["delta0_best"]))))
     labels = [f"coarse {c:g} deg, fine {f:g} deg" for c, f in steps]
-    meta = {
-        "v_err": ("km/h", "largest error of the best v_out"),
-        "theta0_err": ("degree", "largest error of the best theta0"),
-        "delta0_err": ("degree", "largest error of the best delta0"),
-        "seconds": ("s", "wall time of the search over all points (all threads)"),
-    }
     ds = xr.Dataset(
         {
             k: (
                 "search",
                 np.array(v),
-                {
-                    "units": meta[k][0],
-                    "long_name": meta[k][1],
-                    **(TIMING if k == "seconds" else {}),
-                },
+                cf_attrs(k, **(TIMING if k == "seconds" else {})),
             )
             for k, v in rows.items()
         },
-        coords={"search": ("search", labels, {"units": "1", "long_name": "steps"})},
+        coords={"search": ("search", labels, cf_attrs("search"))},
         attrs={"points": m2.size * l1.size, "reference_fine_step_deg": reference_step},
     )
     ds.attrs.update(provenance(resolve_params(), REFERENCE))

@@ -29,6 +29,7 @@ from ..model.dynamics import (
     mechanical_energy,
 )
 from ..model.params import resolve_params
+from ..solver.results import cf_attrs
 from ..solver.rk4 import contact_missed, fixed_phase
 from ..solver.settings import SolverSettings
 from ..solver.stroke import solve_contact
@@ -156,25 +157,15 @@ def stability_map(cases: Sequence[tuple[str, float]], k_values: np.ndarray) -> x
         for j, k in enumerate(k_values):
             for key, value in isolated_contact(method, setting, float(k)).items():
                 fields[key][i, j] = value
-    meta = {
-        "outcome": ("1", "outcome code (see flag_meanings)"),
-        "v_exit": ("m/s", "ball velocity after separation (lab frame, along x)"),
-        "duration": ("s", "contact duration"),
-        "energy_change": ("1", "relative change of the mechanical energy"),
-        "expected_duration": ("s", "two-body contact duration pi sqrt(mu/k)"),
-    }
     dims = ("case", "k_contact")
     ds = xr.Dataset(
-        {
-            key: (dims, fields[key], {"units": meta[key][0], "long_name": meta[key][1]})
-            for key in fields
-        },
+        {key: (dims, fields[key], cf_attrs(key)) for key in fields},
         coords={
-            "case": ("case", labels, {"units": "1", "long_name": "method @ setting"}),
+            "case": ("case", labels, cf_attrs("case")),
             "k_contact": (
                 "k_contact",
                 np.asarray(k_values, dtype=float),
-                {"units": "N/m", "long_name": "spring constant"},
+                cf_attrs("k_contact"),
             ),
         },
     )

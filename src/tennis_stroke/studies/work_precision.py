@@ -18,6 +18,7 @@ import xarray as xr
 from ..io import provenance
 from ..model.params import resolve_params
 from ..solver.reference import solve_stroke
+from ..solver.results import cf_attrs
 from ..solver.rk4 import fixed_step_stroke
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
@@ -81,24 +82,24 @@ def work_precision(
             err[mi, si] = float(np.nanmax(np.abs(v - ref))) if ok.any() else np.nan
             evals[mi, si] = float(np.mean(nfev))
     coords = {
-        "method": ("method", methods, {"units": "1", "long_name": "integrator"}),
+        "method": ("method", methods, cf_attrs("method")),
         "setting": (
             "setting",
             np.array(settings_axis),
-            {"units": "1", "long_name": "tolerance rtol = atol, or RK4 step (s)"},
+            cf_attrs("setting"),
         ),
     }
     dims = ("method", "setting")
     ds = xr.Dataset(
         {
-            "error_kmh": (dims, err, {"units": "km/h", "long_name": "largest |v_out error|"}),
+            "error_kmh": (dims, err, cf_attrs("error_kmh")),
             "us_per_stroke": (
                 dims,
                 cost,
-                {"units": "us", "long_name": "cost per stroke, one thread", **TIMING},
+                cf_attrs("us_per_stroke", **TIMING),
             ),
-            "rhs_evals": (dims, evals, {"units": "1", "long_name": "evaluations per stroke"}),
-            "failed": (dims, failed, {"units": "1", "long_name": "strokes without status ok"}),
+            "rhs_evals_per_stroke": (dims, evals, cf_attrs("rhs_evals_per_stroke")),
+            "failed": (dims, failed, cf_attrs("failed")),
         },
         coords=coords,
         attrs={"strokes": n, "reference": "compiled DOP853, rtol = atol = 1e-13"},
