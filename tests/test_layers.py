@@ -42,7 +42,7 @@ def _layer(module: str) -> str:
 def _imports(path: Path) -> set[str]:
     """Modules of the package that ``path`` imports (dotted, relative to the package)."""
     here = _module(path).split(".")
-    package = here[:-1] if path.name != "__init__.py" else here[:-1]
+    package = here[:-1]  # a module's package; for __init__ ("x.__init__") the package x
     found = set()
     for node in ast.walk(ast.parse(path.read_text())):
         if isinstance(node, ast.ImportFrom):

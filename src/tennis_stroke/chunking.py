@@ -44,6 +44,11 @@ def chunk_rows(values: np.ndarray, index: int, count: int) -> np.ndarray:
     return np.array_split(np.asarray(values), count)[index]
 
 
+def select_rows(values: np.ndarray, rows: tuple[int, int] | None) -> np.ndarray:
+    """All of ``values``, or only chunk ``rows = (index, count)`` of them (:func:`chunk_rows`)."""
+    return np.asarray(values) if rows is None else chunk_rows(values, *rows)
+
+
 def mark_chunk(ds: xr.Dataset, index: int, count: int) -> xr.Dataset:
     """Record in ``ds`` which chunk of the map it holds: rows of its first dimension."""
     ds.attrs.update(

@@ -22,6 +22,7 @@ from dataclasses import dataclass
 
 import pandas as pd
 
+from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike
 
@@ -38,18 +39,26 @@ class Target:
     unit: str
 
 
+_QUOTED_FIELDS = {
+    "contact": {
+        "theta": "theta_deg_contact",
+        "omega1": "omega1_contact",
+        "omega2": "omega2_contact",
+    },
+    "phi0": {"theta": "theta_deg_at_phi0", "omega1": "omega1_phi0", "omega2": "omega2_phi0"},
+}
+
 #: Which simulated number a claim's file variable stands for: ``theta``/``omega`` are
 #: read at the instant a ``*_quoted_at`` candidate names (the paper calls both the
 #: contact start and ``phi = 0`` "the contact time"); the others are result fields.
 _QUANTITY_OF_VARIABLE = {
     "t_phi0": "t_phi0",
-    "v_out": "v_out_kmh",
-    "theta_deg_at_phi0": "theta@quoted",
-    "theta_deg_contact": "theta@quoted",
-    "omega1_phi0": "omega1@quoted",
-    "omega1_contact": "omega1@quoted",
-    "omega2_phi0": "omega2@quoted",
-    "omega2_contact": "omega2@quoted",
+    FILE_NAMES["v_out_kmh"]: "v_out_kmh",
+    **{
+        field: f"{kind}@quoted"
+        for fields in _QUOTED_FIELDS.values()
+        for kind, field in fields.items()
+    },
 }
 
 
@@ -98,15 +107,6 @@ CANDIDATES = {
 }
 #: Candidates that only choose which simulated number stands for the paper's.
 QUOTING = ("theta_quoted_at", "omega_quoted_at")
-
-_QUOTED_FIELDS = {
-    "contact": {
-        "theta": "theta_deg_contact",
-        "omega1": "omega1_contact",
-        "omega2": "omega2_contact",
-    },
-    "phi0": {"theta": "theta_deg_at_phi0", "omega1": "omega1_phi0", "omega2": "omega2_phi0"},
-}
 
 
 def _value(result: dict, quantity: str, quoting: dict[str, str]) -> float:

@@ -15,7 +15,7 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from ..chunking import chunk_rows
+from ..chunking import select_rows
 from ..io import result_dataset
 from ..model.params import resolve_params
 from ..solver.results import cf_attrs
@@ -200,14 +200,10 @@ def torque_delay_map(
     """
     model = {**params, "L1": section["L1"]}
     tau = axis(section["tau"])
-
-    def first(values):
-        return values if rows is None else chunk_rows(values, *rows)
-
     if isinstance(section["C2"], Mapping):  # Fig. 7: (C2, tau) at fixed delta0
         return delay_map(
             "C2",
-            first(axis(section["C2"])),
+            select_rows(axis(section["C2"]), rows),
             tau,
             section["theta0"],
             section["delta0"],
@@ -219,7 +215,7 @@ def torque_delay_map(
     delta0 = axis(delta0) if isinstance(delta0, Mapping) else np.array([float(delta0)])
     return delay_map(
         "delta0",
-        first(delta0),
+        select_rows(delta0, rows),
         tau,
         section["theta0"],
         None,
@@ -255,7 +251,7 @@ def elbow_force_section_map(
         "t_d": force["t_d"],
     }
     return elbow_force_map(
-        psi if rows is None else chunk_rows(psi, *rows),
+        select_rows(psi, rows),
         axis(tau_f),
         stroke["tau_H"],
         stroke["theta0"],

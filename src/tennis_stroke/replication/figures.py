@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-from .measures import measure_delay_threshold  # noqa: E402
+from .measures import measure_delay_threshold, valid_v_out  # noqa: E402
 from .registry import FIGURES  # noqa: E402
 
 DPI = 110
@@ -40,7 +40,7 @@ def angle_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     """Figs. 2-3: v_out over (theta0, delta0) with the best delta0 (red line)."""
     d = ds[0]
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    v = d["v_out"].where(d["status"] == 0)
+    v = valid_v_out(d)
     _map(ax, v, "theta0", "delta0")
     ax.contour(
         d["theta0"],
@@ -88,13 +88,13 @@ def delay_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     d = ds[0]
     axis = "C2" if "C2" in d.dims else "delta0"
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    _map(ax, d["v_out"].where(d["status"] == 0), axis, "tau")
+    _map(ax, valid_v_out(d), axis, "tau")
     ax.plot(d[axis], d["best_tau"], "r-", lw=1.5, label="best tau")
     if axis == "C2":
         thr = measure_delay_threshold(d)
         ax.axvline(thr, color="w", ls="--", lw=1, label=f"best tau leaves 0: C2 = {thr:.2f} N m")
     else:
-        v = d["v_out"].where(d["status"] == 0)
+        v = valid_v_out(d)
         i = np.unravel_index(int(np.nanargmax(v.values)), v.shape)
         ax.plot(float(d[axis][i[0]]), float(d["tau"][i[1]]), "r*", ms=14, label="optimum")
     ax.legend(loc="upper right", fontsize=8)
@@ -106,7 +106,7 @@ def v_tau(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     """Fig. 9: v_out as a function of the delay tau."""
     d = ds[0].isel(delta0=0)
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
-    v = d["v_out"].where(d["status"] == 0)
+    v = valid_v_out(d)
     ax.plot(d["tau"], v, lw=2)
     ax.plot(
         float(d["best_tau"]),
@@ -152,7 +152,7 @@ def elbow_force(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     """Fig. 13: v_out over the force direction psi_F and extra delay tau_F."""
     d = ds[0]
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
-    v = d["v_out"].where(d["status"] == 0)
+    v = valid_v_out(d)
     _map(ax, v, "psi_F", "tau_F")
     i = np.unravel_index(int(np.nanargmax(v.values)), v.shape)
     ax.plot(float(d["psi_F"][i[0]]), float(d["tau_F"][i[1]]), "r*", ms=14, label="maximum")

@@ -13,7 +13,8 @@ import numpy as np
 import xarray as xr
 
 
-def _v(ds: xr.Dataset) -> xr.DataArray:
+def valid_v_out(ds: xr.Dataset) -> xr.DataArray:
+    """v_out (km/h) of a result dataset with failed strokes as NaN."""
     return ds["v_out"].where(ds["status"] == 0)
 
 
@@ -43,14 +44,14 @@ def measure_below_threshold_tau_zero(ds: xr.Dataset) -> float:
 
 def measure_optimum(ds: xr.Dataset, coord: str) -> float:
     """The coordinate ``coord`` of the largest v_out of a map (grid point)."""
-    v = _v(ds)
+    v = valid_v_out(ds)
     index = np.unravel_index(int(np.argmax(v.fillna(-np.inf).values)), v.shape)
     return float(ds[coord][index[v.dims.index(coord)]])
 
 
 def measure_minimum(ds: xr.Dataset, coord: str) -> float:
     """The coordinate ``coord`` of the smallest v_out of a map (grid point)."""
-    v = _v(ds)
+    v = valid_v_out(ds)
     index = np.unravel_index(int(np.argmin(v.fillna(np.inf).values)), v.shape)
     return float(ds[coord][index[v.dims.index(coord)]])
 
@@ -58,7 +59,7 @@ def measure_minimum(ds: xr.Dataset, coord: str) -> float:
 def measure_fig9(ds: xr.Dataset, what: str) -> float:
     """Fig. 9: ``v_L`` (tau = 0), ``v_H`` (max), ``tau_H`` or the ``gain_percent``."""
     d = ds.isel(delta0=0)
-    v_l = float(_v(d)[0])
+    v_l = float(valid_v_out(d)[0])
     v_h, tau_h = float(d["best_v_out"]), float(d["best_tau"])
     return {"v_L": v_l, "v_H": v_h, "tau_H": tau_h, "gain_percent": 100 * (v_h / v_l - 1)}[what]
 

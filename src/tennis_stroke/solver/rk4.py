@@ -35,9 +35,6 @@ from ..model.dynamics import (
 )
 from ..model.params import resolve_params
 
-#: Outcomes of :func:`fixed_step_stroke`.
-STATUSES = ("ok", "missed_contact", "no_phi_zero", "no_approach", "non_finite", "no_release")
-
 
 def rk4_step(fun: Callable, t: float, y: np.ndarray, h: float) -> np.ndarray:
     """One classical Runge-Kutta step of size ``h`` (s) of ``dy/dt = fun(t, y)``."""
@@ -90,8 +87,9 @@ def contact_missed(cf, t: float, y: np.ndarray, h: float, t_stop: float):
 def fixed_step_stroke(
     theta0_deg: float, delta0_deg: float, params: Mapping[str, object], h: float, t_max: float = 1.0
 ) -> dict[str, float]:
-    """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (one of
-    :data:`STATUSES`), ``v_out_kmh`` and ``rhs_evals``.
+    """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (``ok``,
+    ``missed_contact``, ``no_phi_zero``, ``no_approach``, ``non_finite`` or
+    ``no_release``), ``v_out_kmh`` and ``rhs_evals``.
 
     The contact state at ``t_c`` is the RK4 state of the step before, advanced by one
     step of the remaining size.
