@@ -57,6 +57,25 @@ rule fig4_strokes:
         "../scripts/fig4_strokes.py"
 
 
+rule k_sensitivity:
+    input:
+        SIMULATION_SOURCES,
+    output:
+        RESULT_FILES["k_sensitivity"],
+    log:
+        "logs/k_sensitivity.log",
+    benchmark:
+        "benchmarks/workflow/k_sensitivity.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        strokes=[list(map(float, s)) for s in config["fig4"]["strokes"]],
+        k_contact=config["k_sensitivity"]["k_contact"],
+        points=config["k_sensitivity"]["points"],
+    script:
+        "../scripts/k_sensitivity.py"
+
+
 rule mass_length:
     input:
         SIMULATION_SOURCES,
@@ -148,7 +167,10 @@ rule elbow_force_strokes:
     threads: 1
     params:
         common=common_params(),
-        force={k: config["elbow_force"][k] for k in ("F0", "t_d", "table1_psi")},
+        force={
+            k: config["elbow_force"][k]
+            for k in ("F0", "t_d", "table1_psi", "table1_tau_F")
+        },
         stroke=delay_stroke(),
         curves=config["figure_curves"],
     script:

@@ -260,3 +260,36 @@ def elbow_force_section_map(
         settings,
         threads,
     )
+
+
+def k_sensitivity_map(
+    strokes,
+    k_range: tuple[float, float],
+    points: int,
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Sec. II: every result of the strokes ``(theta0, delta0)`` (degrees) over a
+    geometric grid of ``points`` spring constants spanning ``k_range`` (N/m).
+
+    The paper: 'the coupling constant k determines the collision duration, but the speed
+    of the rebound ball is not altered very much'.
+    """
+    strokes = np.asarray(strokes, dtype=float).reshape(-1, 2)
+    k = np.geomspace(float(k_range[0]), float(k_range[1]), int(points))
+    res = strike_batch(
+        strokes[:, 0, None],
+        strokes[:, 1, None],
+        {**params, "k_contact": k[None, :]},
+        settings,
+        threads,
+    )
+    ds = result_dataset(
+        res, {"stroke": np.arange(len(strokes)), "k_contact": k}, resolve_params(params), settings
+    )
+    ds = ds.assign_coords(
+        theta0=("stroke", strokes[:, 0], cf_attrs("theta0")),
+        delta0=("stroke", strokes[:, 1], cf_attrs("delta0")),
+    )
+    return ds

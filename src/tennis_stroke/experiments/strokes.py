@@ -146,14 +146,14 @@ def elbow_force_strokes(
     curves: str = "free_swing",
 ) -> xr.Dataset:
     """Table I and Fig. 14: the ``tau_H`` stroke with the elbow force of Eq. 14 (``F0``,
-    ``t_d``, centred at ``tau_H``) in each direction of ``table1_psi`` (degrees), and
-    without it (the last stroke)."""
+    ``t_d``, centred at ``tau_H + table1_tau_F``, s; 0 if not given) in each direction of
+    ``table1_psi`` (degrees), and without it (the last stroke)."""
     base = {
         "L1": stroke["L1"],
         "C2": stroke["C2"],
         "tau": stroke["tau_H"],
         "t_d": force["t_d"],
-        "t_F": stroke["tau_H"],
+        "t_F": stroke["tau_H"] + force.get("table1_tau_F", 0.0),
     }
     psi = list(force["table1_psi"])
     cases = [{**base, "F0": force["F0"], "psi_F_deg": p} for p in psi] + [{**base, "F0": 0.0}]

@@ -122,6 +122,15 @@ def measure_contact_time_difference(ds: xr.Dataset) -> float:
     return abs(float(ds["t_contact_start"][1] - ds["t_contact_start"][0]))
 
 
+def measure_k_spread(ds: xr.Dataset) -> float:
+    """Sec. II: the largest change of v_out over the spring constants of a
+    ``(stroke, k_contact)`` map, per stroke in % of its largest v_out (the largest of
+    the strokes)."""
+    v = valid_v_out(ds)
+    spread = (v.max("k_contact") - v.min("k_contact")) / v.max("k_contact") * 100.0
+    return float(spread.max())
+
+
 def measure_mass_trend(ds: xr.Dataset, m2: float, sign: int) -> float:
     """Fig. 5: 1 if the fastest v_out at ``M2`` changes with L1 (largest vs smallest) in
     the direction ``sign``."""

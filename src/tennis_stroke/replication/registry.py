@@ -19,6 +19,7 @@ PAPER_RESULTS = {
     "fig2": "results/angle_maps/L1_0.3.nc",
     "fig3": "results/angle_maps/L1_0.4.nc",
     "fig4": "results/strokes/fig4.nc",
+    "k_sensitivity": "results/strokes/k_sensitivity.nc",
     "ml": "results/mass_length/map.nc",
     "fig7": "results/torque_delay/fig7.nc",
     "fig8": "results/torque_delay/fig8.nc",
