@@ -208,9 +208,9 @@ def test_console_script_runs_as_a_process(tmp_path):
 
 def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     table = tmp_path / "claims.csv"
-    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,False\n"
+    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,\n"
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,identification\n"
+    header += "expectation,reason,fit_set\n"
     table.write_text(header + row.format(value=1.5, status="fail"))
     assert main(["claims", str(table)]) == 1
     assert "FAIL x" in capsys.readouterr().out
@@ -226,7 +226,16 @@ def test_claims_command_without_a_table_is_one_line(tmp_path, capsys):
     assert err.count("\n") == 1 and "does not exist" in err
 
 
-def test_identify_prints_the_best_readings(capsys):
+def test_identify_prints_the_fits_and_the_default(capsys):
     assert main(["identify", "--rows", "2"]) == 0
-    out = capsys.readouterr().out.splitlines()
-    assert out[0].startswith("paper:") and len(out) == 4  # paper, header, two rows
+    out = capsys.readouterr().out
+    assert out.count("== fit set") == 2
+    assert out.count("default by the declared rule") == 2
+    assert out.count("leave-one-out") == 13  # ten Fig. 4 claims, three Table I speeds
+
+
+def test_identify_with_a_missing_reading_space_is_one_line(tmp_path, capsys):
+    with pytest.raises(SystemExit) as exc:
+        main(["identify", "--readings", str(tmp_path / "none.yaml")])
+    assert exc.value.code == 2
+    assert "does not exist" in capsys.readouterr().err

@@ -165,11 +165,11 @@ def test_no_missed_contact_even_with_loose_tolerance(k):
     assert loose["v_out_kmh"] == pytest.approx(tight["v_out_kmh"], abs=0.5)
 
 
-def test_rebound_speed_barely_depends_on_k():
-    """Sec. II: k sets the contact duration, the rebound speed is 'not altered very much'."""
-    speeds = [strike(*FIG4_A, {"k_contact": k})["v_out_kmh"] for k in (188.0, 19000.0, 1e7)]
+def test_spring_constant_sets_the_contact_duration():
+    """Sec. II: k sets the contact duration (Eq. 12, half the period: 50 ms at 188 N/m,
+    5 ms at 19000 N/m).  Whether v_out changes 'not very much' is a claim
+    (``sec2_k_barely_changes_v_out`` in config/claims.yaml), not a test."""
     durations = [strike(*FIG4_A, {"k_contact": k}) for k in (188.0, 19000.0)]
-    assert max(speeds) - min(speeds) < 0.15 * max(speeds)
     assert (durations[0]["t_separation"] - durations[0]["t_contact_start"]) > 5 * (
         durations[1]["t_separation"] - durations[1]["t_contact_start"]
     )

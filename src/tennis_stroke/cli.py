@@ -103,13 +103,18 @@ def build_parser() -> argparse.ArgumentParser:
     )
     claims.add_argument("csv", nargs="?", default="results/claims.csv", metavar="CLAIMS.csv")
 
-    identify = sub.add_parser("identify", help="score the readings of the paper against Fig. 4")
-    identify.add_argument("--rows", type=int, default=10, help="best combinations to print")
+    identify = sub.add_parser(
+        "identify", help="fit the paper's open readings to the declared fit sets"
+    )
+    identify.add_argument("--rows", type=int, default=6, help="best fits to print per fit set")
     identify.add_argument(
-        "--claims", default="config/claims.yaml", help="claims (the Fig. 4 fit targets)"
+        "--claims", default="config/claims.yaml", help="claims (the fit targets' values)"
     )
     identify.add_argument(
-        "--config", default="config/config.yaml", help="workflow config (the Fig. 4 strokes)"
+        "--readings", default="config/readings.yaml", help="the declared reading space"
+    )
+    identify.add_argument(
+        "--config", default="config/config.yaml", help="workflow config (the strokes)"
     )
     return parser
 
@@ -212,20 +217,26 @@ def _identify(args: argparse.Namespace) -> int:
 
     import yaml
 
-    from .experiments.identification import best_readings, targets_from_claims
+    from .experiments.identification import run_identification, summary
+    from .experiments.reading_space import ReadingSpaceError, load_reading_space
+    from .experiments.strokes import sec5_stroke
     from .replication.claims import ClaimError, load_claims
 
     if args.rows < 1:
         raise ValueError(f"--rows must be >= 1, got {args.rows}")
-    for path in (args.claims, args.config):
+    for path in (args.claims, args.config, args.readings):
         if not Path(path).is_file():
             raise ValueError(f"{path!r} does not exist (run from the project's folder)")
     try:
-        strokes = yaml.safe_load(Path(args.config).read_text())["fig4"]["strokes"]
-        targets = targets_from_claims(load_claims(args.claims), strokes)
-    except (ClaimError, KeyError, TypeError, yaml.YAMLError) as exc:
-        raise ValueError(f"cannot read the Fig. 4 targets: {exc}") from None
-    print(best_readings(targets, rows=args.rows))
+        config = yaml.safe_load(Path(args.config).read_text())
+        claims = load_claims(args.claims)
+        space = load_reading_space(args.readings, [c["id"] for c in claims])
+        stroke = sec5_stroke(config)
+        strokes, force = config["fig4"]["strokes"], config["elbow_force"]
+        base = config.get("model") or {}
+    except (ClaimError, ReadingSpaceError, KeyError, TypeError, yaml.YAMLError) as exc:
+        raise ValueError(f"cannot read the fit sets: {exc}") from None
+    print(summary(run_identification(space, claims, strokes, force, stroke, base), args.rows))
     return 0
 
 

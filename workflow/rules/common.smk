@@ -1,5 +1,4 @@
 # Config validation and helpers shared by all rules.
-from dataclasses import asdict
 from pathlib import Path
 
 import sys
@@ -9,9 +8,13 @@ from snakemake.utils import validate
 from tennis_stroke.chunking import chunk_count
 from tennis_stroke.config_check import config_errors, numbers_from_strings
 from tennis_stroke.experiments.grids import grid
-from tennis_stroke.experiments.identification import targets_from_claims
-from tennis_stroke.replication.claims import load_claims
-from tennis_stroke.replication.registry import FIGURES, PAPER_RESULTS, RESULT_FILES
+from tennis_stroke.experiments.strokes import sec5_stroke
+from tennis_stroke.replication.registry import (
+    FIGURES,
+    IDENTIFICATION_FILES,
+    PAPER_RESULTS,
+    RESULT_FILES,
+)
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
 config.update(numbers_from_strings(config))
@@ -98,27 +101,13 @@ def solver():
 def delay_stroke():
     """The Sec. V-VI base stroke (plain dict): only what the stroke rules need, so that
     changing a map's grid does not rerun them."""
-    d = config["torque_delay"]
-    return {
-        "L1": d["L1"],
-        "theta0": d["theta0"],
-        "C2": d["fig9"]["C2"],
-        "delta0": d["fig9"]["delta0"],
-        **d["strokes"],
-    }
+    return sec5_stroke(config)
 
 
 def delay_section(wildcards):
     """The config of one Sec. V map (fig7, fig8 or fig9) with the shared L1 and theta0."""
     d = config["torque_delay"]
     return {**d[wildcards.fig], "L1": d["L1"], "theta0": d["theta0"]}
-
-
-def identification_targets():
-    """The Fig. 4 claims that choose the readings (plain dicts: a params value), from
-    config/claims.yaml and the Fig. 4 strokes of the config."""
-    claims = load_claims(Path("config") / "claims.yaml")
-    return [asdict(t) for t in targets_from_claims(claims, config["fig4"]["strokes"])]
 
 
 def common_params():

@@ -180,8 +180,10 @@ rule elbow_force_strokes:
 rule identification:
     input:
         SIMULATION_SOURCES,
+        claims="config/claims.yaml",
+        readings="config/readings.yaml",
     output:
-        "results/identification/readings.csv",
+        **IDENTIFICATION_FILES,
     log:
         "logs/identification.log",
     benchmark:
@@ -189,7 +191,12 @@ rule identification:
     threads: 1
     params:
         common=common_params(),
-        targets=identification_targets(),
+        fig4_strokes=[list(map(float, s)) for s in config["fig4"]["strokes"]],
+        force={
+            k: config["elbow_force"][k]
+            for k in ("F0", "t_d", "table1_psi", "table1_tau_F")
+        },
+        stroke=delay_stroke(),
     script:
         "../scripts/identification.py"
 

@@ -5,7 +5,12 @@ rule claims:
     input:
         **PAPER_RESULTS,
         claims="config/claims.yaml",
-        code=sources("replication/claims.py", "replication/measures.py"),
+        readings="config/readings.yaml",
+        code=sources(
+            "replication/claims.py",
+            "replication/measures.py",
+            "experiments/reading_space.py",
+        ),
     output:
         report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
     log:
@@ -21,7 +26,7 @@ rule report:
         figures=expand("results/figures/{name}.png", name=sorted(FIGURES)),
         claims="results/claims.csv",
         statements="config/claims.yaml",
-        readings="results/identification/readings.csv",
+        identification=list(IDENTIFICATION_FILES.values()),
         results=list(PAPER_RESULTS.values()),
         code=sources("replication/report.py", "replication/registry.py"),
         assumptions=str(Path(workflow.basedir) / "docs" / "assumptions.md"),

@@ -1,9 +1,22 @@
-"""Assumption ledger: score every candidate reading against the Fig. 4 claims."""
+"""Identification as a fit (config/readings.yaml): fits, profiles and leave-one-out of
+both declared fit sets, one netCDF file each."""
 
-from tennis_stroke.experiments.identification import score_readings
-from tennis_stroke.pipeline import logged, settings
+from tennis_stroke.experiments.identification import run_identification, summary, to_datasets
+from tennis_stroke.experiments.reading_space import load_reading_space
+from tennis_stroke.pipeline import Timer, logged, save, settings
+from tennis_stroke.replication.claims import load_claims
 
+p = snakemake.params
 with logged(snakemake.log[0]):
-    table = score_readings(snakemake.params.targets, settings(snakemake.params.common))
-    table.to_csv(snakemake.output[0], index=False)
-    print(table.head(10).to_string())
+    clock = Timer()
+    claims = load_claims(snakemake.input.claims)
+    space = load_reading_space(snakemake.input.readings, [c["id"] for c in claims])
+    solver = settings(p.common)
+    results = run_identification(
+        space, claims, p.fig4_strokes, p.force, p.stroke, p.common["model"], solver
+    )
+    print(summary(results))
+    seconds = clock()
+    for name, result in results.items():
+        for kind, ds in to_datasets(result, solver).items():
+            save(ds, snakemake.output[f"{name}_{kind}"], p, seconds)

@@ -7,7 +7,7 @@ with logged(snakemake.log[0]):
     build_report(
         figures=list(snakemake.input.figures),
         claims_csv=snakemake.input.claims,
-        readings_csv=snakemake.input.readings,
+        identification=list(snakemake.input.identification),
         results=list(snakemake.input.results),
         config=snakemake.params.config,
         benchmarks_dir=snakemake.params.benchmarks,

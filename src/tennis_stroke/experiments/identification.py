@@ -1,175 +1,565 @@
-"""Identification of the paper's readings: score every candidate against Fig. 4.
+"""Identification of the paper's readings as a fit (``config/readings.yaml``).
 
-The paper states, for the two strokes of its Fig. 4 (Sec. III), the contact times, the
-forearm angles at contact, the angular velocities at contact and the rebound speeds: the
-claims of ``config/claims.yaml`` marked ``identification: true``
-(:func:`targets_from_claims`), with their declared tolerances.
-Every combination of candidate readings (moments of inertia, contact lead, collision
-coupling, spring constant, and the instant at which omega and theta are quoted) is
-simulated and scored against those ten numbers with the project's declared tolerances.
-The defaults of :data:`tennis_stroke.model.params.READINGS` are the best-scoring combination;
-``docs/assumptions.md`` shows the table.
-
-Because these numbers choose the readings, they cannot also confirm them: the claims
-report marks them as used for identification.
+The paper leaves readings open (:mod:`tennis_stroke.experiments.reading_space`).  Two
+declared fit sets of claims pin them down: the ten Fig. 4 numbers (the model readings and
+the spring constant and ball mass) and Table I's three speeds with the elbow force (the
+mass the Eq. 14 force accelerates and the pulse's extra delay).  For every combination
+of a fit set's discrete readings, the continuous unknowns are fitted by bounded least
+squares (:func:`scipy.optimize.least_squares`) on the normalised residuals
+``(simulated - paper) / tolerance`` from several starts of a seeded Sobol design.
+:func:`identify` also computes the profile of the score along each unknown (the other
+unknowns refitted) and a leave-one-out prediction of every fit claim, and picks the
+default reading by the declared rule.  The claims of a fit set choose the readings, so
+they never count as confirmations (the report marks them ``used_for_fit``).
 """
 
 from __future__ import annotations
 
 import itertools
-from collections.abc import Mapping, Sequence
+import math
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
-import pandas as pd
+import numpy as np
+import xarray as xr
+from scipy.optimize import least_squares
+from scipy.stats import qmc
 
+from ..io import provenance
+from ..model.params import resolve_params
 from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
-from ..solver.stroke import strike
+from ..solver.stroke import strike_batch
+from .reading_space import FitSet, ReadingSpace, literal_rank
+from .strokes import table1_cases
 
 
 @dataclass(frozen=True)
 class Target:
-    """One number of Fig. 4: stroke, result field(s), paper value, tolerance, unit."""
+    """One fit claim: the stroke (index into its experiment's strokes), the file variable
+    (per quoting instant when ``quoting`` names a group), paper value and tolerance."""
 
-    name: str
-    stroke: tuple[float, float]
-    quantity: str
+    claim: str
+    stroke: int
+    var: str
     paper: float
     tolerance: float
     unit: str
+    absolute: bool = False
+    quoting: str | None = None
 
 
-_QUOTED_FIELDS = {
-    "contact": {
-        "theta": "theta_deg_contact",
-        "omega1": "omega1_contact",
-        "omega2": "omega2_contact",
-    },
-    "phi0": {"theta": "theta_deg_at_phi0", "omega1": "omega1_phi0", "omega2": "omega2_phi0"},
-}
-
-#: Which simulated number a claim's file variable stands for: ``theta``/``omega`` are
-#: read at the instant a ``*_quoted_at`` candidate names (the paper calls both the
-#: contact start and ``phi = 0`` "the contact time"); the others are result fields.
-_QUANTITY_OF_VARIABLE = {
-    "t_phi0": "t_phi0",
-    FILE_NAMES["v_out_kmh"]: "v_out_kmh",
-    **{
-        field: f"{kind}@quoted"
-        for fields in _QUOTED_FIELDS.values()
-        for kind, field in fields.items()
-    },
-}
+def quoted_variable(var: str, instant: str, space: ReadingSpace) -> str:
+    """The file variable that stands for ``var`` when the quantity is quoted at
+    ``instant`` (``phi0`` or ``contact``): ``omega1_contact`` -> ``omega1_phi0`` ..."""
+    for by_instant in space.raw["quoted_variables"].values():
+        if var in by_instant.values():
+            return by_instant[instant]
+    return var
 
 
-def targets_from_claims(claims: Sequence[Mapping], strokes: Sequence[Sequence[float]]):
-    """The fit targets: every claim marked ``identification: true`` (``config/claims.yaml``,
-    the only home of the paper's numbers), on the Fig. 4 strokes ``(theta0, delta0)``
-    (degrees) its ``measure.sel.stroke`` indexes.
+def targets(space: ReadingSpace, fit: FitSet, claims: Sequence[Mapping]) -> list[Target]:
+    """The fit set's claims (``config/claims.yaml``) as targets.
 
     Raises
     ------
     ValueError
-        A marked claim does not read a single Fig. 4 stroke variable this identification
-        knows (one line, with the claim's id).
+        A fit claim does not read one stroke variable of a file (one line, its id).
     """
-    targets = []
-    for c in claims:
-        if not c.get("identification"):
-            continue
+    by_id = {c["id"]: c for c in claims}
+    quoting = space.quoting_of_claim()
+    out = []
+    for claim_id in fit.claims:
+        c = by_id[claim_id]
         m = c["measure"]
-        var = m.get("var")
-        if m.get("file") != "fig4" or var not in _QUANTITY_OF_VARIABLE or "sel" not in m:
-            raise ValueError(f"claim {c['id']!r}: identification needs a Fig. 4 stroke variable")
-        stroke = tuple(float(x) for x in strokes[int(m["sel"]["stroke"])])
-        targets.append(
+        if "function" in m or "sel" not in m or set(m["sel"]) != {"stroke"}:
+            raise ValueError(f"claim {claim_id!r}: a fit claim must read one stroke variable")
+        out.append(
             Target(
-                c["id"],
-                stroke,
-                _QUANTITY_OF_VARIABLE[var],
+                claim_id,
+                int(m["sel"]["stroke"]),
+                m["var"],
                 float(c["paper_value"]),
                 float(c["tolerance"]),
                 c["unit"],
+                bool(m.get("abs", False)),
+                quoting.get(claim_id),
             )
         )
-    return tuple(targets)
+    return out
 
 
-#: Candidate values of each reading (the spring constant and the quoting instant are
-#: readings of the figures, not model options).
-CANDIDATES = {
-    "inertia": ("uniform_rod", "paper_text"),
-    "contact_lead_rule": ("half_period", "quarter_period", "zero"),
-    "collision_coupling": ("newton", "paper_eq8"),
-    "k_contact": (188.0, 1000.0, 19000.0),
-    "theta_quoted_at": ("phi0", "contact"),
-    "omega_quoted_at": ("phi0", "contact"),
-}
-#: Candidates that only choose which simulated number stands for the paper's.
-QUOTING = ("theta_quoted_at", "omega_quoted_at")
+def _file_values(res: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
+    return {FILE_NAMES.get(k, k): np.asarray(v, dtype=float) for k, v in res.items()}
 
 
-def _value(result: dict, quantity: str, quoting: dict[str, str]) -> float:
-    if quantity.endswith("@quoted"):
-        kind = quantity.removesuffix("@quoted")
-        instant = quoting["theta_quoted_at" if kind == "theta" else "omega_quoted_at"]
-        key = _QUOTED_FIELDS[instant][kind]
-        value = result[key]
-        # the paper quotes the forearm angle as a magnitude (theta is below -y at contact)
-        return abs(value) if key.startswith("theta") else value
-    return result[quantity]
+def model_simulator(strokes: Sequence[Sequence[float]], settings: SolverSettings | None = None):
+    """Fig. 4's strokes ``(theta0, delta0)`` (degrees) as a function of the overrides."""
+    arr = np.asarray(strokes, dtype=float).reshape(-1, 2)
+
+    def simulate(overrides: Mapping[str, object]) -> dict[str, np.ndarray]:
+        return _file_values(strike_batch(arr[:, 0], arr[:, 1], overrides, settings, threads=1))
+
+    return simulate
 
 
-def score_readings(
-    targets: Sequence[Target | Mapping], settings: SolverSettings | None = None
-) -> pd.DataFrame:
-    """Score every combination of :data:`CANDIDATES` against ``targets``
-    (:func:`targets_from_claims`).
+def elbow_simulator(
+    force: Mapping[str, object],
+    stroke: Mapping[str, object],
+    settings: SolverSettings | None = None,
+):
+    """Table I's strokes (:func:`tennis_stroke.experiments.strokes.table1_cases`) as a
+    function of the overrides; the unknown ``table1_tau_F`` moves the pulse centre."""
 
-    Returns
-    -------
-    pandas.DataFrame
-        One row per combination: the readings, ``passed`` (targets within tolerance),
-        ``score`` (RMS of error / tolerance) and one column per target with the
-        simulated value; sorted best first (most passed, then lowest score).
-    """
-    targets = [
-        t if isinstance(t, Target) else Target(**{**t, "stroke": tuple(t["stroke"])})
-        for t in targets
-    ]
+    def simulate(overrides: Mapping[str, object]) -> dict[str, np.ndarray]:
+        overrides = dict(overrides)
+        tau_f = overrides.pop("table1_tau_F", force.get("table1_tau_F", 0.0))
+        cases = table1_cases({**force, "table1_tau_F": tau_f}, stroke)
+        columns = {k: np.array([case[k] for case in cases], dtype=float) for k in cases[0]}
+        res = strike_batch(
+            stroke["theta0"], stroke["delta0"], {**overrides, **columns}, settings, threads=1
+        )
+        return _file_values(res)
+
+    return simulate
+
+
+def residuals(
+    values: Mapping[str, np.ndarray],
+    goal: Sequence[Target],
+    instants: Mapping[str, str],
+    space: ReadingSpace,
+) -> tuple[np.ndarray, np.ndarray]:
+    """Simulated values of the targets (quoted at ``instants``) and their normalised
+    residuals ``(value - paper) / tolerance`` (failed strokes: NaN values, residual 1e3)."""
+    sim = []
+    for t in goal:
+        var = quoted_variable(t.var, instants[t.quoting], space) if t.quoting else t.var
+        ok = values["status"][t.stroke] == 0
+        v = float(values[var][t.stroke]) if ok else math.nan
+        sim.append(abs(v) if t.absolute else v)
+    sim = np.array(sim)
+    res = (sim - [t.paper for t in goal]) / [t.tolerance for t in goal]
+    return sim, np.where(np.isfinite(res), res, 1e3)
+
+
+def _score(res: np.ndarray) -> float:
+    return float(np.sqrt(np.mean(res**2)))
+
+
+class _Problem:
+    """One discrete combination of one fit set: residuals as a function of the unknowns
+    (in unit-cube variables of their declared or exploratory ranges)."""
+
+    def __init__(self, space, fit, goal, simulate, fixed, instants, exploratory=False):
+        self.space, self.fit, self.goal, self.simulate = space, fit, goal, simulate
+        self.fixed, self.instants, self.exploratory = dict(fixed), dict(instants), exploratory
+        self.unknowns = [space.continuous[u] for u in fit.unknowns]
+
+    def values(self, u: Sequence[float], names: Sequence[str] | None = None) -> dict:
+        names = names or self.fit.unknowns
+        return {
+            n: float(self.space.continuous[n].from_unit(x, self.exploratory))
+            for n, x in zip(names, u, strict=True)
+        }
+
+    def evaluate(self, overrides: Mapping[str, float], keep: Sequence[int] | None = None):
+        sim, res = residuals(
+            self.simulate({**self.fixed, **overrides}), self.goal, self.instants, self.space
+        )
+        return (sim, res) if keep is None else (sim, res[list(keep)])
+
+    def solve(self, starts, free=None, pinned=None, keep=None):
+        """Best least-squares fit over ``starts`` (unit-cube points of the ``free``
+        unknowns), the others ``pinned`` (values); residuals of ``keep`` targets only."""
+        free = list(free or self.fit.unknowns)
+        pinned = dict(pinned or {})
+
+        def fun(u):
+            return self.evaluate({**pinned, **self.values(u, free)}, keep)[1]
+
+        best = None
+        for x0 in starts:
+            sol = least_squares(
+                fun, np.clip(x0, 0, 1), bounds=(0.0, 1.0), diff_step=1e-4, x_scale=1.0
+            )
+            if best is None or sol.cost < best.cost:
+                best = sol
+        return {**pinned, **self.values(best.x, free)}
+
+
+def _starts(n_unknowns: int, count: int, seed: int) -> np.ndarray:
+    """The range's centre and ``count - 1`` points of a scrambled Sobol design."""
+    pts = [np.full(n_unknowns, 0.5)]
+    if count > 1:
+        sobol = qmc.Sobol(n_unknowns, scramble=True, seed=seed)
+        pts.extend(sobol.random(2 ** math.ceil(math.log2(count - 1)))[: count - 1])
+    return np.array(pts)
+
+
+def _combinations(space: ReadingSpace, fit: FitSet):
+    names = list(fit.discrete)
+    for combo in itertools.product(*(space.discrete[n] for n in names)):
+        yield dict(zip(names, combo, strict=True))
+
+
+def _split(combo: Mapping[str, str], space: ReadingSpace):
+    """Model readings (overrides) and quoting instants of a discrete combination."""
+    model = {k: v for k, v in combo.items() if k in space.raw["model"]}
+    instants = {k: v for k, v in combo.items() if k in space.raw["quoting"]}
+    return model, instants
+
+
+def fit_all(
+    space: ReadingSpace,
+    fit: FitSet,
+    goal: Sequence[Target],
+    simulate: Callable,
+    base: Mapping[str, object] | None = None,
+) -> list[dict]:
+    """Fit the unknowns for every discrete combination; rows sorted best first (most
+    claims within tolerance, then lowest RMS normalised residual)."""
     rows = []
-    model_keys = [k for k in CANDIDATES if k not in QUOTING]
-    for combo in itertools.product(*(CANDIDATES[k] for k in model_keys)):
-        readings = dict(zip(model_keys, combo, strict=True))
-        strokes = dict.fromkeys(t.stroke for t in targets)
-        results = {stroke: strike(*stroke, readings, settings) for stroke in strokes}
-        for instants in itertools.product(*(CANDIDATES[k] for k in QUOTING)):
-            quoting = dict(zip(QUOTING, instants, strict=True))
-            row = {**readings, **quoting}
-            normalised = []
-            for target in targets:
-                value = _value(results[target.stroke], target.quantity, quoting)
-                row[target.name] = value
-                normalised.append((value - target.paper) / target.tolerance)
-            row["passed"] = sum(abs(x) <= 1.0 for x in normalised)
-            row["score"] = (sum(x * x for x in normalised) / len(normalised)) ** 0.5
-            rows.append(row)
-    table = pd.DataFrame(rows)
-    return table.sort_values(["passed", "score"], ascending=[False, True], ignore_index=True)
+    starts = _starts(len(fit.unknowns), fit.starts, space.raw["fits"]["seed"])
+    for combo in _combinations(space, fit):
+        model, instants = _split(combo, space)
+        problem = _Problem(space, fit, goal, simulate, {**(base or {}), **model}, instants)
+        best = problem.solve(starts)
+        sim, res = problem.evaluate(best)
+        rows.append(_row(combo, best, sim, res))
+    return sort_fits(rows, space)
 
 
-def paper_row(targets: Sequence[Target]) -> dict[str, float]:
-    """The paper's values of ``targets``, for printing beside the table."""
-    return {t.name: t.paper for t in targets}
+def _row(combo, best, sim, res) -> dict:
+    return {
+        "readings": dict(combo),
+        "unknowns": dict(best),
+        "values": sim,
+        "residuals": res,
+        "passed": int(np.sum(np.abs(res) <= 1.0)),
+        "score": _score(res),
+    }
 
 
-def best_readings(
-    targets: Sequence[Target], settings: SolverSettings | None = None, rows: int = 10
-) -> str:
-    """The paper's values and the ``rows`` best-scoring combinations, as text
-    (``tennis-stroke identify``)."""
-    table = score_readings(targets, settings)
-    columns = [*CANDIDATES, "passed", "score", *paper_row(targets)]
-    return f"paper: {paper_row(targets)}\n" + table[columns].head(rows).round(3).to_string(
-        index=False
+def sort_fits(rows: list[dict], space: ReadingSpace) -> list[dict]:
+    """The declared default rule: most claims within tolerance, then lowest score; rows
+    within ``tie_margin`` of the best score tie and are ordered literal choices first,
+    then by the order of the declared choices."""
+    margin = space.raw["default_rule"]["tie_margin"]
+
+    def order(row):
+        return tuple(space.discrete[k].index(v) for k, v in row["readings"].items())
+
+    def literal(row):
+        return tuple(literal_rank(k, v) for k, v in row["readings"].items())
+
+    rows = sorted(rows, key=lambda r: (-r["passed"], r["score"]))
+    if not rows:
+        return rows
+    top = rows[0]
+    tied = [r for r in rows if r["passed"] == top["passed"] and r["score"] <= top["score"] + margin]
+    rest = [r for r in rows if not any(r is t for t in tied)]
+    return sorted(tied, key=lambda r: (literal(r), order(r))) + rest
+
+
+def rounded(values: Mapping[str, float], digits: int) -> dict[str, float]:
+    """Each value rounded to ``digits`` significant digits (the declared default rule)."""
+    return {k: float(f"{v:.{digits}g}") for k, v in values.items()}
+
+
+def profiles(
+    space: ReadingSpace,
+    fit: FitSet,
+    goal: Sequence[Target],
+    simulate: Callable,
+    best: Mapping,
+    base: Mapping[str, object] | None = None,
+) -> dict[str, dict]:
+    """The score along each unknown on ``profile_points`` points of its exploratory (or
+    declared) range, the other unknowns refitted at each point, for the discrete
+    combination of ``best``."""
+    n = space.raw["fits"]["profile_points"]
+    model, instants = _split(best["readings"], space)
+    out = {}
+    for name in fit.unknowns:
+        problem = _Problem(space, fit, goal, simulate, {**(base or {}), **model}, instants, True)
+        unknown = space.continuous[name]
+        grid = unknown.from_unit(np.linspace(0, 1, n), exploratory=True)
+        others = [u for u in fit.unknowns if u != name]
+        scores, passed, refit = [], [], []
+        for value in grid:
+            pinned = {name: float(value)}
+            if others:
+                start = [space.continuous[o].to_unit(best["unknowns"][o], True) for o in others]
+                values = problem.solve([np.clip(start, 0, 1)], others, pinned)
+            else:
+                values = pinned
+            _, res = problem.evaluate(values)
+            scores.append(_score(res))
+            passed.append(int(np.sum(np.abs(res) <= 1.0)))
+            refit.append([values[o] for o in others])
+        out[name] = {
+            "grid": grid,
+            "score": np.array(scores),
+            "passed": np.array(passed),
+            "others": others,
+            "refit": np.array(refit).reshape(n, len(others)),
+            "in_range": (grid >= unknown.low * (1 - 1e-12)) & (grid <= unknown.high * (1 + 1e-12)),
+        }
+    return out
+
+
+def leave_one_out(
+    space: ReadingSpace,
+    fit: FitSet,
+    goal: Sequence[Target],
+    simulate: Callable,
+    best: Mapping,
+    base: Mapping[str, object] | None = None,
+) -> list[dict]:
+    """Refit the unknowns of ``best``'s combination without each target, and predict it."""
+    model, instants = _split(best["readings"], space)
+    problem = _Problem(space, fit, goal, simulate, {**(base or {}), **model}, instants)
+    starts = _starts(len(fit.unknowns), fit.starts, space.raw["fits"]["seed"])
+    start = [space.continuous[u].to_unit(best["unknowns"][u]) for u in fit.unknowns]
+    rows = []
+    for i, t in enumerate(goal):
+        keep = [j for j in range(len(goal)) if j != i]
+        values = problem.solve([np.clip(start, 0, 1), *starts], keep=keep)
+        sim, res = problem.evaluate(values)
+        rows.append({"claim": t.claim, "unknowns": values, "predicted": sim[i], "residual": res[i]})
+    return rows
+
+
+@dataclass
+class Identification:
+    """Everything one fit set's identification computed."""
+
+    fit: FitSet
+    goal: list[Target]
+    rows: list[dict]
+    default: dict
+    profiles: dict
+    loo: list[dict]
+    units: dict[str, str]
+
+
+def identify(
+    space: ReadingSpace,
+    fit: FitSet,
+    goal: Sequence[Target],
+    simulate: Callable,
+    base: Mapping[str, object] | None = None,
+) -> Identification:
+    """Fits of every discrete combination, the default by the declared rule (the best
+    row, unknowns rounded), its profiles and its leave-one-out predictions."""
+    rows = fit_all(space, fit, goal, simulate, base)
+    best = rows[0]
+    digits = space.raw["default_rule"]["round_digits"]
+    default = {"readings": best["readings"], "unknowns": rounded(best["unknowns"], digits)}
+    return Identification(
+        fit,
+        list(goal),
+        rows,
+        default,
+        profiles(space, fit, goal, simulate, best, base),
+        leave_one_out(space, fit, goal, simulate, best, base),
+        {u: space.continuous[u].unit for u in fit.unknowns},
     )
+
+
+def model_overrides(space: ReadingSpace, default: Mapping) -> dict[str, object]:
+    """Model readings and parameters of a default (no quoting instants, no experiment
+    settings), as overrides of :func:`tennis_stroke.model.params.resolve_params`."""
+    model, _ = _split(default["readings"], space)
+    params = {k: v for k, v in default["unknowns"].items() if k in resolve_params()}
+    return {**model, **params}
+
+
+def to_datasets(result: Identification, settings: SolverSettings | None = None) -> dict:
+    """netCDF-ready datasets: ``fits`` (combination x claim), ``profiles`` (one per
+    unknown) and ``loo`` (claim)."""
+    fit, goal = result.fit, result.goal
+    claims = [t.claim for t in goal]
+    rows = result.rows
+    fits = xr.Dataset(
+        {
+            **{
+                name: (
+                    "combination",
+                    [r["readings"][name] for r in rows],
+                    {"long_name": f"reading {name}"},
+                )
+                for name in fit.discrete
+            },
+            **{
+                name: (
+                    "combination",
+                    [r["unknowns"][name] for r in rows],
+                    {"long_name": f"fitted {name}", "units": result.units[name]},
+                )
+                for name in fit.unknowns
+            },
+            "value": (
+                ("combination", "claim"),
+                np.array([r["values"] for r in rows]),
+                {"long_name": "simulated value of the fit claim (the claim's unit)"},
+            ),
+            "residual": (
+                ("combination", "claim"),
+                np.array([r["residuals"] for r in rows]),
+                {"long_name": "normalised residual (simulated - paper) / tolerance", "units": "1"},
+            ),
+            "passed": (
+                "combination",
+                np.array([r["passed"] for r in rows], dtype=np.int32),
+                {"long_name": "fit claims within tolerance", "units": "1"},
+            ),
+            "score": (
+                "combination",
+                np.array([r["score"] for r in rows]),
+                {"long_name": "RMS normalised residual", "units": "1"},
+            ),
+            "paper_value": ("claim", [t.paper for t in goal], {"long_name": "paper's value"}),
+            "tolerance": (
+                "claim",
+                [t.tolerance for t in goal],
+                {"long_name": "declared tolerance"},
+            ),
+            "claim_unit": ("claim", [t.unit for t in goal], {"long_name": "unit of the claim"}),
+        },
+        coords={
+            "combination": ("combination", np.arange(len(rows), dtype=np.int32), {"units": "1"}),
+            "claim": ("claim", claims, {"long_name": "claim id (config/claims.yaml)"}),
+        },
+    )
+    fits.attrs.update(_attrs(result, settings))
+    for k, v in result.default["readings"].items():
+        fits.attrs[f"default_{k}"] = v
+    for k, v in result.default["unknowns"].items():
+        fits.attrs[f"default_{k}"] = v
+    profile_vars, profile_coords = {}, {}
+    for name, p in result.profiles.items():
+        unit = result.units[name]
+        profile_coords[name] = (name, p["grid"], {"units": unit, "long_name": name})
+        profile_vars[f"score_{name}"] = (
+            name,
+            p["score"],
+            {"long_name": f"RMS normalised residual along {name}", "units": "1"},
+        )
+        profile_vars[f"passed_{name}"] = (
+            name,
+            p["passed"].astype(np.int32),
+            {"long_name": f"fit claims within tolerance along {name}", "units": "1"},
+        )
+        profile_vars[f"in_range_{name}"] = (
+            name,
+            p["in_range"].astype(np.int8),
+            {"long_name": "1 inside the declared range, 0 exploratory", "units": "1"},
+        )
+        for i, o in enumerate(p["others"]):
+            profile_vars[f"refit_{o}_along_{name}"] = (
+                name,
+                p["refit"][:, i],
+                {"long_name": f"{o} refitted along {name}", "units": result.units[o]},
+            )
+    prof = xr.Dataset(profile_vars, coords=profile_coords)
+    prof.attrs.update(_attrs(result, settings))
+    loo = xr.Dataset(
+        {
+            "predicted": (
+                "claim",
+                [r["predicted"] for r in result.loo],
+                {"long_name": "prediction of the left-out claim (the claim's unit)"},
+            ),
+            "residual": (
+                "claim",
+                [r["residual"] for r in result.loo],
+                {"long_name": "normalised residual of the left-out prediction", "units": "1"},
+            ),
+            **{
+                f"refit_{u}": (
+                    "claim",
+                    [r["unknowns"][u] for r in result.loo],
+                    {"units": result.units[u]},
+                )
+                for u in fit.unknowns
+            },
+            "paper_value": ("claim", [t.paper for t in goal], {"long_name": "paper's value"}),
+            "tolerance": (
+                "claim",
+                [t.tolerance for t in goal],
+                {"long_name": "declared tolerance"},
+            ),
+        },
+        coords={"claim": ("claim", claims, {"long_name": "claim id (config/claims.yaml)"})},
+    )
+    loo.attrs.update(_attrs(result, settings))
+    return {"fits": fits, "profiles": prof, "loo": loo}
+
+
+def _attrs(result: Identification, settings: SolverSettings | None) -> dict:
+    attrs = {k: v for k, v in provenance({}, settings or SolverSettings()).items()}
+    attrs["fit_set"] = result.fit.name
+    attrs["fit_claims"] = " ".join(result.fit.claims)
+    return attrs
+
+
+#: The kinds of file each fit set writes (``results/identification/{fit}_{kind}.nc``).
+KINDS = ("fits", "profiles", "loo")
+
+
+def run_identification(
+    space: ReadingSpace,
+    claims: Sequence[Mapping],
+    fig4_strokes: Sequence[Sequence[float]],
+    force: Mapping[str, object],
+    stroke: Mapping[str, object],
+    base: Mapping[str, object] | None = None,
+    settings: SolverSettings | None = None,
+) -> dict[str, Identification]:
+    """Both declared fits: the model on Fig. 4's strokes, then the elbow force on Table I's
+    strokes (``force``: ``F0, t_d, table1_psi``; ``stroke``: the Sec. V stroke) given the
+    model fit's default.  ``base``: model overrides of the config (the fitted readings and
+    unknowns replace theirs)."""
+    base = dict(base or {})
+    model_fit = space.fits["model"]
+    model = identify(
+        space,
+        model_fit,
+        targets(space, model_fit, claims),
+        model_simulator(fig4_strokes, settings),
+        base,
+    )
+    elbow_fit = space.fits["elbow_force"]
+    elbow = identify(
+        space,
+        elbow_fit,
+        targets(space, elbow_fit, claims),
+        elbow_simulator(force, stroke, settings),
+        {**base, **model_overrides(space, model.default)},
+    )
+    return {"model": model, "elbow_force": elbow}
+
+
+def summary(results: Mapping[str, Identification], rows: int = 6) -> str:
+    """The best fits, the default by the declared rule and the leave-one-out predictions
+    of each fit set, as text (``tennis-stroke identify``)."""
+    lines = []
+    for name, r in results.items():
+        lines.append(f"== fit set {name}: {', '.join(r.fit.claims)}")
+        for row in r.rows[:rows]:
+            readings = " ".join(f"{k}={v}" for k, v in row["readings"].items())
+            unknowns = " ".join(f"{k}={v:.4g}" for k, v in row["unknowns"].items())
+            lines.append(
+                f"  {row['passed']}/{len(r.goal)} within tolerance, RMS {row['score']:.3f}: "
+                f"{readings} {unknowns}".rstrip()
+            )
+        default = {**r.default["readings"], **r.default["unknowns"]}
+        lines.append(f"  default by the declared rule: {default}")
+        for loo in r.loo:
+            lines.append(
+                f"  leave-one-out {loo['claim']}: predicted {loo['predicted']:.4g}, "
+                f"residual {loo['residual']:+.2f} tolerances"
+            )
+    return "\n".join(lines)

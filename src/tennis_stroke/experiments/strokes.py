@@ -116,6 +116,20 @@ def fig4_strokes(
     )
 
 
+def sec5_stroke(config: Mapping[str, object]) -> dict[str, object]:
+    """The Sec. V-VI base stroke from the workflow config (``torque_delay``): ``L1``,
+    ``theta0``, ``C2`` and ``delta0`` of Fig. 9, ``tau_L``, ``tau_H``, ``t_end``,
+    ``samples`` (a plain dict: only what the stroke rules need)."""
+    d = config["torque_delay"]
+    return {
+        "L1": d["L1"],
+        "theta0": d["theta0"],
+        "C2": d["fig9"]["C2"],
+        "delta0": d["fig9"]["delta0"],
+        **d["strokes"],
+    }
+
+
 def delay_strokes(
     stroke: Mapping[str, object],
     params: Mapping[str, object],
@@ -138,6 +152,22 @@ def delay_strokes(
     return ds
 
 
+def table1_cases(force: Mapping[str, object], stroke: Mapping[str, object]) -> list[dict]:
+    """The overrides of Table I's strokes: the force ``F0`` of Eq. 14 (width ``t_d``,
+    centred at ``tau_H + table1_tau_F``) in each direction of ``table1_psi``, then no
+    force; all on the Sec. V stroke (``L1``, ``C2``, ``tau_H``)."""
+    base = {
+        "L1": stroke["L1"],
+        "C2": stroke["C2"],
+        "tau": stroke["tau_H"],
+        "t_d": force["t_d"],
+        "t_F": stroke["tau_H"] + force.get("table1_tau_F", 0.0),
+    }
+    return [{**base, "F0": force["F0"], "psi_F_deg": p} for p in force["table1_psi"]] + [
+        {**base, "F0": 0.0, "psi_F_deg": 0.0}
+    ]
+
+
 def elbow_force_strokes(
     force: Mapping[str, object],
     stroke: Mapping[str, object],
@@ -148,15 +178,8 @@ def elbow_force_strokes(
     """Table I and Fig. 14: the ``tau_H`` stroke with the elbow force of Eq. 14 (``F0``,
     ``t_d``, centred at ``tau_H + table1_tau_F``, s; 0 if not given) in each direction of
     ``table1_psi`` (degrees), and without it (the last stroke)."""
-    base = {
-        "L1": stroke["L1"],
-        "C2": stroke["C2"],
-        "tau": stroke["tau_H"],
-        "t_d": force["t_d"],
-        "t_F": stroke["tau_H"] + force.get("table1_tau_F", 0.0),
-    }
     psi = list(force["table1_psi"])
-    cases = [{**base, "F0": force["F0"], "psi_F_deg": p} for p in psi] + [{**base, "F0": 0.0}]
+    cases = table1_cases(force, stroke)
     labels = [f"F0={force['F0']:g} N, psi={p:g} deg" for p in psi] + ["no force"]
     ds = trajectories(
         [(stroke["theta0"], stroke["delta0"], case) for case in cases],

@@ -35,7 +35,7 @@ COLUMNS = [
     "status",
     "expectation",
     "reason",
-    "identification",
+    "fit_set",
 ]
 EXPECTATIONS = ("reproduce", "known_deviation")
 
@@ -95,9 +95,19 @@ def load_statements(path: str | Path) -> dict[str, str]:
     return dict(yaml.safe_load(Path(path).read_text()).get("statements") or {})
 
 
-def evaluate(claims: list[dict], files: Mapping[str, str | Path]) -> pd.DataFrame:
-    """Evaluate every claim against the result files (``files``: key -> path)."""
-    datasets = {k: xr.load_dataset(v) for k, v in files.items()}
+def evaluate(
+    claims: list[dict],
+    files: Mapping[str, str | Path | xr.Dataset],
+    fit_of_claim: Mapping[str, str] | None = None,
+) -> pd.DataFrame:
+    """Evaluate every claim against the result files (``files``: key -> path or dataset).
+
+    ``fit_of_claim``: claim id -> the fit set (``config/readings.yaml``) that uses it; the
+    ``fit_set`` column marks those claims, which chose the readings and so cannot confirm
+    them.
+    """
+    datasets = {k: v if isinstance(v, xr.Dataset) else xr.load_dataset(v) for k, v in files.items()}
+    fit_of_claim = fit_of_claim or {}
     rows = []
     for c in claims:
         value = _measure(c["measure"], datasets)
@@ -121,7 +131,7 @@ def evaluate(claims: list[dict], files: Mapping[str, str | Path]) -> pd.DataFram
                 "status": status,
                 "expectation": c["expectation"],
                 "reason": c.get("reason", ""),
-                "identification": bool(c.get("identification", False)),
+                "fit_set": fit_of_claim.get(c["id"], ""),
             }
         )
     return pd.DataFrame(rows, columns=COLUMNS)

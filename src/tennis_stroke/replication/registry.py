@@ -36,6 +36,12 @@ STUDY_RESULTS = {
     "optimum_cost": "results/solver_study/optimum_cost.nc",
 }
 RESULT_FILES = {**PAPER_RESULTS, **STUDY_RESULTS}
+#: The identification's files (config/readings.yaml), by ``{fit set}_{kind}``.
+IDENTIFICATION_FILES = {
+    f"{fit}_{kind}": f"results/identification/{fit}_{kind}.nc"
+    for fit in ("model", "elbow_force")
+    for kind in ("fits", "profiles", "loo")
+}
 
 
 @dataclass(frozen=True)

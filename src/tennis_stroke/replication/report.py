@@ -2,7 +2,7 @@
 
 Sections: summary of the claims, each reproduced figure beside the paper's statement,
 the claims table (failures in red), the assumption ledger (candidates, defaults, the
-identification experiment and how much the Fig. 4 numbers move with each reading), the
+fits of the identification with their leave-one-out predictions), the
 solver settings, run metadata and per-rule timings (Snakemake ``benchmark:`` files).
 """
 
@@ -19,7 +19,6 @@ import pandas as pd
 import xarray as xr
 
 from .._version import __version__
-from ..experiments.identification import CANDIDATES
 from ..failures import failure_counts
 from ..io import git_commit
 from ..model.params import READINGS
@@ -40,8 +39,9 @@ tr.pass td.status { color: #1a6b1a; } .fig { display: flex; gap: 1em; margin: 1e
 process"</h1>
 <p><b>{{ n_pass }}</b> of {{ n_claims }} claims pass, <b style="color:#b00">{{ n_fail }}</b>
 fail, {{ n_known }} are known deviations.
-{{ n_ident }} claims (Fig. 4) were used to choose the readings of the paper and are marked
-<i>ident.</i>: they cannot confirm them.</p>
+{{ n_ident }} claims (Fig. 4 and Table I's speeds, the fit sets of
+config/readings.yaml) were used to fit the readings of the paper and are marked
+<i>used for fit</i>: they cannot confirm them.</p>
 
 <h2>Claims</h2>
 <table><tr><th>id</th><th>source</th><th>quantity</th><th>unit</th><th>paper</th>
@@ -50,7 +50,7 @@ fail, {{ n_known }} are known deviations.
 <td>{{ c.quantity }}</td><td>{{ c.unit }}</td><td>{{ c.paper_value }}</td>
 <td>{{ "%.4g"|format(c.reproduced_value) }}</td><td>{{ c.tolerance }}</td>
 <td class="status">{{ c.status }}</td>
-<td>{% if c.identification %}ident.{% endif %} {{ c.reason }}</td></tr>
+<td>{% if c.fit_set %}used for fit ({{ c.fit_set }}).{% endif %} {{ c.reason }}</td></tr>
 {% endfor %}</table>
 
 <h2>Figures</h2>
@@ -60,17 +60,20 @@ fail, {{ n_known }} are known deviations.
 {% endfor %}
 
 <h2>Assumption ledger</h2>
-<p>Every ambiguity of the paper is a named option; docs/assumptions.md gives the
-reasoning. The identification experiment scored all {{ n_combos }} combinations of the
-candidates against the ten Fig. 4 numbers (declared tolerances).</p>
+<p>Every ambiguity of the paper is a named option; config/readings.yaml declares the
+candidates, the ranges of the unknowns, the fit sets and the rule that picks the
+defaults, before any fit; docs/assumptions.md gives the reasoning.</p>
 <table><tr><th>reading</th><th>candidates</th><th>default</th><th>literal</th><th>meaning</th></tr>
 {% for r in readings %}<tr><td>{{ r.name }}</td><td>{{ r.choices|join(", ") }}</td>
 <td>{{ r.default }}</td><td>{{ r.literal }}</td><td>{{ r.description }}</td></tr>{% endfor %}
 </table>
-<h3>Best combinations</h3>
-{{ best_table }}
-<h3>How much the Fig. 4 numbers move with each reading (others at the default)</h3>
-{{ sensitivity_table }}
+{% for f in fits %}<h3>Fit set {{ f.name }}: the best fits ({{ f.n }} combinations of the
+discrete readings, continuous unknowns fitted by bounded least squares)</h3>
+<p>Fit claims: {{ f.claims }}. Default by the declared rule: {{ f.default }}.</p>
+{{ f.table }}
+<p>Leave-one-out: each fit claim predicted by a fit without it.</p>
+{{ f.loo }}
+{% endfor %}
 <h3>All assumptions with their evidence (docs/assumptions.md)</h3>
 <pre style="white-space: pre-wrap; font-size: 0.8em">{{ assumptions }}</pre>
 
@@ -95,27 +98,32 @@ than {{ max_failure_share }} of its strokes failed stops the run (config
 """)
 
 
-def _sensitivity(readings: pd.DataFrame, targets: Sequence[str]) -> pd.DataFrame:
-    """Each candidate of each reading with the others at the best row's values."""
-    best = readings.iloc[0]
-    rows = []
-    for key, values in CANDIDATES.items():
-        for value in values:
-            mask = pd.Series(True, index=readings.index)
-            for other in CANDIDATES:
-                mask &= readings[other] == (value if other == key else best[other])
-            match = readings[mask]
-            if len(match):
-                row = match.iloc[0]
-                rows.append(
-                    {
-                        "reading": key,
-                        "value": value,
-                        "passed": row["passed"],
-                        **{k: round(row[k], 3) for k in targets},
-                    }
-                )
-    return pd.DataFrame(rows)
+def _fit_tables(paths: Sequence[str], rows: int = 6) -> list[dict]:
+    """The best fits and the leave-one-out table of each fit set's files."""
+    out = []
+    for path in paths:
+        if not str(path).endswith("_fits.nc"):
+            continue
+        with xr.open_dataset(path) as ds:
+            fits = ds.load()
+        with xr.open_dataset(str(path).replace("_fits.nc", "_loo.nc")) as ds:
+            loo = ds.load()
+        columns = [v for v in fits.data_vars if fits[v].dims == ("combination",)]
+        table = fits[columns].to_dataframe().head(rows)
+        default = {
+            k.removeprefix("default_"): v for k, v in fits.attrs.items() if k.startswith("default_")
+        }
+        out.append(
+            {
+                "name": fits.attrs["fit_set"],
+                "claims": fits.attrs["fit_claims"],
+                "n": fits.sizes["combination"],
+                "default": ", ".join(f"{k} = {v}" for k, v in default.items()),
+                "table": table.round(4).to_html(index=False),
+                "loo": loo.to_dataframe().round(4).to_html(),
+            }
+        )
+    return out
 
 
 def _timings(directory: Path) -> pd.DataFrame:
@@ -151,7 +159,7 @@ def _failures(results: Sequence[str]) -> pd.DataFrame:
 def build_report(
     figures: Sequence[str],
     claims_csv: str,
-    readings_csv: str,
+    identification: Sequence[str],
     results: Sequence[str],
     config: Mapping,
     benchmarks_dir: str,
@@ -166,8 +174,6 @@ def build_report(
     claims = pd.read_csv(claims_csv, keep_default_na=False)
     statements = load_statements(statements_yaml) if statements_yaml else {}
     claims["reproduced_value"] = claims["reproduced_value"].astype(float)
-    readings = pd.read_csv(readings_csv)
-    targets = list(claims.loc[claims["identification"].astype(str) == "True", "id"])
     figs = []
     for path in figures:
         name = Path(path).stem
@@ -210,19 +216,16 @@ def build_report(
                 )
             else:
                 study_tables.append(ds.to_dataframe().round(4).to_html())
-    cols = [*CANDIDATES, "passed", "score"]
     html = TEMPLATE.render(
         claims=claims.to_dict("records"),
         n_claims=len(claims),
         n_pass=int((claims.status == "pass").sum()),
         n_fail=int((claims.status == "fail").sum()),
         n_known=int((claims.status == "known_deviation").sum()),
-        n_ident=int(claims["identification"].astype(str).eq("True").sum()),
+        n_ident=int((claims["fit_set"] != "").sum()),
         figures=figs,
         readings=list(READINGS.values()),
-        n_combos=len(readings),
-        best_table=readings[cols].head(8).round(3).to_html(index=False),
-        sensitivity_table=_sensitivity(readings, targets).to_html(index=False),
+        fits=_fit_tables(identification),
         meta=meta,
         timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
         failure_table=_failures(results).to_html(index=False, na_rep="-"),
