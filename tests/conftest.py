@@ -70,10 +70,12 @@ def assert_same_results(a, b, also_differ=()):
 
 
 def workdir(parent, config):
-    """A working directory for the Snakefile holding ``config`` and the claims."""
+    """A working directory for the Snakefile holding ``config``, the claims and the
+    declared reading space."""
     (parent / "config").mkdir(parents=True)
     (parent / "config" / "config.yaml").write_text(yaml.safe_dump(config))
-    shutil.copy(ROOT / "config" / "claims.yaml", parent / "config" / "claims.yaml")
+    for name in ("claims.yaml", "readings.yaml"):
+        shutil.copy(ROOT / "config" / name, parent / "config" / name)
     return parent
 
 

@@ -40,7 +40,7 @@ def test_contact_lead_and_two_body_period_match_paper_range():
     # Sec. II: k = 188 ... 19000 N/m gives contact times 50 ... 5 ms (T/2, Eq. 12).
     assert two_body_period(0.057, 0.3, 188.0) / 2 == pytest.approx(0.050, abs=0.5e-3)
     assert two_body_period(0.057, 0.3, 19000.0) / 2 == pytest.approx(0.005, abs=0.05e-3)
-    half = resolve_params()["contact_lead"]
+    half = resolve_params({"contact_lead_rule": "half_period"})["contact_lead"]
     quarter = resolve_params({"contact_lead_rule": "quarter_period"})["contact_lead"]
     assert quarter == pytest.approx(half / 2)
     assert resolve_params({"contact_lead_rule": "zero"})["contact_lead"] == 0.0
@@ -49,7 +49,7 @@ def test_contact_lead_and_two_body_period_match_paper_range():
 def test_arrays_broadcast_and_derive_per_stroke():
     p = resolve_params({"M2": np.array([0.2, 0.3, 0.4])})
     assert p["I2_cm"].shape == (3,)
-    assert p["elbow_force_mass"][2] == pytest.approx(2.4)
+    assert p["I2_cm"][2] == pytest.approx(0.4 * 0.7**2 / 12)
 
 
 @pytest.mark.parametrize(

@@ -9,6 +9,7 @@ from conftest import FIG4_A, FIG4_B, coefficient_tup
 
 from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
 from tennis_stroke.model.dynamics import effective_mass, hit_offset
+from tennis_stroke.model.params import resolve_params
 from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
 from tennis_stroke.solver.reference import solve_stroke
 from tennis_stroke.solver.settings import S_RTOL
@@ -134,7 +135,8 @@ def _isolated_contact(k):
     st = SolverSettings(rtol=1e-12, atol=1e-12).as_array()
     st[S_RTOL] = 1e-12
     stats = np.zeros(N_STATS)
-    mu = 0.057 * m_eff / (0.057 + m_eff)
+    m_b = resolve_params()["ball_mass"]
+    mu = m_b * m_eff / (m_b + m_eff)
     h_max = math.pi * math.sqrt(mu / k) / 2
     status, t, y, _ = run_phases(
         1, True, 0.0, y, 1.0, h_max, h_max, cf, True, st, stats, np.zeros((1, HISTORY_COLS))
@@ -148,8 +150,9 @@ def test_two_body_contact_closed_form(k):
     """Duration pi sqrt(mu/k) and exit velocity (m_b - m) / (m_b + m) v of the two-body
     linear-spring contact; the pendulum approaches it as the contact gets short."""
     duration, v_exit, m_eff = _isolated_contact(k)
-    mu = 0.057 * m_eff / (0.057 + m_eff)
-    expected = (0.057 - m_eff) / (0.057 + m_eff) * 5.0
+    m_b = resolve_params()["ball_mass"]
+    mu = m_b * m_eff / (m_b + m_eff)
+    expected = (m_b - m_eff) / (m_b + m_eff) * 5.0
     scale = math.sqrt(1e5 / k)  # error shrinks with the contact time
     assert duration == pytest.approx(math.pi * math.sqrt(mu / k), rel=0.02 * scale)
     assert v_exit == pytest.approx(expected, rel=0.02 * scale)

@@ -29,6 +29,7 @@ TINY = {
         "delta0": {"start": 0.0, "stop": 90.0, "step": 30.0},
     },
     "fig4": {"strokes": [[120.0, 81.5], [75.0, 39.0]], "t_end": 0.32, "samples": 33},
+    "k_sensitivity": {"k_contact": [188.0, 19000.0], "points": 3},
     "mass_length": {
         "M2": {"start": 0.2, "stop": 0.5, "step": 0.3},
         "L1": {"start": 0.2, "stop": 0.5, "step": 0.3},
@@ -72,6 +73,7 @@ TINY = {
         "psi_F": {"start": 0.0, "stop": 270.0, "step": 90.0},
         "tau_F": {"start": -0.05, "stop": 0.05, "step": 0.05},
         "table1_psi": [180.0, 275.0, 76.0],
+        "table1_tau_F": -0.027,
     },
 }
 

@@ -104,7 +104,7 @@ def evaluate(
 
     ``fit_of_claim``: claim id -> the fit set (``config/readings.yaml``) that uses it; the
     ``fit_set`` column marks those claims, which chose the readings and so cannot confirm
-    them.
+    them: within tolerance their status is ``used_for_fit``, not ``pass``.
     """
     datasets = {k: v if isinstance(v, xr.Dataset) else xr.load_dataset(v) for k, v in files.items()}
     fit_of_claim = fit_of_claim or {}
@@ -114,11 +114,12 @@ def evaluate(
         within = bool(
             np.isfinite(value) and abs(value - c["paper_value"]) <= c["tolerance"] + 1e-12
         )
-        status = (
-            "pass"
-            if within
-            else ("known_deviation" if c["expectation"] == "known_deviation" else "fail")
-        )
+        fit_set = fit_of_claim.get(c["id"], "")
+        if within:
+            # a claim that chose the readings cannot confirm them
+            status = "used_for_fit" if fit_set else "pass"
+        else:
+            status = "known_deviation" if c["expectation"] == "known_deviation" else "fail"
         rows.append(
             {
                 "id": c["id"],
@@ -131,7 +132,7 @@ def evaluate(
                 "status": status,
                 "expectation": c["expectation"],
                 "reason": c.get("reason", ""),
-                "fit_set": fit_of_claim.get(c["id"], ""),
+                "fit_set": fit_set,
             }
         )
     return pd.DataFrame(rows, columns=COLUMNS)

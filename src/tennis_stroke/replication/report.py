@@ -37,11 +37,11 @@ tr.pass td.status { color: #1a6b1a; } .fig { display: flex; gap: 1em; margin: 1e
 </style></head><body>
 <h1>Replication of Youn, "Double pendulum model for tennis stroke including a collision
 process"</h1>
-<p><b>{{ n_pass }}</b> of {{ n_claims }} claims pass, <b style="color:#b00">{{ n_fail }}</b>
-fail, {{ n_known }} are known deviations.
+<p><b>{{ n_pass }}</b> of {{ n_claims }} claims pass (held out),
+<b style="color:#b00">{{ n_fail }}</b> fail, {{ n_known }} are known deviations.
 {{ n_ident }} claims (Fig. 4 and Table I's speeds, the fit sets of
-config/readings.yaml) were used to fit the readings of the paper and are marked
-<i>used for fit</i>: they cannot confirm them.</p>
+config/readings.yaml) were used to fit the readings of the paper; {{ n_fit_ok }} of them
+are within tolerance (status <i>used_for_fit</i>): they cannot confirm the readings.</p>
 
 <h2>Claims</h2>
 <table><tr><th>id</th><th>source</th><th>quantity</th><th>unit</th><th>paper</th>
@@ -223,6 +223,7 @@ def build_report(
         n_fail=int((claims.status == "fail").sum()),
         n_known=int((claims.status == "known_deviation").sum()),
         n_ident=int((claims["fit_set"] != "").sum()),
+        n_fit_ok=int((claims.status == "used_for_fit").sum()),
         figures=figs,
         readings=list(READINGS.values()),
         fits=_fit_tables(identification),
