@@ -20,7 +20,7 @@ from conftest import (
 )
 
 from tennis_stroke.replication.claims import COLUMNS
-from tennis_stroke.replication.registry import FIGURES
+from tennis_stroke.replication.registry import FIGURES, IDENTIFICATION_FILES, RESULT_FILES
 
 TINY = {
     "angle_maps": {
@@ -104,15 +104,18 @@ def test_report_and_claims_are_built(tiny_run):
     claims = pd.read_csv(tiny_run / "results" / "claims.csv")
     expected = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())["claims"]
     assert list(claims["id"]) == [c["id"] for c in expected]
-    assert set(claims["status"]) <= {"pass", "fail", "known_deviation"}
+    assert set(claims["status"]) <= {"pass", "fail", "known_deviation", "used_for_fit"}
+    fitted = claims[claims["fit_set"].notna()]
+    assert set(fitted["status"]) <= {"used_for_fit", "fail", "known_deviation"}
     assert list(claims.columns) == COLUMNS
 
 
 def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
     """Units everywhere, and what is needed to rerun: the job's config, versions, commit."""
     files = sorted((tiny_run / "results").rglob("*.nc"))
-    assert len(result_files(tiny_run)) == 14
-    assert len(files) == 14 + len(MAPS)  # one chunk per map by default
+    expected = len(RESULT_FILES) + len(IDENTIFICATION_FILES)
+    assert len(result_files(tiny_run)) == expected
+    assert len(files) == expected + len(MAPS)  # one chunk per map by default
     for path in files:
         with xr.open_dataset(path) as ds:
             for name in [*ds.data_vars, *ds.coords]:

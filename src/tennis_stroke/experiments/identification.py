@@ -495,7 +495,13 @@ def to_datasets(result: Identification, settings: SolverSettings | None = None) 
         coords={"claim": ("claim", claims, {"long_name": "claim id (config/claims.yaml)"})},
     )
     loo.attrs.update(_attrs(result, settings))
-    return {"fits": fits, "profiles": prof, "loo": loo}
+    out = {"fits": fits, "profiles": prof, "loo": loo}
+    for ds in out.values():
+        for name in [*ds.data_vars, *ds.coords]:
+            # values in each claim's own unit (claim_unit) and labels carry units "1"
+            ds[name].attrs.setdefault("units", "1")
+            ds[name].attrs.setdefault("long_name", name)
+    return out
 
 
 def _attrs(result: Identification, settings: SolverSettings | None) -> dict:
