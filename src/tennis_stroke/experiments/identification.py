@@ -26,7 +26,7 @@ from scipy.optimize import least_squares
 from scipy.stats import qmc
 
 from ..io import provenance
-from ..model.params import resolve_params
+from ..model.params import PARAMETERS
 from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
@@ -154,7 +154,6 @@ class _Problem:
     def __init__(self, space, fit, goal, simulate, fixed, instants, exploratory=False):
         self.space, self.fit, self.goal, self.simulate = space, fit, goal, simulate
         self.fixed, self.instants, self.exploratory = dict(fixed), dict(instants), exploratory
-        self.unknowns = [space.continuous[u] for u in fit.unknowns]
 
     def values(self, u: Sequence[float], names: Sequence[str] | None = None) -> dict:
         names = names or self.fit.unknowns
@@ -210,6 +209,12 @@ def _split(combo: Mapping[str, str], space: ReadingSpace):
     return model, instants
 
 
+def _problem(space, fit, goal, simulate, combo, base, exploratory=False) -> _Problem:
+    """The fit problem of one discrete combination ``combo`` on top of ``base``."""
+    model, instants = _split(combo, space)
+    return _Problem(space, fit, goal, simulate, {**(base or {}), **model}, instants, exploratory)
+
+
 def fit_all(
     space: ReadingSpace,
     fit: FitSet,
@@ -222,8 +227,7 @@ def fit_all(
     rows = []
     starts = _starts(len(fit.unknowns), fit.starts, space.raw["fits"]["seed"])
     for combo in _combinations(space, fit):
-        model, instants = _split(combo, space)
-        problem = _Problem(space, fit, goal, simulate, {**(base or {}), **model}, instants)
+        problem = _problem(space, fit, goal, simulate, combo, base)
         best = problem.solve(starts)
         sim, res = problem.evaluate(best)
         rows.append(_row(combo, best, sim, res))
@@ -279,10 +283,9 @@ def profiles(
     declared) range, the other unknowns refitted at each point, for the discrete
     combination of ``best``."""
     n = space.raw["fits"]["profile_points"]
-    model, instants = _split(best["readings"], space)
+    problem = _problem(space, fit, goal, simulate, best["readings"], base, exploratory=True)
     out = {}
     for name in fit.unknowns:
-        problem = _Problem(space, fit, goal, simulate, {**(base or {}), **model}, instants, True)
         unknown = space.continuous[name]
         grid = unknown.from_unit(np.linspace(0, 1, n), exploratory=True)
         others = [u for u in fit.unknowns if u != name]
@@ -318,8 +321,7 @@ def leave_one_out(
     base: Mapping[str, object] | None = None,
 ) -> list[dict]:
     """Refit the unknowns of ``best``'s combination without each target, and predict it."""
-    model, instants = _split(best["readings"], space)
-    problem = _Problem(space, fit, goal, simulate, {**(base or {}), **model}, instants)
+    problem = _problem(space, fit, goal, simulate, best["readings"], base)
     starts = _starts(len(fit.unknowns), fit.starts, space.raw["fits"]["seed"])
     start = [space.continuous[u].to_unit(best["unknowns"][u]) for u in fit.unknowns]
     rows = []
@@ -372,7 +374,7 @@ def model_overrides(space: ReadingSpace, default: Mapping) -> dict[str, object]:
     """Model readings and parameters of a default (no quoting instants, no experiment
     settings), as overrides of :func:`tennis_stroke.model.params.resolve_params`."""
     model, _ = _split(default["readings"], space)
-    params = {k: v for k, v in default["unknowns"].items() if k in resolve_params()}
+    params = {k: v for k, v in default["unknowns"].items() if k in PARAMETERS}
     return {**model, **params}
 
 
@@ -505,7 +507,7 @@ def to_datasets(result: Identification, settings: SolverSettings | None = None) 
 
 
 def _attrs(result: Identification, settings: SolverSettings | None) -> dict:
-    attrs = {k: v for k, v in provenance({}, settings or SolverSettings()).items()}
+    attrs = provenance({}, settings or SolverSettings())
     attrs["fit_set"] = result.fit.name
     attrs["fit_claims"] = " ".join(result.fit.claims)
     return attrs

@@ -13,7 +13,7 @@ validates it against ``workflow/schemas/readings.schema.yaml`` and against the p
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable, Mapping
+from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -86,12 +86,6 @@ class ReadingSpace:
     discrete: dict[str, tuple[str, ...]]
     continuous: dict[str, Unknown]
     fits: dict[str, FitSet]
-
-    @property
-    def claim_readings(self) -> dict[str, tuple[str, ...]]:
-        """Discrete readings that no fit set enumerates (evaluated per claim)."""
-        fitted = {d for f in self.fits.values() for d in f.discrete}
-        return {k: v for k, v in self.discrete.items() if k not in fitted}
 
     def fit_of_claim(self) -> dict[str, str]:
         """Claim id -> the name of the fit set that uses it."""
@@ -170,6 +164,10 @@ def load_reading_space(
                 explo[0] <= lo and hi <= explo[1],
                 f"readings key 'continuous.{name}.exploratory': must contain the range",
             )
+        _check(
+            math.isfinite(lo) and math.isfinite(hi),
+            f"readings key 'continuous.{name}.range': must be finite",
+        )
         if spec["scale"] == "log":
             _check(lo > 0, f"readings key 'continuous.{name}': a log scale needs a positive range")
         if name in PARAMETERS:
@@ -184,7 +182,6 @@ def load_reading_space(
                 f"readings key 'continuous.{name}': neither a model parameter nor one of "
                 f"{', '.join(EXPERIMENT_UNKNOWNS)}",
             )
-        _check(math.isfinite(lo) and math.isfinite(hi), f"readings key 'continuous.{name}'")
         continuous[name] = Unknown(name, spec["unit"], lo, hi, spec["scale"], explo)
 
     fits: dict[str, FitSet] = {}
@@ -230,21 +227,3 @@ def literal_rank(name: str, choice: str) -> int:
     """0 for a reading's literal choice (the paper word for word), else 1."""
     reading = READINGS.get(name)
     return 0 if reading is not None and reading.literal == choice else 1
-
-
-def readings_table(space: ReadingSpace) -> list[Mapping[str, object]]:
-    """One row per declared reading (name, kind, choices or range, unit) for the report."""
-    rows = [
-        {"reading": k, "kind": "discrete", "values": ", ".join(v), "unit": ""}
-        for k, v in space.discrete.items()
-    ]
-    for u in space.continuous.values():
-        rows.append(
-            {
-                "reading": u.name,
-                "kind": f"continuous ({u.scale})",
-                "values": f"{u.low:g} ... {u.high:g}",
-                "unit": u.unit,
-            }
-        )
-    return rows
