@@ -109,15 +109,17 @@ def elbow_simulator(
     settings: SolverSettings | None = None,
 ):
     """Table I's strokes (:func:`tennis_stroke.experiments.strokes.table1_cases`) as a
-    function of the overrides; the unknown ``table1_tau_F`` moves the pulse centre."""
+    function of the overrides; the unknown ``table1_tau_F`` moves the pulse centre (a
+    number, or an array whose last axis has length 1: the cases lie along the last axis)."""
+    cases = table1_cases({**force, "table1_tau_F": 0.0}, stroke)
+    columns = {k: np.array([case[k] for case in cases], dtype=float) for k in cases[0]}
 
     def simulate(overrides: Mapping[str, object]) -> dict[str, np.ndarray]:
         overrides = dict(overrides)
-        tau_f = overrides.pop("table1_tau_F", force.get("table1_tau_F", 0.0))
-        cases = table1_cases({**force, "table1_tau_F": tau_f}, stroke)
-        columns = {k: np.array([case[k] for case in cases], dtype=float) for k in cases[0]}
+        tau_f = np.asarray(overrides.pop("table1_tau_F", force.get("table1_tau_F", 0.0)))
+        moved = {**columns, "t_F": columns["t_F"] + tau_f}
         res = strike_batch(
-            stroke["theta0"], stroke["delta0"], {**overrides, **columns}, settings, threads=1
+            stroke["theta0"], stroke["delta0"], {**overrides, **moved}, settings, threads=1
         )
         return _file_values(res)
 
@@ -131,15 +133,18 @@ def residuals(
     space: ReadingSpace,
 ) -> tuple[np.ndarray, np.ndarray]:
     """Simulated values of the targets (quoted at ``instants``) and their normalised
-    residuals ``(value - paper) / tolerance`` (failed strokes: NaN values, residual 1e3)."""
+    residuals ``(value - paper) / tolerance`` (failed strokes: NaN values, residual 1e3).
+
+    ``values`` holds the strokes along the last axis; leading axes (one per candidate
+    reading) carry through: the results have the targets along the last axis."""
     sim = []
     for t in goal:
         var = quoted_variable(t.var, instants[t.quoting], space) if t.quoting else t.var
-        ok = values["status"][t.stroke] == 0
-        v = float(values[var][t.stroke]) if ok else math.nan
-        sim.append(abs(v) if t.absolute else v)
-    sim = np.array(sim)
-    res = (sim - [t.paper for t in goal]) / [t.tolerance for t in goal]
+        ok = np.asarray(values["status"])[..., t.stroke] == 0
+        v = np.where(ok, np.asarray(values[var], dtype=float)[..., t.stroke], math.nan)
+        sim.append(np.abs(v) if t.absolute else v)
+    sim = np.stack(sim, axis=-1)
+    res = (sim - np.array([t.paper for t in goal])) / np.array([t.tolerance for t in goal])
     return sim, np.where(np.isfinite(res), res, 1e3)
 
 
