@@ -69,13 +69,26 @@ def assert_same_results(a, b, also_differ=()):
     assert not problems, "; ".join(problems)
 
 
-def workdir(parent, config):
+def merged(base, update):
+    """``base`` with the nested mapping ``update`` merged over it (a new dict)."""
+    out = dict(base)
+    for key, value in update.items():
+        if isinstance(value, dict) and isinstance(out.get(key), dict):
+            out[key] = merged(out[key], value)
+        else:
+            out[key] = value
+    return out
+
+
+def workdir(parent, config, readings=None):
     """A working directory for the Snakefile holding ``config``, the claims and the
-    declared reading space."""
+    declared reading space (with ``readings`` merged over it)."""
     (parent / "config").mkdir(parents=True)
     (parent / "config" / "config.yaml").write_text(yaml.safe_dump(config))
-    for name in ("claims.yaml", "readings.yaml"):
-        shutil.copy(ROOT / "config" / name, parent / "config" / name)
+    shutil.copy(ROOT / "config" / "claims.yaml", parent / "config" / "claims.yaml")
+    space = yaml.safe_load((ROOT / "config" / "readings.yaml").read_text())
+    text = yaml.safe_dump(merged(space, readings or {}), sort_keys=False)
+    (parent / "config" / "readings.yaml").write_text(text)
     return parent
 
 

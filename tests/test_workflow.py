@@ -20,7 +20,9 @@ from conftest import (
 )
 
 from tennis_stroke.replication.claims import COLUMNS
-from tennis_stroke.replication.registry import FIGURES, IDENTIFICATION_FILES, RESULT_FILES
+from tennis_stroke.replication.registry import FIGURES, RESULT_FILES
+from tennis_stroke.replication.robustness import COLUMNS as ROBUSTNESS_COLUMNS
+from tennis_stroke.replication.robustness import ROBUSTNESS
 
 TINY = {
     "angle_maps": {
@@ -77,6 +79,26 @@ TINY = {
     },
 }
 
+#: A small robustness analysis for the tiny run: a few candidates, every one consistent
+#: (a plumbing test: the rules' physics is tested in tests/test_robustness.py), at the
+#: tiny run's own grids.
+TINY_READINGS = {
+    "consistent": {"max_abs_residual": 1000.0},
+    "multiverse": {
+        "candidates": 4,
+        "readings": 3,
+        "chunks": 2,
+        "resolution": {
+            "angle_maps": {k: TINY["angle_maps"][k] for k in ("theta0", "delta0")},
+            "mass_length": {
+                k: TINY["mass_length"][k] for k in ("M2", "L1", "coarse_step", "fine_step")
+            },
+            "fig7_tau": TINY["torque_delay"]["fig7"]["tau"],
+        },
+    },
+}
+#: Chunk files of the tiny run's robustness analysis.
+ROBUSTNESS_CHUNKS = 2
 
 #: The maps (gathered from chunks).
 MAPS = [
@@ -92,7 +114,7 @@ MAPS = [
 
 @pytest.fixture(scope="module")
 def tiny_run(tmp_path_factory):
-    work = workdir(tmp_path_factory.mktemp("workflow"), TINY)
+    work = workdir(tmp_path_factory.mktemp("workflow"), TINY, TINY_READINGS)
     done = run_snakemake("report", work, "--cores", "2", timeout=1200)
     assert done.returncode == 0, done.stderr[-3000:]
     return work
@@ -107,15 +129,21 @@ def test_report_and_claims_are_built(tiny_run):
     assert set(claims["status"]) <= {"pass", "fail", "known_deviation", "used_for_fit"}
     fitted = claims[claims["fit_set"].notna()]
     assert set(fitted["status"]) <= {"used_for_fit", "fail", "known_deviation"}
-    assert list(claims.columns) == COLUMNS
+    assert list(claims.columns) == [*COLUMNS, *ROBUSTNESS_COLUMNS]
+    assert set(claims["robustness"]) <= set(ROBUSTNESS)
+    assert (claims["robustness"] == "used_for_fit").sum() == claims["fit_set"].notna().sum()
+    with xr.open_dataset(tiny_run / RESULT_FILES["robustness"]) as ds:
+        assert ds.sizes["reading"] == TINY_READINGS["multiverse"]["readings"]
+        assert list(ds["claim"].values) == list(claims["id"])
 
 
 def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
     """Units everywhere, and what is needed to rerun: the job's config, versions, commit."""
     files = sorted((tiny_run / "results").rglob("*.nc"))
-    expected = len(RESULT_FILES) + len(IDENTIFICATION_FILES)
+    expected = len(RESULT_FILES)
     assert len(result_files(tiny_run)) == expected
-    assert len(files) == expected + len(MAPS)  # one chunk per map by default
+    # one chunk per map by default; the robustness analysis as readings.yaml says
+    assert len(files) == expected + len(MAPS) + ROBUSTNESS_CHUNKS
     for path in files:
         with xr.open_dataset(path) as ds:
             for name in [*ds.data_vars, *ds.coords]:
@@ -205,7 +233,7 @@ def test_a_map_with_too_many_failed_strokes_stops_the_run_loudly(tmp_path):
 
 
 def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
-    work = workdir(tmp_path, TINY)
+    work = workdir(tmp_path, TINY, TINY_READINGS)
     command = snakemake_command("report", work, "--cores", "2")
     run = subprocess.Popen(
         command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL

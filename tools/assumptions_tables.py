@@ -1,14 +1,17 @@
-"""Print the identification tables of docs/assumptions.md from the result files.
+"""Print the identification and robustness tables of docs/assumptions.md from the
+result files.
 
-    .venv/bin/python tools/assumptions_tables.py [results/identification]
+    .venv/bin/python tools/assumptions_tables.py [results] [--write docs/assumptions.md]
 
-The numbers in docs/assumptions.md's identification section are this script's output,
-pasted between its BEGIN/END markers, never typed by hand.
+The numbers in docs/assumptions.md's identification and robustness sections are this
+script's output, written between its BEGIN/END markers (``--write``), never typed by
+hand.
 """
 
 import sys
 from pathlib import Path
 
+import pandas as pd
 import xarray as xr
 
 
@@ -73,5 +76,109 @@ def tables(folder: Path, rows: int = 6) -> str:
     return "\n".join(out)
 
 
+def robustness_tables(results: Path) -> str:
+    """The consistent set, the robustness classes of the held-out claims and the evidence
+    of every deviation (results/robustness, results/claims.csv)."""
+    screen = xr.load_dataset(results / "robustness" / "screen.nc")
+    kept = xr.load_dataset(results / "robustness" / "claims.nc")
+    claims = pd.read_csv(results / "claims.csv", keep_default_na=False)
+    n, c = screen.sizes["candidate"], screen.sizes["combination"]
+    per_combo = screen["consistent"].sum("candidate").values
+    combos = [
+        ", ".join(
+            f"{k}={screen[k].values[i]}"
+            for k in screen.data_vars
+            if screen[k].dims == ("combination",)
+        )
+        + f": {int(per_combo[i])}"
+        for i in range(c)
+        if per_combo[i]
+    ]
+    out = [
+        f"Screen: {n} Sobol candidates x {c} discrete combinations = {n * c}; "
+        f"consistent: {int(per_combo.sum())}; kept: {kept.sizes['reading']}, each under "
+        f"{kept.sizes['variant']} claim-level variants.  Consistent per combination: "
+        + "; ".join(combos)
+        + ".\n",
+    ]
+    ranges = []
+    for name in ("k_contact", "ball_mass", "elbow_force_mass", "table1_tau_F", "fig6_L1_max"):
+        values = kept[name].values
+        ranges.append(
+            f"`{name}` {values.min():.4g}-{values.max():.4g} {kept[name].attrs.get('units', '')}"
+        )
+    out.append("Ranges of the kept readings: " + ", ".join(ranges) + ".\n")
+    held = claims[claims["fit_set"] == ""]
+    counts = held["robustness"].value_counts()
+    out.append(
+        "Held-out claims by robustness class: "
+        + ", ".join(f"{k} {v}" for k, v in counts.items())
+        + f" (of {len(held)}; {len(claims) - len(held)} used for fit).\n"
+    )
+    out.append(_row(["claim", "default status", "robustness", "pass share", "deciding unknown"]))
+    out.append(_row(["--"] * 5))
+    for _, r in held[held["robustness"] != "robust"].iterrows():
+        share = f"{float(r['pass_share']):.2f}"
+        out.append(_row([r["id"], r["status"], r["robustness"], share, r["deciding"] or "-"]))
+    out.append("")
+    out.append(
+        _row(
+            [
+                "deviation",
+                "paper",
+                "default",
+                "evidence",
+                "best value",
+                "best residual",
+                "objective gap (km/h)",
+            ]
+        )
+    )
+    out.append(_row(["--"] * 7))
+    for _, r in claims[claims["evidence"] != ""].iterrows():
+        gap = r["objective_gap"]
+        out.append(
+            _row(
+                [
+                    r["id"],
+                    f"{float(r['paper_value']):g}",
+                    f"{float(r['reproduced_value']):.4g}",
+                    r["evidence"],
+                    f"{float(r['best_value']):.4g}",
+                    f"{float(r['best_residual']):.2f}",
+                    f"{float(gap):.3f}" if gap != "" else "-",
+                ]
+            )
+        )
+    return "\n".join(out) + "\n"
+
+
+def write(path: Path, blocks: dict[str, str]) -> None:
+    """Replace each block of ``path`` between ``<!-- BEGIN tools/assumptions_tables.py:
+    NAME -->`` and ``<!-- END ... -->`` with its new text."""
+    text = path.read_text()
+    for name, body in blocks.items():
+        begin = f"<!-- BEGIN tools/assumptions_tables.py: {name} -->"
+        end = f"<!-- END tools/assumptions_tables.py: {name} -->"
+        head, rest = text.split(begin)
+        _, tail = rest.split(end)
+        text = f"{head}{begin}\n{body.strip()}\n\n{end}{tail}"
+    path.write_text(text)
+
+
 if __name__ == "__main__":
-    print(tables(Path(sys.argv[1] if len(sys.argv) > 1 else "results/identification")))
+    args = sys.argv[1:]
+    target = None
+    if "--write" in args:
+        i = args.index("--write")
+        target = Path(args[i + 1])
+        del args[i : i + 2]
+    results = Path(args[0] if args else "results")
+    blocks = {
+        "identification": tables(results / "identification"),
+        "robustness": robustness_tables(results),
+    }
+    if target is None:
+        print("\n\n".join(blocks.values()))
+    else:
+        write(target, blocks)

@@ -8,10 +8,15 @@ from snakemake.utils import validate
 from tennis_stroke.chunking import chunk_count
 from tennis_stroke.config_check import config_errors, numbers_from_strings
 from tennis_stroke.experiments.grids import grid
+from tennis_stroke.experiments.reading_space import (
+    ReadingSpaceError,
+    load_reading_space,
+)
 from tennis_stroke.experiments.strokes import sec5_stroke
 from tennis_stroke.replication.registry import (
     FIGURES,
     IDENTIFICATION_FILES,
+    INFERENCE_RESULTS,
     PAPER_RESULTS,
     RESULT_FILES,
 )
@@ -26,6 +31,13 @@ if _errors:
     sys.stderr.write(f"tennis-stroke config error: {_errors[0]}\n")
     sys.exit(1)
 validate(config, "../schemas/config.schema.yaml", set_default=True)
+# The reading space (config/readings.yaml), checked before any job: the robustness
+# analysis' chunks are planned from it.
+try:
+    READING_SPACE = load_reading_space("config/readings.yaml")
+except ReadingSpaceError as _exc:
+    sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
+    sys.exit(1)
 
 #: The package, by layer (folders) and module; rules declare the sources they run as
 #: inputs, so an edit reruns exactly the jobs that read it (Snakemake does not see code
@@ -65,26 +77,37 @@ wildcard_constraints:
 #: gather_map.
 CHUNKED_MAPS = (
     r"angle_maps/L1_[^/]+|mass_length/map|torque_delay/fig[789]|elbow_force/map"
+    r"|robustness/claims"
 )
 
 
 def map_rows(name):
-    """Rule name and number of rows of the first axis of map ``name`` (CHUNKED_MAPS)."""
+    """Requested chunks and number of rows of the first axis of map ``name``
+    (CHUNKED_MAPS); the robustness analysis' from config/readings.yaml (its rows: at
+    most the declared number of readings)."""
     section, item = name.split("/")
+    chunks = config["chunks"]
+    if section == "robustness":
+        spec = READING_SPACE.raw["multiverse"]
+        return spec["chunks"], spec["readings"]
     if section == "angle_maps":
-        return "angle_map", grid(*grid_spec(config["angle_maps"]["theta0"])).size
+        return (
+            chunks["angle_map"],
+            grid(*grid_spec(config["angle_maps"]["theta0"])).size,
+        )
     if section == "mass_length":
-        return "mass_length", grid(*grid_spec(config["mass_length"]["M2"])).size
+        return chunks["mass_length"], grid(*grid_spec(config["mass_length"]["M2"])).size
     if section == "elbow_force":
-        return "elbow_force_map", grid(*grid_spec(config["elbow_force"]["psi_F"])).size
+        rows = grid(*grid_spec(config["elbow_force"]["psi_F"])).size
+        return chunks["elbow_force_map"], rows
     first = config["torque_delay"][item]["C2" if item == "fig7" else "delta0"]
-    return "delay_map", grid(*grid_spec(first)).size if isinstance(first, dict) else 1
+    rows = grid(*grid_spec(first)).size if isinstance(first, dict) else 1
+    return chunks["delay_map"], rows
 
 
 def chunk_files(wildcards):
-    """The chunk files of a map: the config's chunk count, at most one per row."""
-    rule_name, rows = map_rows(wildcards.map)
-    n = chunk_count(config["chunks"][rule_name], rows)
+    """The chunk files of a map: the requested chunk count, at most one per row."""
+    n = chunk_count(*map_rows(wildcards.map))
     return [f"results/chunks/{wildcards.map}/{i}-of-{n}.nc" for i in range(n)]
 
 
@@ -108,6 +131,20 @@ def delay_section(wildcards):
     """The config of one Sec. V map (fig7, fig8 or fig9) with the shared L1 and theta0."""
     d = config["torque_delay"]
     return {**d[wildcards.fig], "L1": d["L1"], "theta0": d["theta0"]}
+
+
+def paper_experiments():
+    """The config sections of the paper's experiments (the robustness analysis reruns
+    them under each reading)."""
+    keys = (
+        "angle_maps",
+        "fig4",
+        "k_sensitivity",
+        "mass_length",
+        "torque_delay",
+        "elbow_force",
+    )
+    return {k: config[k] for k in keys}
 
 
 def common_params():

@@ -201,6 +201,58 @@ rule identification:
         "../scripts/identification.py"
 
 
+rule robustness_screen:
+    input:
+        SIMULATION_SOURCES,
+        claims="config/claims.yaml",
+        readings="config/readings.yaml",
+        model_fits=IDENTIFICATION_FILES["model_fits"],
+        elbow_force_fits=IDENTIFICATION_FILES["elbow_force_fits"],
+    output:
+        screen=RESULT_FILES["robustness_screen"],
+        readings=RESULT_FILES["robustness_readings"],
+    log:
+        "logs/robustness_screen.log",
+    benchmark:
+        "benchmarks/workflow/robustness_screen.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        fig4_strokes=[list(map(float, s)) for s in config["fig4"]["strokes"]],
+        force={
+            k: config["elbow_force"][k]
+            for k in ("F0", "t_d", "table1_psi", "table1_tau_F")
+        },
+        stroke=delay_stroke(),
+    script:
+        "../scripts/robustness_screen.py"
+
+
+rule robustness_chunk:
+    input:
+        SIMULATION_SOURCES,
+        sources(
+            "replication/robustness.py",
+            "replication/claims.py",
+            "replication/measures.py",
+        ),
+        kept=RESULT_FILES["robustness_readings"],
+        claims="config/claims.yaml",
+        readings="config/readings.yaml",
+    output:
+        "results/chunks/robustness/claims/{chunk}-of-{chunks}.nc",
+    log:
+        "logs/robustness_chunk/{chunk}-of-{chunks}.log",
+    benchmark:
+        "benchmarks/workflow/robustness_chunk_{chunk}-of-{chunks}.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        experiments=paper_experiments(),
+    script:
+        "../scripts/robustness_chunk.py"
+
+
 rule work_precision:
     input:
         STUDY_SOURCES,

@@ -6,9 +6,11 @@ rule claims:
         **PAPER_RESULTS,
         claims="config/claims.yaml",
         readings="config/readings.yaml",
+        robustness=RESULT_FILES["robustness"],
         code=sources(
             "replication/claims.py",
             "replication/measures.py",
+            "replication/robustness.py",
             "experiments/reading_space.py",
         ),
     output:
@@ -26,7 +28,7 @@ rule report:
         figures=expand("results/figures/{name}.png", name=sorted(FIGURES)),
         claims="results/claims.csv",
         statements="config/claims.yaml",
-        identification=list(IDENTIFICATION_FILES.values()),
+        inference=list(INFERENCE_RESULTS.values()),
         results=list(PAPER_RESULTS.values()),
         code=sources("replication/report.py", "replication/registry.py"),
         assumptions=str(Path(workflow.basedir) / "docs" / "assumptions.md"),

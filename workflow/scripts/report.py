@@ -1,13 +1,14 @@
 """Build report/index.html from the figures, claims, ledger and run metadata."""
 
 from tennis_stroke.pipeline import logged
+from tennis_stroke.replication.registry import INFERENCE_RESULTS
 from tennis_stroke.replication.report import build_report
 
 with logged(snakemake.log[0]):
     build_report(
         figures=list(snakemake.input.figures),
         claims_csv=snakemake.input.claims,
-        identification=list(snakemake.input.identification),
+        inference=INFERENCE_RESULTS,
         results=list(snakemake.input.results),
         config=snakemake.params.config,
         benchmarks_dir=snakemake.params.benchmarks,

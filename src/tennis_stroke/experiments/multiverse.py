@@ -33,8 +33,13 @@ from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
 from .grids import axis
 from .identification import elbow_simulator, model_simulator, residuals, targets
-from .maps import angle_map, k_sensitivity_map, mass_length_map, torque_delay_map
-from .maps import elbow_force_section_map
+from .maps import (
+    angle_map,
+    elbow_force_section_map,
+    k_sensitivity_map,
+    mass_length_map,
+    torque_delay_map,
+)
 from .reading_space import ReadingSpace
 from .strokes import delay_strokes, elbow_force_strokes, fig4_strokes, sec5_stroke
 
@@ -174,7 +179,10 @@ def screen(
             "consistent": (
                 ("combination", "candidate"),
                 consistent.astype(np.int8),
-                {"long_name": "1 if consistent with the paper (config/readings.yaml)", "units": "1"},
+                {
+                    "long_name": "1 if consistent with the paper (config/readings.yaml)",
+                    "units": "1",
+                },
             ),
             "max_abs_residual": (
                 "fit_set",
@@ -196,6 +204,14 @@ def screen(
     )
     ds.attrs.update(provenance({}, settings or SolverSettings()))
     ds.attrs["design_seed"] = int(space.raw["multiverse"]["seed"])
+    return _labelled(ds)
+
+
+def _labelled(ds: xr.Dataset) -> xr.Dataset:
+    """Every variable with ``units`` and ``long_name`` (labels and counts: units "1")."""
+    for name in [*ds.data_vars, *ds.coords]:
+        ds[name].attrs.setdefault("units", "1")
+        ds[name].attrs.setdefault("long_name", name)
     return ds
 
 
@@ -241,7 +257,7 @@ def readings_dataset(space: ReadingSpace, screened: xr.Dataset) -> xr.Dataset:
         coords={"reading": ("reading", np.arange(len(chosen), dtype=np.int32), {"units": "1"})},
     )
     out.attrs.update(screened.attrs)
-    return out
+    return _labelled(out)
 
 
 def reading_of(readings: xr.Dataset, index: int) -> dict[str, object]:
@@ -269,10 +285,15 @@ def _merge(config: Mapping, update: Mapping) -> dict:
 def experiment_config(
     config: Mapping, space: ReadingSpace, reading: Mapping[str, object]
 ) -> tuple[dict, dict]:
-    """The workflow config at the multiverse's resolution with ``reading``'s experiment
-    unknowns, and the model overrides of ``reading`` (readings and parameters) on top of
-    the config's ``model``."""
-    cfg = _merge(config, space.raw["multiverse"]["resolution"])
+    """The workflow config at the multiverse's resolution (``angle_maps`` and
+    ``mass_length`` merged over their sections, ``fig7_tau`` as Fig. 7's ``tau``) with
+    ``reading``'s experiment unknowns, and the model overrides of ``reading`` (readings
+    and parameters) on top of the config's ``model``."""
+    resolution = dict(space.raw["multiverse"]["resolution"])
+    fig7_tau = resolution.pop("fig7_tau", None)
+    cfg = _merge(config, resolution)
+    if fig7_tau is not None:
+        cfg["torque_delay"]["fig7"]["tau"] = dict(fig7_tau)
     if "table1_tau_F" in reading:
         cfg["elbow_force"]["table1_tau_F"] = float(reading["table1_tau_F"])
     model = dict(cfg.get("model") or {})
@@ -293,7 +314,9 @@ def paper_results(
     :data:`tennis_stroke.replication.registry.PAPER_RESULTS`).  The curve files
     (:data:`CURVE_FILES`) are computed once per entry of ``curves``, keyed
     ``"{key}/{curves}"``, the others once."""
-    a, ml, td, ef = (config[k] for k in ("angle_maps", "mass_length", "torque_delay", "elbow_force"))
+    a, ml, td, ef = (
+        config[k] for k in ("angle_maps", "mass_length", "torque_delay", "elbow_force")
+    )
     sec5 = sec5_stroke(config)
     out: dict[str, xr.Dataset] = {}
     for key, l1 in zip(("fig2", "fig3"), a["L1"], strict=False):
@@ -302,7 +325,9 @@ def paper_results(
         )
     f4 = config["fig4"]
     for c in curves:
-        out[f"fig4/{c}"] = fig4_strokes(f4["strokes"], f4["t_end"], f4["samples"], model, settings, c)
+        out[f"fig4/{c}"] = fig4_strokes(
+            f4["strokes"], f4["t_end"], f4["samples"], model, settings, c
+        )
         out[f"delay/{c}"] = delay_strokes(sec5, model, settings, c)
     k = config["k_sensitivity"]
     out["k_sensitivity"] = k_sensitivity_map(
@@ -329,3 +354,12 @@ def paper_results(
     table1 = {k: ef[k] for k in ("F0", "t_d", "table1_psi", "table1_tau_F")}
     out["elbow"] = elbow_force_strokes(table1, sec5, model, settings, curves[0])
     return out
+
+
+def best_fits(fits: Mapping[str, xr.Dataset]) -> dict[str, dict[str, float]]:
+    """``passed`` and ``score`` of the best fit of each fit set (the identification's
+    ``{fit}_fits`` files, best first): the fallback of the consistency rule."""
+    return {
+        name: {"passed": int(ds["passed"].values[0]), "score": float(ds["score"].values[0])}
+        for name, ds in fits.items()
+    }

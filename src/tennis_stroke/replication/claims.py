@@ -44,7 +44,16 @@ class ClaimError(ValueError):
     """A claim definition is malformed (message is one line)."""
 
 
-def _measure(spec: Mapping, files: Mapping[str, xr.Dataset]) -> float:
+def within(value, paper, tolerance):
+    """True where ``value`` is finite and within ``tolerance`` of ``paper`` (the rule of
+    every claim; a rounding margin of 1e-12)."""
+    value = np.asarray(value, dtype=float)
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(value) & (np.abs(value - paper) <= np.asarray(tolerance) + 1e-12)
+
+
+def measure(spec: Mapping, files: Mapping[str, xr.Dataset]) -> float:
+    """The value a claim's ``measure`` computes from the result files (by key)."""
     spec = dict(spec)
     if "function" in spec:
         fn = MEASUREMENTS.get(spec.pop("function"))
@@ -110,12 +119,10 @@ def evaluate(
     fit_of_claim = fit_of_claim or {}
     rows = []
     for c in claims:
-        value = _measure(c["measure"], datasets)
-        within = bool(
-            np.isfinite(value) and abs(value - c["paper_value"]) <= c["tolerance"] + 1e-12
-        )
+        value = measure(c["measure"], datasets)
+        ok = bool(within(value, c["paper_value"], c["tolerance"]))
         fit_set = fit_of_claim.get(c["id"], "")
-        if within:
+        if ok:
             # a claim that chose the readings cannot confirm them
             status = "used_for_fit" if fit_set else "pass"
         else:

@@ -237,6 +237,57 @@ def ladder(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     return fig
 
 
+def score_profiles(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Identification: the RMS normalised residual of each fit set along each of its
+    unknowns (the others refitted), the declared range shaded; dots where every fit
+    claim is within tolerance."""
+    panels = [(d, name) for d in ds for name in d.coords]
+    fig, axes = plt.subplots(1, len(panels), figsize=(3.2 * len(panels), 3.4), squeeze=False)
+    for ax, (d, name) in zip(axes[0], panels, strict=True):
+        x = d[name].values
+        score = d[f"score_{name}"].values
+        ax.plot(x, score, "k-", lw=1)
+        inside = d[f"in_range_{name}"].values.astype(bool)
+        if inside.any():
+            ax.axvspan(x[inside].min(), x[inside].max(), color="tab:green", alpha=0.15)
+        passed = d[f"passed_{name}"].values
+        full = passed == passed.max()
+        ax.plot(x[full], score[full], "o", ms=3, color="tab:green")
+        if x.min() > 0 and x.max() / x.min() > 20:
+            ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel(_label(d[name]))
+        ax.set_ylabel("RMS normalised residual (1)")
+        ax.set_title(f"fit set {d.attrs.get('fit_set', '')}: {name}", fontsize=9)
+    fig.suptitle(title, fontsize=10)
+    return fig
+
+
+def claims_readings(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Robustness: the share of claim-level variants in which each claim (row) is within
+    tolerance, under each consistent reading (column); fit claims marked with '*'."""
+    d = ds[0]
+    share = d["within"].mean("variant").transpose("claim", "reading")
+    fig, ax = plt.subplots(figsize=(8.0, 0.17 * d.sizes["claim"] + 1.6))
+    mesh = ax.pcolormesh(
+        np.arange(d.sizes["reading"] + 1),
+        np.arange(d.sizes["claim"] + 1),
+        share.values,
+        cmap="RdYlGn",
+        vmin=0,
+        vmax=1,
+    )
+    fit = d["fit_set"].values if "fit_set" in d else [""] * d.sizes["claim"]
+    labels = [f"{c}{' *' if f else ''}" for c, f in zip(d["claim"].values, fit, strict=True)]
+    ax.set_yticks(np.arange(d.sizes["claim"]) + 0.5, labels, fontsize=6)
+    ax.invert_yaxis()
+    ax.set_xlabel("consistent reading (index)")
+    ax.set_ylabel("claim (* used for fit)")
+    plt.colorbar(mesh, ax=ax, label="share of variants within tolerance")
+    ax.set_title(title, fontsize=10)
+    return fig
+
+
 def title(template: str, ds: xr.Dataset) -> str:
     """A figure's title from its registry template and the values its file records:
     the resolved parameters (``{L1}`` for ``param_L1``) and the other scalar global
@@ -261,6 +312,8 @@ DRAWERS: dict[str, Callable[..., plt.Figure]] = {
         work_precision,
         stability,
         ladder,
+        score_profiles,
+        claims_readings,
     )
 }
 

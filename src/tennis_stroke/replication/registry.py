@@ -35,19 +35,28 @@ STUDY_RESULTS = {
     "ladder": "results/solver_study/ladder.nc",
     "optimum_cost": "results/solver_study/optimum_cost.nc",
 }
-RESULT_FILES = {**PAPER_RESULTS, **STUDY_RESULTS}
 #: The identification's files (config/readings.yaml), by ``{fit set}_{kind}``.
 IDENTIFICATION_FILES = {
     f"{fit}_{kind}": f"results/identification/{fit}_{kind}.nc"
     for fit in ("model", "elbow_force")
     for kind in ("fits", "profiles", "loo")
 }
+#: The robustness analysis' files: the screen of the candidate readings, the kept
+#: consistent readings, and every claim under each of them (claims x readings).
+ROBUSTNESS_FILES = {
+    "robustness_screen": "results/robustness/screen.nc",
+    "robustness_readings": "results/robustness/readings.nc",
+    "robustness": "results/robustness/claims.nc",
+}
+#: The inference's files (identification and robustness), by key.
+INFERENCE_RESULTS = {**IDENTIFICATION_FILES, **ROBUSTNESS_FILES}
+RESULT_FILES = {**PAPER_RESULTS, **STUDY_RESULTS, **INFERENCE_RESULTS}
 
 
 @dataclass(frozen=True)
 class Figure:
     """One figure: file name (without ``.png``), section of the paper (``III`` ... ``VI``,
-    or ``study``), result files (keys of :data:`RESULT_FILES`), drawing function of
+    ``inference`` or ``study``), result files (keys of :data:`RESULT_FILES`), drawing function of
     :mod:`tennis_stroke.replication.figures` and its extra arguments, and its title: a
     template filled from the first file's attributes (``{L1}`` is ``param_L1``), so a
     title never states a value the file does not hold."""
@@ -152,6 +161,20 @@ FIGURES: dict[str, Figure] = {
             ("elbow",),
             "elbow_paths",
             "Fig. 14: elbow paths until the contact",
+        ),
+        Figure(
+            "inference01_score_profiles",
+            "inference",
+            ("model_profiles", "elbow_force_profiles"),
+            "score_profiles",
+            "Identification: score along each unknown (the others refitted)",
+        ),
+        Figure(
+            "inference02_claims_readings",
+            "inference",
+            ("robustness",),
+            "claims_readings",
+            "Robustness: each claim under each consistent reading",
         ),
         Figure(
             "study01_work_precision",

@@ -74,6 +74,23 @@ discrete readings, continuous unknowns fitted by bounded least squares)</h3>
 <p>Leave-one-out: each fit claim predicted by a fit without it.</p>
 {{ f.loo }}
 {% endfor %}
+{% if robustness %}<h2>Robustness across the readings consistent with the paper</h2>
+<p>{{ robustness.n_candidates }} Sobol candidates of the continuous unknowns under each of
+{{ robustness.n_combinations }} combinations of the model fit's discrete readings
+({{ robustness.candidates }} in all) were screened against both fit sets;
+{{ robustness.consistent }} are consistent (every fit claim within its tolerance), and
+{{ robustness.readings }} of them were kept, each evaluated under
+{{ robustness.variants }} combinations of the claim-level readings. Discrete readings
+represented: {{ robustness.combos|join("; ") }}.</p>
+<p>Held-out claims by robustness class: {% for k, v in robustness.counts.items() %}{{ k }}
+{{ v }}{% if not loop.last %}, {% endif %}{% endfor %}.</p>
+{{ robustness.table }}
+<h3>Evidence for every deviation of the default reading</h3>
+<p>best_residual: the smallest |value - paper| / tolerance any consistent reading reaches;
+objective_gap: for an argmax claim, how far (km/h) the objective at the paper's argument
+lies below its optimum.</p>
+{{ robustness.evidence }}
+{% endif %}
 <h3>All assumptions with their evidence (docs/assumptions.md)</h3>
 <pre style="white-space: pre-wrap; font-size: 0.8em">{{ assumptions }}</pre>
 
@@ -98,16 +115,13 @@ than {{ max_failure_share }} of its strokes failed stops the run (config
 """)
 
 
-def _fit_tables(paths: Sequence[str], rows: int = 6) -> list[dict]:
-    """The best fits and the leave-one-out table of each fit set's files."""
+def _fit_tables(inference: Mapping[str, str], rows: int = 6) -> list[dict]:
+    """The best fits and the leave-one-out table of each fit set (``inference``: the
+    registry's keys ``{fit}_fits`` and ``{fit}_loo`` -> paths)."""
     out = []
-    for path in paths:
-        if not str(path).endswith("_fits.nc"):
-            continue
-        with xr.open_dataset(path) as ds:
-            fits = ds.load()
-        with xr.open_dataset(str(path).replace("_fits.nc", "_loo.nc")) as ds:
-            loo = ds.load()
+    for key in sorted(k for k in inference if k.endswith("_fits")):
+        fits = xr.load_dataset(inference[key])
+        loo = xr.load_dataset(inference[key.removesuffix("_fits") + "_loo"])
         columns = [v for v in fits.data_vars if fits[v].dims == ("combination",)]
         table = fits[columns].to_dataframe().head(rows)
         default = {
@@ -124,6 +138,59 @@ def _fit_tables(paths: Sequence[str], rows: int = 6) -> list[dict]:
             }
         )
     return out
+
+
+def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
+    """The robustness section: the consistent set, the classes and the evidence."""
+    if "robustness" not in inference or "robustness" not in claims:
+        return {}
+    screen = xr.load_dataset(inference["robustness_screen"])
+    kept = xr.load_dataset(inference["robustness"])
+    combos = sorted(
+        {
+            ", ".join(
+                f"{k}={kept[k].values[i]}"
+                for k in kept.data_vars
+                if kept[k].dims == ("reading",) and kept[k].dtype.kind in "OUS"
+            )
+            for i in range(kept.sizes["reading"])
+        }
+    )
+    held = claims[claims["fit_set"] == ""]
+    counts = held["robustness"].value_counts().to_dict()
+    deviations = claims[claims["evidence"] != ""]
+    return {
+        "candidates": screen.sizes["candidate"] * screen.sizes["combination"],
+        "n_candidates": screen.sizes["candidate"],
+        "n_combinations": screen.sizes["combination"],
+        "consistent": int(screen["consistent"].sum()),
+        "readings": kept.sizes["reading"],
+        "variants": kept.sizes["variant"],
+        "combos": combos,
+        "counts": counts,
+        "table": held[
+            [
+                "id",
+                "paper_value",
+                "reproduced_value",
+                "robustness",
+                "pass_share",
+                "deciding",
+                "best_value",
+            ]
+        ].to_html(index=False, float_format=lambda x: f"{x:.4g}"),
+        "evidence": deviations[
+            [
+                "id",
+                "paper_value",
+                "reproduced_value",
+                "evidence",
+                "best_value",
+                "best_residual",
+                "objective_gap",
+            ]
+        ].to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="-"),
+    }
 
 
 def _timings(directory: Path) -> pd.DataFrame:
@@ -159,7 +226,7 @@ def _failures(results: Sequence[str]) -> pd.DataFrame:
 def build_report(
     figures: Sequence[str],
     claims_csv: str,
-    identification: Sequence[str],
+    inference: Mapping[str, str],
     results: Sequence[str],
     config: Mapping,
     benchmarks_dir: str,
@@ -226,7 +293,8 @@ def build_report(
         n_fit_ok=int((claims.status == "used_for_fit").sum()),
         figures=figs,
         readings=list(READINGS.values()),
-        fits=_fit_tables(identification),
+        fits=_fit_tables(inference),
+        robustness=_robustness(claims, inference),
         meta=meta,
         timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
         failure_table=_failures(results).to_html(index=False, na_rep="-"),

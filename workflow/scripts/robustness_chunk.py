@@ -1,0 +1,19 @@
+"""The robustness analysis, step 2: every claim under one chunk of the kept readings."""
+
+import xarray as xr
+
+from tennis_stroke.experiments.reading_space import load_reading_space
+from tennis_stroke.pipeline import Timer, chunk_position, logged, save, settings
+from tennis_stroke.replication.claims import load_claims
+from tennis_stroke.replication.robustness import evaluate_readings
+
+p = snakemake.params
+with logged(snakemake.log[0]):
+    clock = Timer()
+    claims = load_claims(snakemake.input.claims)
+    space = load_reading_space(snakemake.input.readings, [c["id"] for c in claims])
+    kept = xr.load_dataset(snakemake.input.kept)
+    config = {**p.experiments, "model": p.common["model"]}
+    rows = chunk_position(snakemake.wildcards)
+    ds = evaluate_readings(claims, space, kept, config, settings(p.common), rows, snakemake.threads)
+    save(ds, snakemake.output[0], p, clock(), chunk_of=snakemake.wildcards)

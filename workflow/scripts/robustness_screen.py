@@ -1,0 +1,31 @@
+"""The robustness analysis, step 1: the declared Sobol candidates screened against both
+fit sets, and the consistent readings kept (config/readings.yaml, multiverse)."""
+
+import xarray as xr
+
+from tennis_stroke.experiments.multiverse import best_fits, readings_dataset, screen
+from tennis_stroke.experiments.reading_space import load_reading_space
+from tennis_stroke.pipeline import Timer, logged, save, settings
+from tennis_stroke.replication.claims import load_claims
+
+p = snakemake.params
+with logged(snakemake.log[0]):
+    clock = Timer()
+    claims = load_claims(snakemake.input.claims)
+    space = load_reading_space(snakemake.input.readings, [c["id"] for c in claims])
+    fits = {n: xr.load_dataset(snakemake.input[f"{n}_fits"]) for n in space.fits}
+    screened = screen(
+        space,
+        claims,
+        p.fig4_strokes,
+        p.force,
+        p.stroke,
+        p.common["model"],
+        best_fits(fits),
+        settings(p.common),
+    )
+    kept = readings_dataset(space, screened)
+    print(f"consistent: {int(screened['consistent'].sum())}; kept: {kept.sizes['reading']}")
+    seconds = clock()
+    save(screened, snakemake.output.screen, p, seconds)
+    save(kept, snakemake.output.readings, p, seconds)
