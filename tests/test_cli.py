@@ -242,3 +242,21 @@ def test_identify_with_a_missing_reading_space_is_one_line(tmp_path, capsys):
         main(["identify", "--readings", str(tmp_path / "none.yaml")])
     assert exc.value.code == 2
     assert "does not exist" in capsys.readouterr().err
+
+
+def test_version_prints_the_package_version(capsys):
+    from tennis_stroke import __version__
+
+    with pytest.raises(SystemExit) as stop:
+        main(["--version"])
+    assert stop.value.code == 0
+    assert capsys.readouterr().out.strip() == f"tennis-stroke {__version__}"
+
+
+def test_strike_prints_counts_as_integers(capsys):
+    assert main(["strike", "--theta0", "90", "--delta0", "45"]) == 0
+    lines = {line.split()[0]: line.split()[1] for line in capsys.readouterr().out.splitlines()[1:]}
+    expected = strike(90.0, 45.0)
+    assert lines["rhs_evals"] == str(int(expected["rhs_evals"]))
+    assert lines["steps"] == str(int(expected["steps"]))
+    assert "." in lines["v_out_kmh"]

@@ -17,6 +17,8 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from ._version import __version__
+
 EXIT_USAGE = 2
 
 
@@ -70,6 +72,7 @@ def angle(text: str) -> float:
 
 def build_parser() -> argparse.ArgumentParser:
     parser = _Parser(prog="tennis-stroke", description=__doc__.splitlines()[0])
+    parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
     def common(p: argparse.ArgumentParser) -> None:
@@ -154,14 +157,16 @@ def _strike(args: argparse.Namespace) -> int:
         }
         print(json.dumps(payload, indent=2))
         return 0
-    from .solver.results import RESULT_FIELDS
+    from .solver.results import COUNT_FIELDS, RESULT_FIELDS
 
     print(
         f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
         f"{result['status_name']}"
     )
     for name, (_, units, long_name) in RESULT_FIELDS.items():
-        if name != "status":
+        if name in COUNT_FIELDS and name != "status":
+            print(f"  {name:18s} {int(result[name]):14d} {units:7s} {long_name}")
+        elif name != "status":
             print(f"  {name:18s} {result[name]:14.6f} {units:7s} {long_name}")
     return 0
 

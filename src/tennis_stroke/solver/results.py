@@ -134,12 +134,16 @@ def cf_attrs(name: str, **extra) -> dict[str, object]:
     return {"units": units, "long_name": long_name, **extra}
 
 
+#: Result fields that count (integers in files and in the command line's output).
+COUNT_FIELDS = ("status", "rhs_evals", "steps")
+
+
 def results_from_output(out: np.ndarray, shape: tuple[int, ...]) -> dict[str, np.ndarray]:
     """Named result arrays of ``shape`` from compiled output rows (angles in degrees)."""
     res = {}
     for name, (col, _, _) in RESULT_FIELDS.items():
         values = out[:, col].reshape(shape)
-        if name in ("status", "rhs_evals", "steps"):
+        if name in COUNT_FIELDS:
             values = values.astype(np.int64)
         elif name in _DEGREE_FIELDS:
             values = np.degrees(values)
