@@ -132,6 +132,16 @@ def result_dataset(
     return ds
 
 
+def labelled(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with ``units`` and ``long_name`` on every variable and coordinate: those
+    without get units ``"1"`` (labels, counts, values in a per-row unit named beside
+    them) and their own name as long name."""
+    for name in [*ds.data_vars, *ds.coords]:
+        ds[name].attrs.setdefault("units", "1")
+        ds[name].attrs.setdefault("long_name", name)
+    return ds
+
+
 def check_writable(path: str | os.PathLike) -> Path:
     """Fail early (:class:`OutputError`) if ``path`` cannot be created; return it.
 

@@ -25,7 +25,7 @@ import xarray as xr
 from scipy.optimize import least_squares
 from scipy.stats import qmc
 
-from ..io import provenance
+from ..io import labelled, provenance
 from ..model.params import PARAMETERS
 from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
@@ -502,13 +502,8 @@ def to_datasets(result: Identification, settings: SolverSettings | None = None) 
         coords={"claim": ("claim", claims, {"long_name": "claim id (config/claims.yaml)"})},
     )
     loo.attrs.update(_attrs(result, settings))
-    out = {"fits": fits, "profiles": prof, "loo": loo}
-    for ds in out.values():
-        for name in [*ds.data_vars, *ds.coords]:
-            # values in each claim's own unit (claim_unit) and labels carry units "1"
-            ds[name].attrs.setdefault("units", "1")
-            ds[name].attrs.setdefault("long_name", name)
-    return out
+    # values in each claim's own unit (claim_unit) and labels carry units "1"
+    return {"fits": labelled(fits), "profiles": labelled(prof), "loo": labelled(loo)}
 
 
 def _attrs(result: Identification, settings: SolverSettings | None) -> dict:

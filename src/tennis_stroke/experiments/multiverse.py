@@ -28,7 +28,7 @@ import numpy as np
 import xarray as xr
 from scipy.stats import qmc
 
-from ..io import provenance
+from ..io import labelled, provenance
 from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
 from .grids import axis
@@ -204,15 +204,7 @@ def screen(
     )
     ds.attrs.update(provenance({}, settings or SolverSettings()))
     ds.attrs["design_seed"] = int(space.raw["multiverse"]["seed"])
-    return _labelled(ds)
-
-
-def _labelled(ds: xr.Dataset) -> xr.Dataset:
-    """Every variable with ``units`` and ``long_name`` (labels and counts: units "1")."""
-    for name in [*ds.data_vars, *ds.coords]:
-        ds[name].attrs.setdefault("units", "1")
-        ds[name].attrs.setdefault("long_name", name)
-    return ds
+    return labelled(ds)
 
 
 def select(screened: xr.Dataset, count: int) -> list[tuple[int, int]]:
@@ -257,7 +249,7 @@ def readings_dataset(space: ReadingSpace, screened: xr.Dataset) -> xr.Dataset:
         coords={"reading": ("reading", np.arange(len(chosen), dtype=np.int32), {"units": "1"})},
     )
     out.attrs.update(screened.attrs)
-    return _labelled(out)
+    return labelled(out)
 
 
 def reading_of(readings: xr.Dataset, index: int) -> dict[str, object]:

@@ -30,6 +30,7 @@ from ..experiments.multiverse import (
     reading_of,
 )
 from ..experiments.reading_space import ReadingSpace
+from ..io import labelled
 from ..solver.settings import SolverSettings
 from .claims import measure, within
 
@@ -169,10 +170,7 @@ def readings_results(
     for k, v in readings.data_vars.items():
         ds[k] = v
     ds.attrs.update(readings.attrs)  # provenance of the screen that chose the readings
-    for name in [*ds.data_vars, *ds.coords]:
-        ds[name].attrs.setdefault("units", "1")
-        ds[name].attrs.setdefault("long_name", name)
-    return ds
+    return labelled(ds)
 
 
 def evaluate_readings(
