@@ -99,3 +99,15 @@ def result_files(work, chunks=False):
         for p in (work / "results").rglob("*.nc")
         if chunks or "chunks" not in p.parts
     )
+
+
+@pytest.fixture(scope="session")
+def tiny_run(tmp_path_factory):
+    """The whole workflow run once on the tiny configuration (tests/tiny.py); shared by the
+    workflow, report and file-format tests."""
+    from tiny import TINY, TINY_READINGS
+
+    work = workdir(tmp_path_factory.mktemp("workflow"), TINY, TINY_READINGS)
+    done = run_snakemake("report", work, "--cores", "2", timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    return work

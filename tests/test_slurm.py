@@ -12,7 +12,7 @@ from pathlib import Path
 
 import pytest
 from conftest import ROOT, assert_same_results, result_files, run_snakemake, workdir
-from test_workflow import TINY
+from tiny import TINY
 
 pytestmark = pytest.mark.slurm
 

@@ -1,0 +1,88 @@
+"""The tiny configuration of the end-to-end workflow tests (small grids, every rule)."""
+
+TINY = {
+    "angle_maps": {
+        "L1": [0.3, 0.4],
+        "theta0": {"start": 60.0, "stop": 120.0, "step": 30.0},
+        "delta0": {"start": 0.0, "stop": 90.0, "step": 30.0},
+    },
+    "fig4": {"strokes": [[120.0, 81.5], [75.0, 39.0]], "t_end": 0.32, "samples": 33},
+    "k_sensitivity": {"k_contact": [188.0, 19000.0], "points": 3},
+    "mass_length": {
+        "M2": {"start": 0.2, "stop": 0.5, "step": 0.3},
+        "L1": {"start": 0.2, "stop": 0.5, "step": 0.3},
+        "theta0_range": [60.0, 120.0],
+        "delta0_range": [0.0, 100.0],
+        "coarse_step": 20.0,
+        "fine_step": 10.0,
+    },
+    "torque_delay": {
+        "L1": 0.4,
+        "theta0": 90.0,
+        "fig7": {
+            "delta0": 26.1,
+            "C2": {"start": 0.0, "stop": 10.0, "step": 5.0},
+            "tau": {"start": 0.0, "stop": 0.2, "step": 0.1},
+        },
+        "fig8": {
+            "C2": 5.0,
+            "delta0": {"start": 0.0, "stop": 100.0, "step": 50.0},
+            "tau": {"start": 0.0, "stop": 0.2, "step": 0.1},
+        },
+        "fig9": {"C2": 5.0, "delta0": 52.5, "tau": {"start": 0.0, "stop": 0.2, "step": 0.05}},
+        "strokes": {"tau_L": 0.0, "tau_H": 0.185, "t_end": 0.32, "samples": 33},
+    },
+    "solver_study": {
+        "strokes": 2,
+        "seed": 1,
+        "compiled_tolerances": [1e-6, 1e-8],
+        "scipy_tolerances": [1e-6],
+        "rk4_steps": [1e-3],
+        "repeats": 1,
+        "stability": {
+            "k_contact": {"start": 2.0, "stop": 7.0, "num": 2},
+            "cases": [["tennis_stroke.DOP853", 5e-8], ["fixed.RK4", 1e-3]],
+        },
+        "optimum": {"M2": [0.3], "L1": [0.4], "steps": [[20.0, 5.0]], "reference_step": 2.0},
+    },
+    "elbow_force": {
+        "F0": 20.0,
+        "t_d": 0.05,
+        "psi_F": {"start": 0.0, "stop": 270.0, "step": 90.0},
+        "tau_F": {"start": -0.05, "stop": 0.05, "step": 0.05},
+        "table1_psi": [180.0, 275.0, 76.0],
+        "table1_tau_F": -0.027,
+    },
+}
+
+#: A small robustness analysis for the tiny run: a few candidates, every one consistent
+#: (a plumbing test: the rules' physics is tested in tests/test_robustness.py), at the
+#: tiny run's own grids.
+TINY_READINGS = {
+    "consistent": {"max_abs_residual": 1000.0},
+    "multiverse": {
+        "candidates": 4,
+        "readings": 3,
+        "chunks": 2,
+        "resolution": {
+            "angle_maps": {k: TINY["angle_maps"][k] for k in ("theta0", "delta0")},
+            "mass_length": {
+                k: TINY["mass_length"][k] for k in ("M2", "L1", "coarse_step", "fine_step")
+            },
+            "fig7_tau": TINY["torque_delay"]["fig7"]["tau"],
+        },
+    },
+}
+#: Chunk files of the tiny run's robustness analysis.
+ROBUSTNESS_CHUNKS = 2
+
+#: The maps (gathered from chunks).
+MAPS = [
+    "results/angle_maps/L1_0.3.nc",
+    "results/angle_maps/L1_0.4.nc",
+    "results/mass_length/map.nc",
+    "results/torque_delay/fig7.nc",
+    "results/torque_delay/fig8.nc",
+    "results/torque_delay/fig9.nc",
+    "results/elbow_force/map.nc",
+]
