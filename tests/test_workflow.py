@@ -28,7 +28,7 @@ from tennis_stroke.replication.robustness import ROBUSTNESS
 
 def test_report_and_claims_are_built(tiny_run):
     html = (tiny_run / "report" / "index.html").read_text()
-    assert "Claims" in html and "data:image/png;base64," in html
+    assert 'id="scoreboard"' in html and "data:image/png;base64," in html
     claims = pd.read_csv(tiny_run / "results" / "claims.csv")
     expected = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())["claims"]
     assert list(claims["id"]) == [c["id"] for c in expected]

@@ -1,15 +1,24 @@
 """The replication report: one self-contained HTML page (figures embedded as PNG data).
 
-Sections: summary of the claims, each reproduced figure beside the paper's statement,
-the claims table (failures in red), the assumption ledger (candidates, defaults, the
-fits of the identification with their leave-one-out predictions), the
-solver settings, run metadata and per-rule timings (Snakemake ``benchmark:`` files).
+A scoreboard first (how many claims reproduce, deviate, fail or chose the readings, and how
+robust they are across the readings consistent with the paper), then what does not
+reproduce grouped by cause, then one section per section of the paper: its statements,
+our figures and, right under each figure, its claims with paper value, ours, tolerance,
+status (a word and a colour) and robustness.  Then the fits and the robustness analysis,
+the speed-against-accuracy studies, the assumption ledger (``docs/assumptions.md``
+rendered with markdown-it-py), the configuration as YAML, provenance and per-job timings.
+
+The page is rendered by jinja2 with autoescape (``templates/report.html.j2``): every text
+from a file is escaped.  The only HTML inserted as it is comes from this module and is
+marked safe on purpose (:func:`_safe`): tables written by pandas (which escapes their
+cells) and the ledger rendered by markdown-it-py with raw HTML disabled.
 """
 
 from __future__ import annotations
 
 import base64
 import platform
+import re
 from collections.abc import Mapping, Sequence
 from datetime import UTC, datetime
 from pathlib import Path
@@ -17,102 +26,234 @@ from pathlib import Path
 import jinja2
 import pandas as pd
 import xarray as xr
+import yaml
+from markdown_it import MarkdownIt
+from markupsafe import Markup
 
 from .._version import __version__
 from ..failures import failure_counts
 from ..io import git_commit
 from ..model.params import READINGS
 from .claims import load_statements
+from .registry import FIGURES
+from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING
 
-TEMPLATE = jinja2.Template("""<!DOCTYPE html>
-<html lang="en"><head><meta charset="utf-8">
-<title>tennis-stroke replication report</title>
-<style>
-body { font-family: sans-serif; max-width: 1100px; margin: auto; padding: 1em; }
-table { border-collapse: collapse; font-size: 0.85em; margin: 0.5em 0; }
-td, th { border: 1px solid #bbb; padding: 2px 6px; }
-tr.fail td { background: #f8c4c4; } tr.known_deviation td { background: #fbe7b5; }
-tr.pass td.status { color: #1a6b1a; } .fig { display: flex; gap: 1em; margin: 1em 0; }
-.fig img { width: 560px; } .statement { font-style: italic; }
-</style></head><body>
-<h1>Replication of Youn, "Double pendulum model for tennis stroke including a collision
-process"</h1>
-<p><b>{{ n_pass }}</b> of {{ n_claims }} claims pass (held out),
-<b style="color:#b00">{{ n_fail }}</b> fail, {{ n_known }} are known deviations.
-{{ n_ident }} claims (Fig. 4 and Table I's speeds, the fit sets of
-config/readings.yaml) were used to fit the readings of the paper; {{ n_fit_ok }} of them
-are within tolerance (status <i>used_for_fit</i>): they cannot confirm the readings.</p>
+#: The page template, rendered with autoescape.
+ENVIRONMENT = jinja2.Environment(
+    loader=jinja2.PackageLoader("tennis_stroke.replication", "templates"),
+    autoescape=True,
+    undefined=jinja2.StrictUndefined,
+    trim_blocks=False,
+)
+#: What a claim's status says, as a word and a symbol (never colour alone).
+STATUS_WORDS = {
+    "pass": ("\u2713", "reproduces"),
+    "known_deviation": ("!", "deviates"),
+    "fail": ("\u2717", "fails"),
+    "used_for_fit": ("\u25cb", "used for fit"),
+}
+#: Units as the page prints them beside a number.
+UNIT_SHORT = {"degree": "deg", "1": ""}
 
-<h2>Claims</h2>
-<table><tr><th>id</th><th>source</th><th>quantity</th><th>unit</th><th>paper</th>
-<th>reproduced</th><th>tolerance</th><th>status</th><th>note</th></tr>
-{% for c in claims %}<tr class="{{ c.status }}"><td>{{ c.id }}</td><td>{{ c.source }}</td>
-<td>{{ c.quantity }}</td><td>{{ c.unit }}</td><td>{{ c.paper_value }}</td>
-<td>{{ "%.4g"|format(c.reproduced_value) }}</td><td>{{ c.tolerance }}</td>
-<td class="status">{{ c.status }}</td>
-<td>{% if c.fit_set %}used for fit ({{ c.fit_set }}).{% endif %} {{ c.reason }}</td></tr>
-{% endfor %}</table>
 
-<h2>Figures</h2>
-{% for f in figures %}<div class="fig">
-<img alt="{{ f.name }}" src="data:image/png;base64,{{ f.data }}">
-<p class="statement">{{ f.statement }}</p></div>
-{% endfor %}
+def _safe(html: str) -> Markup:
+    """HTML this module wrote (pandas tables, which escape their cells; markdown-it-py
+    output with raw HTML disabled), inserted into the page as it is."""
+    return Markup(html)
 
-<h2>Assumption ledger</h2>
-<p>Every ambiguity of the paper is a named option; config/readings.yaml declares the
-candidates, the ranges of the unknowns, the fit sets and the rule that picks the
-defaults, before any fit; docs/assumptions.md gives the reasoning.</p>
-<table><tr><th>reading</th><th>candidates</th><th>default</th><th>literal</th><th>meaning</th></tr>
-{% for r in readings %}<tr><td>{{ r.name }}</td><td>{{ r.choices|join(", ") }}</td>
-<td>{{ r.default }}</td><td>{{ r.literal }}</td><td>{{ r.description }}</td></tr>{% endfor %}
-</table>
-{% for f in fits %}<h3>Fit set {{ f.name }}: the best fits ({{ f.n }} combinations of the
-discrete readings, continuous unknowns fitted by bounded least squares)</h3>
-<p>Fit claims: {{ f.claims }}. Default by the declared rule: {{ f.default }}.</p>
-{{ f.table }}
-<p>Leave-one-out: each fit claim predicted by a fit without it.</p>
-{{ f.loo }}
-{% endfor %}
-{% if robustness %}<h2>Robustness across the readings consistent with the paper</h2>
-<p>{{ robustness.n_candidates }} Sobol candidates of the continuous unknowns under each of
-{{ robustness.n_combinations }} combinations of the model fit's discrete readings
-({{ robustness.candidates }} in all) were screened against both fit sets;
-{{ robustness.consistent }} are consistent (every fit claim within its tolerance), and
-{{ robustness.readings }} of them were kept, each evaluated under
-{{ robustness.variants }} combinations of the claim-level readings. Discrete readings
-represented: {{ robustness.combos|join("; ") }}.</p>
-<p>Held-out claims by robustness class: {% for k, v in robustness.counts.items() %}{{ k }}
-{{ v }}{% if not loop.last %}, {% endif %}{% endfor %}.</p>
-{{ robustness.table }}
-<h3>Evidence for every deviation of the default reading</h3>
-<p>best_residual: the smallest |value - paper| / tolerance any consistent reading reaches;
-objective_gap: for an argmax claim, how far (km/h) the objective at the paper's argument
-lies below its optimum.</p>
-{{ robustness.evidence }}
-{% endif %}
-<h3>All assumptions with their evidence (docs/assumptions.md)</h3>
-<pre style="white-space: pre-wrap; font-size: 0.8em">{{ assumptions }}</pre>
 
-<h2>Model ladder and optimum search</h2>
-<p>The cheapest model, an instantaneous elastic impact with the racket's effective mass at
-phi = 0, differs from the paper's spring contact by up to {{ ladder_error }} km/h on the
-sampled strokes: more than the 1 km/h speed tolerance of the claims, so every experiment
-keeps the spring contact. The optimum search of Figs. 5-6 (coarse grid, fine grid,
-parabola) against a finer reference search:</p>
-{% for t in study_tables %}{{ t }}{% endfor %}
+def _table(frame: pd.DataFrame, **kwargs) -> Markup:
+    """A pandas table as escaped HTML."""
+    return _safe(frame.to_html(escape=True, border=0, **kwargs))
 
-<h2>Solver and run</h2>
-<table>{% for k, v in meta.items() %}<tr><td>{{ k }}</td><td>{{ v }}</td></tr>{% endfor %}</table>
-<h3>Failed strokes per result file</h3>
-<p>A stroke that fails is a status in its file, never a crashed job; a map with more
-than {{ max_failure_share }} of its strokes failed stops the run (config
-<code>max_failure_share</code>).</p>
-{{ failure_table }}
-<h3>Per-rule wall time (Snakemake benchmark files)</h3>
-{{ timing_table }}
-</body></html>
-""")
+
+def markdown_html(text: str) -> Markup:
+    """Markdown (CommonMark with tables) as HTML; raw HTML in the text is escaped, HTML
+    comments (the markers of ``tools/assumptions_tables.py``) are dropped."""
+    text = re.sub(r"<!--.*?-->", "", text, flags=re.DOTALL)
+    md = MarkdownIt("commonmark", {"html": False}).enable("table")
+    return _safe(md.render(text))
+
+
+def _number(value, digits: int = 4) -> str:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        return str(value)
+    return f"{x:.{digits}g}" if pd.notna(x) else "-"
+
+
+def _claim_row(claim: Mapping) -> dict:
+    """What the page shows of one claim (a row of ``results/claims.csv``)."""
+    symbol, word = STATUS_WORDS.get(claim["status"], ("?", claim["status"]))
+    qualitative = str(claim["unit"]) == "1" and float(claim["tolerance"]) == 0
+    if qualitative:
+        paper = "yes" if float(claim["paper_value"]) else "no"
+        ours = "yes" if float(claim["reproduced_value"]) == 1 else "no"
+        tolerance = "exact"
+    else:
+        paper, ours = _number(claim["paper_value"], 6), _number(claim["reproduced_value"])
+        tolerance = (
+            f"\u00b1{_number(claim['tolerance'])} {UNIT_SHORT.get(claim['unit'], claim['unit'])}"
+        )
+    robustness = claim.get("robustness", "")
+    share = claim.get("pass_share", "")
+    if robustness == "used_for_fit":
+        across = "used for fit"
+    elif robustness == "robust":
+        across = "robust: passes under every reading"
+    elif robustness == "reading_dependent":
+        across = f"reading-dependent: passes in {100 * float(share):.0f} %"
+    elif robustness == "not_reproduced":
+        best = claim.get("best_value", "")
+        across = "not reproduced under any reading" + (
+            f"; best {_number(best)}" if str(best) not in ("", "nan") else ""
+        )
+    else:
+        across = "-"
+    cause = ""
+    if claim["status"] in ("known_deviation", "fail"):
+        cause = claim.get("evidence") or ("fail" if claim["status"] == "fail" else "other")
+    return {
+        "id": claim["id"],
+        "source": claim["source"],
+        "quantity": claim["quantity"],
+        "unit": claim["unit"],
+        "unit_short": UNIT_SHORT.get(claim["unit"], claim["unit"]),
+        "paper": paper,
+        "ours": ours,
+        "tolerance": tolerance,
+        "status": claim["status"],
+        "symbol": symbol,
+        "word": word,
+        "fit_set": claim.get("fit_set", ""),
+        "across": across,
+        "deciding": f"deciding: {claim['deciding']}" if claim.get("deciding") else "",
+        "cause": cause,
+        "reason": claim.get("reason", ""),
+    }
+
+
+def _paper_place(
+    source: str, claim_id: str, sections: Mapping[str, Mapping]
+) -> tuple[str | None, str]:
+    """Where a claim goes: the section its ``source`` names (``"Sec. V, Fig. 9"``; a
+    table's section for ``"Table I"``; None if the page has no section for it) and the
+    block: the figure the source names, else the figure its id starts with
+    (``fig4_...``), else a table's name, else ``""`` (the section's other claims)."""
+    section = re.search(r"Sec\.\s*([IVX]+)\b", source)
+    figure = re.search(r"Figs?\.\s*(\d+)", source) or re.match(r"fig(\d+)_", claim_id)
+    table = next(
+        ((sid, t) for sid, s in sections.items() for t in s.get("tables", ()) if t in source),
+        None,
+    )
+    sid = section.group(1) if section else (table[0] if table else None)
+    if figure:
+        return sid, f"fig{int(figure.group(1)):02d}"
+    return sid, table[1] if table else ""
+
+
+def _anchor(text: str) -> str:
+    return re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()
+
+
+def _paper_sections(
+    rows: list[dict],
+    figures: Mapping[str, dict],
+    statements: Mapping[str, str],
+    sections: Mapping[str, Mapping],
+) -> list[dict]:
+    """One entry per section of the paper: a block per figure (statement, figure, its
+    claims), per table, and the section's other claims; claims the sections do not place
+    end in a last section, so no claim is ever left out."""
+    placed: dict[tuple[str | None, str], list[dict]] = {}
+    for row in rows:
+        placed.setdefault(_paper_place(row["source"], row["id"], sections), []).append(row)
+    out, used = [], set()
+    for sid, meta in sections.items():
+        blocks = []
+        for name in sorted(n for n in figures if FIGURES[n].section == sid):
+            key = name[:5]
+            number = int(key[3:])
+            blocks.append(
+                {
+                    "anchor": _anchor(name),
+                    "heading": f"Fig. {number}",
+                    "figure": figures[name],
+                    "statement": statements.get(key, ""),
+                    "claims": placed.get((sid, key), []),
+                }
+            )
+            used.add((sid, key))
+        for table in meta.get("tables", ()):
+            key = _anchor(table).replace("-", "")
+            blocks.append(
+                {
+                    "anchor": _anchor(f"{sid} {table}"),
+                    "heading": table,
+                    "figure": None,
+                    "statement": statements.get(key, ""),
+                    "claims": placed.get((sid, table), []),
+                }
+            )
+            used.add((sid, table))
+        rest = [r for (s, b), rs in placed.items() if s == sid and (s, b) not in used for r in rs]
+        if rest:
+            blocks.append(
+                {
+                    "anchor": _anchor(f"sec {sid} other"),
+                    "heading": f"Other claims of Sec. {sid}",
+                    "figure": None,
+                    "statement": "",
+                    "claims": rest,
+                }
+            )
+        for s, b in placed:
+            if s == sid:
+                used.add((s, b))
+        out.append(
+            {
+                "anchor": _anchor(f"sec {sid}"),
+                "heading": f"Sec. {sid}. {meta['title']}",
+                "blocks": blocks,
+            }
+        )
+    leftover = [r for key, rs in placed.items() if key not in used for r in rs]
+    if leftover:
+        out.append(
+            {
+                "anchor": "other-claims",
+                "heading": "Claims outside the sections above",
+                "blocks": [
+                    {
+                        "anchor": "other-claims-list",
+                        "heading": "Other claims",
+                        "figure": None,
+                        "statement": "",
+                        "claims": leftover,
+                    }
+                ],
+            }
+        )
+    return out
+
+
+def _deviation_groups(rows: list[dict]) -> list[dict]:
+    """The claims that do not pass, grouped by their cause: each evidence class's meaning
+    is said once, each claim's own reason beside it."""
+    meanings = {
+        **EVIDENCE_MEANING,
+        "fail": "does not reproduce, and config/claims.yaml expected it to: a regression or "
+        "a finding not yet explained",
+        "other": "a declared deviation without a computed evidence class",
+    }
+    groups = []
+    for key, meaning in meanings.items():
+        members = [r for r in rows if r["cause"] == key]
+        if members:
+            title = key.replace("_", " ").capitalize()
+            groups.append({"key": key, "title": title, "meaning": meaning, "claims": members})
+    return groups
 
 
 def _fit_tables(inference: Mapping[str, str], rows: int = 6) -> list[dict]:
@@ -133,8 +274,8 @@ def _fit_tables(inference: Mapping[str, str], rows: int = 6) -> list[dict]:
                 "claims": fits.attrs["fit_claims"],
                 "n": fits.sizes["combination"],
                 "default": ", ".join(f"{k} = {v}" for k, v in default.items()),
-                "table": table.round(4).to_html(index=False),
-                "loo": loo.to_dataframe().round(4).to_html(),
+                "table": _table(table.round(4), index=False),
+                "loo": _table(loo.to_dataframe().round(4)),
             }
         )
     return out
@@ -157,7 +298,7 @@ def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
         }
     )
     held = claims[claims["fit_set"] == ""]
-    counts = held["robustness"].value_counts().to_dict()
+    counts = held["robustness"].value_counts()
     deviations = claims[claims["evidence"] != ""]
     return {
         "candidates": screen.sizes["candidate"] * screen.sizes["combination"],
@@ -167,29 +308,27 @@ def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
         "readings": kept.sizes["reading"],
         "variants": kept.sizes["variant"],
         "combos": combos,
-        "counts": counts,
-        "table": held[
-            [
-                "id",
-                "paper_value",
-                "reproduced_value",
-                "robustness",
-                "pass_share",
-                "deciding",
-                "best_value",
-            ]
-        ].to_html(index=False, float_format=lambda x: f"{x:.4g}"),
-        "evidence": deviations[
-            [
-                "id",
-                "paper_value",
-                "reproduced_value",
-                "evidence",
-                "best_value",
-                "best_residual",
-                "objective_gap",
-            ]
-        ].to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="-"),
+        "classes": [
+            {"word": k.replace("_", " "), "n": int(counts[k]), "meaning": meaning}
+            for k, meaning in ROBUSTNESS_MEANING.items()
+            if k in counts
+        ],
+        "evidence": _table(
+            deviations[
+                [
+                    "id",
+                    "paper_value",
+                    "reproduced_value",
+                    "evidence",
+                    "best_value",
+                    "best_residual",
+                    "objective_gap",
+                ]
+            ],
+            index=False,
+            float_format=lambda x: f"{x:.4g}",
+            na_rep="-",
+        ),
     }
 
 
@@ -223,45 +362,10 @@ def _failures(results: Sequence[str]) -> pd.DataFrame:
     return pd.DataFrame(rows).convert_dtypes()
 
 
-def build_report(
-    figures: Sequence[str],
-    claims_csv: str,
-    inference: Mapping[str, str],
-    results: Sequence[str],
-    config: Mapping,
-    benchmarks_dir: str,
-    output: str,
-    assumptions_md: str | None = None,
-    studies: Sequence[str] = (),
-    statements_yaml: str | None = None,
-) -> None:
-    """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
-    ``statements_yaml``: ``config/claims.yaml``, whose ``statements`` quote the paper on
-    each figure)."""
-    claims = pd.read_csv(claims_csv, keep_default_na=False)
-    statements = load_statements(statements_yaml) if statements_yaml else {}
-    claims["reproduced_value"] = claims["reproduced_value"].astype(float)
-    figs = []
-    for path in figures:
-        name = Path(path).stem
-        figs.append(
-            {
-                "name": name,
-                "statement": statements.get(name[:5], ""),
-                "data": base64.b64encode(Path(path).read_bytes()).decode(),
-            }
-        )
-    with xr.open_dataset(results[0]) as ds:
-        solver = {k: v for k, v in ds.attrs.items() if k.startswith("solver_")}
-    meta = {
-        "tennis_stroke version": __version__,
-        "git commit": git_commit(),
-        "python": platform.python_version(),
-        "built": datetime.now(UTC).isoformat(timespec="seconds"),
-        **solver,
-        "config": dict(config),
-    }
-    ladder_error, study_tables = "n/a", []
+def _studies(studies: Sequence[str]) -> tuple[str, list[dict]]:
+    """The model ladder's largest error (km/h) and the tables of the stability and
+    optimum-search studies."""
+    ladder_error, tables = "n/a", []
     for path in studies:
         with xr.open_dataset(path) as ds:
             if "max_error_impact_kmh" in ds.attrs:
@@ -276,32 +380,125 @@ def build_report(
                     index=[str(c) for c in ds["case"].values],
                     columns=names,
                 )
-                study_tables.append(
-                    "<h3>Stability: outcomes over k = "
-                    f"{float(ds.k_contact.min()):g} ... "
-                    f"{float(ds.k_contact.max()):g} N/m</h3>" + counts.to_html()
+                tables.append(
+                    {
+                        "title": "Stability: outcomes of the isolated contact over k = "
+                        f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
+                        "html": _table(counts),
+                    }
                 )
             else:
-                study_tables.append(ds.to_dataframe().round(4).to_html())
-    html = TEMPLATE.render(
-        claims=claims.to_dict("records"),
-        n_claims=len(claims),
-        n_pass=int((claims.status == "pass").sum()),
-        n_fail=int((claims.status == "fail").sum()),
-        n_known=int((claims.status == "known_deviation").sum()),
-        n_ident=int((claims["fit_set"] != "").sum()),
-        n_fit_ok=int((claims.status == "used_for_fit").sum()),
-        figures=figs,
-        readings=list(READINGS.values()),
+                tables.append(
+                    {
+                        "title": "The optimum search of Figs. 5-6 (coarse grid, fine grid, "
+                        "parabola) against a finer reference search",
+                        "html": _table(ds.to_dataframe().round(4)),
+                    }
+                )
+    return ladder_error, tables
+
+
+def _figure_entry(path: str) -> dict:
+    name = Path(path).stem
+    title = FIGURES[name].title if name in FIGURES else name
+    return {
+        "name": name,
+        "title": title if "{" not in title else title.split(":")[0],
+        "data": base64.b64encode(Path(path).read_bytes()).decode(),
+    }
+
+
+def build_report(
+    figures: Sequence[str],
+    claims_csv: str,
+    inference: Mapping[str, str],
+    results: Sequence[str],
+    config: Mapping,
+    benchmarks_dir: str,
+    output: str,
+    assumptions_md: str | None = None,
+    studies: Sequence[str] = (),
+    statements_yaml: str | None = None,
+) -> None:
+    """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
+    ``statements_yaml``: ``config/claims.yaml``, whose ``statements`` quote the paper on
+    each figure and whose ``sections`` name the paper's sections)."""
+    claims = pd.read_csv(claims_csv, keep_default_na=False, dtype=str)
+    claims["reproduced_value"] = claims["reproduced_value"].astype(float)
+    statements = load_statements(statements_yaml) if statements_yaml else {}
+    sections = (
+        yaml.safe_load(Path(statements_yaml).read_text()).get("sections") or {}
+        if statements_yaml
+        else {}
+    )
+    rows = [_claim_row(c) for c in claims.to_dict("records")]
+    entries = {e["name"]: e for e in map(_figure_entry, figures)}
+    paper_figures = {n: e for n, e in entries.items() if FIGURES.get(n) and n.startswith("fig")}
+    held = claims["fit_set"] == ""
+    score = {
+        "held": int(held.sum()),
+        "pass": int((held & (claims.status == "pass")).sum()),
+        "deviate": int((held & (claims.status == "known_deviation")).sum()),
+        "fail": int((claims.status == "fail").sum()),
+        "fit": int((~held).sum()),
+        "fit_ok": int((claims.status == "used_for_fit").sum()),
+    }
+    page_sections = _paper_sections(rows, paper_figures, statements, sections)
+    robustness = _robustness(
+        claims.assign(
+            **{
+                c: pd.to_numeric(claims[c], errors="coerce")
+                for c in ("paper_value", "best_value", "best_residual", "objective_gap")
+                if c in claims
+            }
+        ),
+        inference,
+    )
+    toc = [
+        {"anchor": "deviations", "label": "What does not reproduce, and why"},
+        *({"anchor": s["anchor"], "label": s["heading"]} for s in page_sections),
+        {"anchor": "inference", "label": "The paper's unstated readings: fits and robustness"},
+        {"anchor": "studies", "label": "Speed against accuracy"},
+        {"anchor": "ledger", "label": "Assumption ledger"},
+        {"anchor": "run", "label": "Configuration, provenance and timings"},
+    ]
+    with xr.open_dataset(results[0]) as ds:
+        solver = {k: v for k, v in ds.attrs.items() if k.startswith("solver_")}
+    meta = {
+        "tennis_stroke version": __version__,
+        "git commit": git_commit(),
+        "python": platform.python_version(),
+        "built": datetime.now(UTC).isoformat(timespec="seconds"),
+        **solver,
+    }
+    ladder_error, study_tables = _studies(studies)
+    html = ENVIRONMENT.get_template("report.html.j2").render(
+        score=score,
+        deviation_groups=_deviation_groups(rows),
+        toc=toc,
+        sections=page_sections,
+        inference={"figures": [e for n, e in entries.items() if n.startswith("inference")]},
         fits=_fit_tables(inference),
-        robustness=_robustness(claims, inference),
-        meta=meta,
-        timing_table=_timings(Path(benchmarks_dir)).to_html(index=False),
-        failure_table=_failures(results).to_html(index=False, na_rep="-"),
-        max_failure_share=f"{100 * float(config['max_failure_share']):g} %",
-        assumptions=Path(assumptions_md).read_text() if assumptions_md else "",
-        ladder_error=ladder_error,
+        robustness=robustness,
+        study_figures=[e for n, e in entries.items() if n.startswith("study")],
         study_tables=study_tables,
+        ladder_error=ladder_error,
+        readings=list(READINGS.values()),
+        ledger=markdown_html(Path(assumptions_md).read_text()) if assumptions_md else "",
+        config_yaml=yaml.safe_dump(_plain(config), sort_keys=False),
+        meta=meta,
+        failure_table=_table(_failures(results), index=False, na_rep="-"),
+        timing_table=_table(_timings(Path(benchmarks_dir)), index=False),
+        max_failure_share=f"{100 * float(config['max_failure_share']):g} %",
     )
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     Path(output).write_text(html)
+
+
+def _plain(node):
+    """Config as plain YAML-able data (Snakemake's config may hold its own mapping types)."""
+    if isinstance(node, Mapping):
+        return {str(k): _plain(v) for k, v in node.items()}
+    if isinstance(node, list | tuple):
+        return [_plain(v) for v in node]
+    return node

@@ -34,10 +34,27 @@ from ..io import labelled
 from ..solver.settings import SolverSettings
 from .claims import measure, within
 
-#: Robustness classes, in the order of config/readings.yaml.
-ROBUSTNESS = ("used_for_fit", "robust", "reading_dependent", "not_reproduced")
-#: Evidence classes of a deviation, in the order of config/readings.yaml.
-EVIDENCE = ("ill_conditioned", "reading_dependent", "paper_inconsistency", "irreducible")
+#: Robustness classes with their meaning, in the order of config/readings.yaml.
+ROBUSTNESS_MEANING = {
+    "used_for_fit": "in a fit set: it chose the readings, so it cannot confirm them",
+    "robust": "passes under every consistent reading",
+    "reading_dependent": "passes under some consistent readings; the deciding unknown is "
+    "the one whose choices (or lower and upper half) differ most in pass rate",
+    "not_reproduced": "fails under every consistent reading",
+}
+ROBUSTNESS = tuple(ROBUSTNESS_MEANING)
+#: Evidence classes of a deviation (a claim that does not pass under the default
+#: reading) with their meaning, in the order of config/readings.yaml.
+EVIDENCE_MEANING = {
+    "ill_conditioned": "an optimum's location whose objective at the paper's value lies "
+    "within the speed tolerance of the optimum: the paper's argument is as good as ours",
+    "reading_dependent": "passes under some consistent readings (the deciding unknown "
+    "is named)",
+    "paper_inconsistency": "passes under some consistent readings, but none of them also "
+    "passes every claim the default passes",
+    "irreducible": "fails under every consistent reading (the best value reached is shown)",
+}
+EVIDENCE = tuple(EVIDENCE_MEANING)
 #: Columns :func:`annotate` adds to the claims table.
 COLUMNS = (
     "robustness",
