@@ -105,10 +105,8 @@ window.addEventListener("load", () => {
 </script></body>"""
 
 
-def _in_browser(page: Path, width: int) -> dict:
-    """The page's checks (:data:`CHECKS`) as Chromium computes them at ``width`` px."""
-    checked = page.with_name(f"checked-{width}.html")
-    checked.write_text(page.read_text().replace("</body>", CHECKS))
+def _chromium(page: Path, width: int, height: int, *options: str) -> str:
+    """Run headless Chromium on ``page`` in a ``width`` x ``height`` window; its stdout."""
     done = subprocess.run(
         [
             CHROMIUM,
@@ -116,17 +114,23 @@ def _in_browser(page: Path, width: int) -> dict:
             "--no-sandbox",
             "--disable-gpu",
             "--hide-scrollbars",
-            f"--window-size={width},1000",
-            "--virtual-time-budget=10000",
-            "--dump-dom",
-            checked.as_uri(),
+            f"--window-size={width},{height}",
+            *options,
+            page.as_uri(),
         ],
         capture_output=True,
         text=True,
         timeout=120,
     )
     assert done.returncode == 0, done.stderr[-2000:]
-    dom = done.stdout
+    return done.stdout
+
+
+def _in_browser(page: Path, width: int) -> dict:
+    """The page's checks (:data:`CHECKS`) as Chromium computes them at ``width`` px."""
+    checked = page.with_name(f"checked-{width}.html")
+    checked.write_text(page.read_text().replace("</body>", CHECKS))
+    dom = _chromium(checked, width, 1000, "--virtual-time-budget=10000", "--dump-dom")
     start = dom.index('<pre id="browser-check">') + len('<pre id="browser-check">')
     text = dom[start : dom.index("</pre>", start)]
     for entity, char in (("&lt;", "<"), ("&gt;", ">"), ("&quot;", '"'), ("&amp;", "&")):
@@ -153,22 +157,8 @@ def test_the_page_in_a_real_browser(tiny_run, tmp_path, width):
     shots = Path(os.environ.get("REPORT_SCREENSHOTS", tmp_path))
     shots.mkdir(parents=True, exist_ok=True)
     shot = shots / f"report-{width}px.png"
-    done = subprocess.run(
-        [
-            CHROMIUM,
-            "--headless",
-            "--no-sandbox",
-            "--disable-gpu",
-            "--hide-scrollbars",
-            f"--window-size={width},2400",
-            f"--screenshot={shot}",
-            page.as_uri(),
-        ],
-        capture_output=True,
-        text=True,
-        timeout=120,
-    )
-    assert done.returncode == 0 and shot.stat().st_size > 0, done.stderr[-2000:]
+    _chromium(page, width, 2400, f"--screenshot={shot}")
+    assert shot.stat().st_size > 0
     print(f"screenshot: {shot}")
 
 
