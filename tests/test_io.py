@@ -1,4 +1,8 @@
-"""Result files: atomic writes and provenance."""
+"""Result files: atomic writes, permissions and provenance."""
+
+import os
+import stat
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -37,6 +41,33 @@ def test_failed_write_keeps_the_old_file(tmp_path, monkeypatch):
         write_netcdf(_dataset(), path)
     assert path.read_bytes() == before
     assert [p.name for p in tmp_path.iterdir()] == ["a.nc"]
+
+
+@pytest.mark.parametrize(
+    "umask, mode",
+    [(0o022, 0o644), (0o077, 0o600), (0o002, 0o664)],
+    ids=["umask-022", "umask-077", "umask-002"],
+)
+@pytest.mark.parametrize("proc", [True, False], ids=["from-proc", "set-and-reset"])
+def test_result_files_get_the_permissions_the_umask_gives_new_files(
+    tmp_path, monkeypatch, umask, mode, proc
+):
+    if not proc:
+        read_text = Path.read_text
+
+        def no_proc(self, *args, **kwargs):
+            if str(self).startswith("/proc"):
+                raise FileNotFoundError(self)
+            return read_text(self, *args, **kwargs)
+
+        monkeypatch.setattr(Path, "read_text", no_proc)
+    old = os.umask(umask)
+    try:
+        path = write_netcdf(_dataset(), tmp_path / "a.nc")
+        assert os.umask(umask) == umask  # the write left the umask as it was
+    finally:
+        os.umask(old)
+    assert stat.S_IMODE(path.stat().st_mode) == mode
 
 
 def test_check_writable_rejects_directories(tmp_path):

@@ -142,6 +142,30 @@ def labelled(ds: xr.Dataset) -> xr.Dataset:
     return ds
 
 
+def _umask() -> int:
+    """The process's umask (read without changing it where ``/proc`` tells it)."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)  # the only portable way to read it: set and restore at once
+    os.umask(mask)
+    return mask
+
+
+def temporary_beside(path: Path) -> Path:
+    """An empty new file in ``path``'s folder, to be renamed to ``path``, with the
+    permissions any new file gets under the umask (``mkstemp`` would give 0600)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        os.fchmod(fd, 0o666 & ~_umask())
+    finally:
+        os.close(fd)
+    return Path(tmp)
+
+
 def check_writable(path: str | os.PathLike) -> Path:
     """Fail early (:class:`OutputError`) if ``path`` cannot be created; return it.
 
@@ -151,30 +175,70 @@ def check_writable(path: str | os.PathLike) -> Path:
     parent = path.parent
     if path.is_dir():
         raise OutputError(f"output path {str(path)!r} is a directory")
+    file = next((p for p in (parent, *parent.parents) if p.exists() and not p.is_dir()), None)
+    if file is not None:
+        raise OutputError(f"output directory {str(file)!r} is a file, not a directory")
     if not parent.is_dir():
         raise OutputError(f"output directory {str(parent)!r} does not exist")
     try:
-        fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=parent)
+        temporary_beside(path).unlink()
     except OSError as exc:
         raise OutputError(f"cannot write to {str(parent)!r}: {exc.strerror}") from None
-    os.close(fd)
-    os.unlink(tmp)
     return path
 
 
+def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` (a shallow copy) with the encodings and attribute types CF asks for where
+    xarray's defaults differ; values, dtypes as read back and attributes are unchanged.
+
+    - A coordinate variable (1-D, named like its dimension) has no ``_FillValue``
+      (CF 2.5.1): xarray would write NaN on float ones.
+    - A string coordinate variable is written as a character array
+      (``name(name, stringN)``, CF 2.2): CF coordinate variables are numeric and
+      monotonic, so a variable-length string one is not one, and the CF checker fails on
+      it; xarray reads the character array back as the same strings and index.
+    - ``flag_values`` has the type of its variable (CF 3.5), when that type holds the
+      flag values exactly.
+    """
+    out = ds.copy(deep=False)
+    for name in out.dims:
+        if name not in out.variables:
+            continue
+        var = out.variables[name]
+        encoding = dict(var.encoding)
+        if var.dtype.kind in "fc":
+            encoding["_FillValue"] = None
+        elif var.dtype.kind in "OUS":
+            encoding.pop("_FillValue", None)
+            encoding["dtype"] = "S1"
+        var.encoding = encoding
+    for var in out.variables.values():
+        flags = var.attrs.get("flag_values")
+        if flags is None or var.dtype.kind not in "iuf":
+            continue
+        flags = np.asarray(flags)
+        typed = flags.astype(var.dtype)
+        if flags.dtype != var.dtype and np.array_equal(typed, flags):
+            var.attrs["flag_values"] = typed
+    return out
+
+
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
-    """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename)."""
+    """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename),
+    CF-encoded (:func:`cf_encoded`), with the permissions the umask gives a new file."""
     path = check_writable(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
     try:
-        ds.to_netcdf(tmp, engine="netcdf4")
+        tmp = temporary_beside(path)
+    except OSError as exc:
+        raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
+    try:
+        cf_encoded(ds).to_netcdf(tmp, engine="netcdf4")
         os.replace(tmp, path)
     except OSError as exc:
-        Path(tmp).unlink(missing_ok=True)
+        tmp.unlink(missing_ok=True)
         raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
     except BaseException:
-        Path(tmp).unlink(missing_ok=True)
+        tmp.unlink(missing_ok=True)
         raise
     return path
 
@@ -190,8 +254,9 @@ def result_differences(a, b, also_differ: Sequence[str] = ()) -> list[str]:
     """How two results (datasets or netCDF paths) differ; empty when they are the same.
 
     The same means: every data variable and coordinate bit for bit (values, dtype,
-    dimensions, attributes), except wall-clock measurements (variables with a ``timing``
-    attribute), and every global attribute (configuration, parameters, versions, commit)
+    dimensions, attributes; strings compare as strings, whether read back as unicode or,
+    from a character array, as objects), except wall-clock measurements (variables with a
+    ``timing`` attribute), and every global attribute (configuration, parameters, versions, commit)
     except :data:`RUN_ATTRS` and ``also_differ``.
     """
     a, b = _loaded(a), _loaded(b)
@@ -203,7 +268,7 @@ def result_differences(a, b, also_differ: Sequence[str] = ()) -> list[str]:
         if "timing" in a[name].attrs:
             continue
         va, vb = a[name].variable, b[name].variable
-        if va.dtype != vb.dtype or not _same_value(va.values, vb.values):
+        if _kind(va.values) != _kind(vb.values) or not _same_value(va.values, vb.values):
             problems.append(f"variable {name}: values or dtype differ")
         elif not va.identical(vb):
             problems.append(f"variable {name}: dimensions or attributes differ")
@@ -216,6 +281,16 @@ def result_differences(a, b, also_differ: Sequence[str] = ()) -> list[str]:
         elif not _same_value(a.attrs[key], b.attrs[key]):
             problems.append(f"global attribute {key}: differs")
     return problems
+
+
+def _kind(values: np.ndarray) -> object:
+    """The dtype of ``values``, or ``"str"`` for strings: xarray reads a string coordinate
+    back as unicode from a variable-length string, as objects from a character array."""
+    if values.dtype.kind == "U" or (
+        values.dtype.kind == "O" and all(isinstance(v, str) for v in values.ravel())
+    ):
+        return "str"
+    return values.dtype
 
 
 def _same_value(x, y) -> bool:

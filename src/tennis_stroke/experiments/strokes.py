@@ -81,11 +81,11 @@ def trajectories(
         delta0=("stroke", [s[1] for s in strokes], cf_attrs("delta0")),
     )
     ds["label"].attrs = cf_attrs("label")
-    ds = ds.assign_coords(time=("time", times, cf_attrs("time", standard_name="time")))
+    ds = ds.assign_coords(t=("t", times, cf_attrs("t")))
     ds.attrs["curves"] = curves
     for key, values in samples.items():
         ds[key] = (
-            ("stroke", "time"),
+            ("stroke", "t"),
             np.asarray(values),
             cf_attrs(key),
         )

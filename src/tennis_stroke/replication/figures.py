@@ -61,12 +61,12 @@ def omegas(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     d = ds[0]
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     for i, label in enumerate(d["label"].values):
-        line = ax.plot(d["time"], d["omega2"][i], lw=2, label=f"omega2 {label}")[0]
+        line = ax.plot(d["t"], d["omega2"][i], lw=2, label=f"omega2 {label}")[0]
         ax.plot(
-            d["time"], d["omega1"][i], "--", color=line.get_color(), lw=1.2, label=f"omega1 {label}"
+            d["t"], d["omega1"][i], "--", color=line.get_color(), lw=1.2, label=f"omega1 {label}"
         )
         ax.axvline(float(d["t_contact_start"][i]), color=line.get_color(), ls=":", lw=1)
-    ax.set_xlabel(_label(d["time"]))
+    ax.set_xlabel(_label(d["t"]))
     ax.set_ylabel("angular velocity (rad/s)")
     ax.legend(fontsize=8)
     ax.set_title(title)
@@ -130,7 +130,7 @@ def strobe(ds: Sequence[xr.Dataset], title: str, label: str) -> plt.Figure:
     p = {k.removeprefix("param_"): v for k, v in d.attrs.items() if k.startswith("param_")}
     l1, l2 = p["L1"], p["L2"]
     fig, ax = plt.subplots(figsize=(5.5, 5.5))
-    times = d["time"].values
+    times = d["t"].values
     picks = np.linspace(0, np.flatnonzero(np.isfinite(d["theta"][i]))[-1], 17).astype(int)
     t_c = float(d["t_contact_start"][i])
     for k in [*picks, int(np.argmin(np.abs(times - t_c)))]:
@@ -166,7 +166,7 @@ def elbow_paths(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     d = ds[0]
     fig, ax = plt.subplots(figsize=(5.5, 5.0))
     for i, label in enumerate(d["label"].values):
-        keep = d["time"] <= float(d["t_contact_start"][i])
+        keep = d["t"] <= float(d["t_contact_start"][i])
         ax.plot(d["x_elbow"][i][keep], d["y_elbow"][i][keep], lw=2, label=str(label))
     ax.set_aspect("equal")
     ax.set_xlabel(_label(d["x_elbow"]))

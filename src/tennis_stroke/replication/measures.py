@@ -8,6 +8,7 @@ A claim of ``config/claims.yaml`` names one of :data:`MEASUREMENTS` (without the
 from __future__ import annotations
 
 from collections.abc import Callable
+from typing import Literal
 
 import numpy as np
 import xarray as xr
@@ -56,7 +57,7 @@ def measure_minimum(ds: xr.Dataset, coord: str) -> float:
     return float(ds[coord][index[v.dims.index(coord)]])
 
 
-def measure_fig9(ds: xr.Dataset, what: str) -> float:
+def measure_fig9(ds: xr.Dataset, what: Literal["v_L", "v_H", "tau_H", "gain_percent"]) -> float:
     """Fig. 9: ``v_L`` (tau = 0), ``v_H`` (max), ``tau_H`` or the ``gain_percent``."""
     d = ds.isel(delta0=0)
     v_l = float(valid_v_out(d)[0])
@@ -93,21 +94,21 @@ def measure_greater(ds: xr.Dataset, var: str, first: int, second: int) -> float:
 
 def measure_omega2_peak_greater(ds: xr.Dataset, first: int, second: int) -> float:
     """Fig. 4: 1 if the whole-stroke maximum of omega2 of ``first`` exceeds ``second``'s."""
-    peaks = ds["omega2"].max("time")
+    peaks = ds["omega2"].max("t")
     return float(float(peaks[first]) > float(peaks[second]))
 
 
 def measure_omega2_rises_after_contact(ds: xr.Dataset, stroke: int) -> float:
     """Fig. 4: 1 if omega2 is larger 10 ms after separation than at the contact start."""
     d = ds.isel(stroke=stroke)
-    later = float(d["omega2"].interp(time=float(d["t_separation"]) + 0.01))
+    later = float(d["omega2"].interp(t=float(d["t_separation"]) + 0.01))
     return float(later > float(d["omega2_contact"]))
 
 
 def measure_peak_after_contact(ds: xr.Dataset, stroke: int) -> float:
     """Fig. 10: 1 if omega2 peaks after the contact start (the ball is hit before)."""
     d = ds.isel(stroke=stroke)
-    t_peak = float(d["time"][int(np.argmax(d["omega2"].fillna(-np.inf).values))])
+    t_peak = float(d["t"][int(np.argmax(d["omega2"].fillna(-np.inf).values))])
     return float(t_peak > float(d["t_contact_start"]))
 
 
@@ -131,16 +132,16 @@ def measure_k_spread(ds: xr.Dataset) -> float:
     return float(spread.max())
 
 
-def measure_mass_trend(ds: xr.Dataset, m2: float, sign: int) -> float:
+def measure_mass_trend(ds: xr.Dataset, m2: float, sign: Literal[-1, 1]) -> float:
     """Fig. 5: 1 if the fastest v_out at ``M2`` changes with L1 (largest vs smallest) in
     the direction ``sign``."""
     row = ds["v_out_best"].sel(M2=m2, method="nearest")
     return float(np.sign(float(row[-1] - row[0])) == sign)
 
 
-def measure_theta_c(ds: xr.Dataset, end: str) -> float:
+def measure_theta_c(ds: xr.Dataset, end: Literal["small", "large"]) -> float:
     """Fig. 6: mean over M2 of theta_c at the smallest or largest L1 (degree)."""
-    return float(ds["theta_c"].isel(L1=0 if end == "small" else -1).mean())
+    return float(ds["theta_c"].isel(L1={"small": 0, "large": -1}[end]).mean())
 
 
 def measure_theta_c_decreases(ds: xr.Dataset) -> float:
@@ -156,7 +157,10 @@ def measure_table1_minimum(ds: xr.Dataset) -> float:
     return float(np.nanargmin(v) == int(np.flatnonzero(psi == 275.0)[0]))
 
 
-#: Named measurements: function(datasets..., **args) -> float.
+#: Named measurements: function(datasets..., **args) -> float.  The parameters annotated
+#: ``xr.Dataset`` take the claim's files in order, the others its arguments; the
+#: annotations (``float``, ``int``, ``str``, ``Literal[...]``) are checked before any job
+#: (:func:`tennis_stroke.replication.claims.claim_errors`).
 MEASUREMENTS: dict[str, Callable[..., float]] = {
     name.removeprefix("measure_"): fn
     for name, fn in globals().items()

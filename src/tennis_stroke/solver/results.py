@@ -81,7 +81,11 @@ OTHER_VARIABLES: dict[str, tuple[str, str]] = {
     "F0": ("N", "amplitude of the elbow force (Eq. 14)"),
     "stroke": ("1", "stroke index"),
     "label": ("1", "stroke label"),
-    "time": ("s", "time"),
+    # The time axis of the sampled strokes is named "t", not "time": it is the time since
+    # the stroke starts, without an epoch, for which CF defines no standard name (standard
+    # name "time" needs units "<unit> since <epoch>", CF 4.4, which xarray would decode as
+    # dates), and the CF checker asks standard name "time" of any axis named "time" (5.1).
+    "t": ("s", "time since the stroke starts"),
     # optima of the maps
     "best_delta0": ("degree", "delta0 of the fastest rebound"),
     "best_tau": ("s", "delay of the fastest rebound"),
