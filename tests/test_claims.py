@@ -67,7 +67,7 @@ def test_statuses(tmp_path):
             "measure": {"file": "f", "var": "w"},
         },
     ]
-    table = evaluate(load_claims(_write(tmp_path, claims)), {"f": nc})
+    table = evaluate(load_claims(_write(tmp_path, claims), files=["f"]), {"f": nc})
     assert list(table["status"]) == ["pass", "fail", "known_deviation"]
     csv = tmp_path / "claims.csv"
     table.to_csv(csv, index=False)

@@ -6,7 +6,12 @@ import pytest
 import yaml
 from conftest import ROOT, run_snakemake, workdir
 
-from tennis_stroke.config_check import config_errors, numbers_from_strings
+from tennis_stroke.config_check import (
+    ConfigFileError,
+    config_errors,
+    load_yaml,
+    numbers_from_strings,
+)
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -41,8 +46,8 @@ BAD = [  # (path, value, fragment of the message)
     (("model",), {"inertia": "hollow"}, "reading 'inertia' must be one of"),
     (("angle_maps", "theta0", "stop"), 10.0, "'angle_maps.theta0': stop 10.0 is below start"),
     (("angle_maps", "delta0", "step"), 0.0, "'angle_maps.delta0.step': 0.0 is less than or"),
-    (("angle_maps", "L1"), [], "'angle_maps.L1': [] should be non-empty"),
-    (("angle_maps", "L1"), [-0.3], "'angle_maps.L1.0': -0.3 is less than or equal"),
+    (("angle_maps", "L1"), [], "'angle_maps.L1': [] is too short"),
+    (("angle_maps", "L1"), [-0.3, 0.4], "'angle_maps.L1.0': -0.3 is less than or equal"),
     (
         ("mass_length", "theta0_range"),
         [120.0, 60.0],
@@ -55,6 +60,54 @@ BAD = [  # (path, value, fragment of the message)
     (("figure_curves",), "sketch", "'figure_curves': 'sketch' is not one of"),
     (("unknown_section",), 1, "(unknown key)"),
     (("solver_study", "stability", "cases"), [], "'solver_study.stability.cases': []"),
+    # the accuracy bound of SolverSettings, the same as the CLI's and the Python API's
+    (("solver", "rtol"), 10.0, "'solver.rtol': solver setting 'rtol' must be <= 0.0001"),
+    (("solver", "atol"), 1e-3, "'solver.atol': solver setting 'atol' must be <= 0.0001"),
+    (
+        ("solver_study", "compiled_tolerances"),
+        [1e-4, 1e-2],
+        "'solver_study.compiled_tolerances.1': solver setting 'rtol' must be <= 0.0001",
+    ),
+    # method names: a case named fixed.RK5 is not run as RK4 under that label
+    (
+        ("solver_study", "stability", "cases"),
+        [["tennis_stroke.DOP853", 1e-3], ["fixed.RK5", 1e-3]],
+        "'solver_study.stability.cases.1': unknown method 'fixed.RK5' (known: ",
+    ),
+    (
+        ("solver_study", "stability", "cases"),
+        [["DOP853", 1e-3]],
+        "'solver_study.stability.cases.0': unknown method 'DOP853'",
+    ),
+    (
+        ("solver_study", "stability", "cases"),
+        [["fixed.RK4", 0.0]],
+        "'solver_study.stability.cases.0.1': 0.0 is less than or equal to the minimum",
+    ),
+    # memory, estimated from the grid sizes (the job failed with MemoryError 179 GiB)
+    (
+        ("angle_maps", "theta0", "step"),
+        1e-6,
+        "'angle_maps': a Figs. 2-3 map job (60000001 x 401 strokes) needs about 9.45 TiB",
+    ),
+    (("max_memory",), "1M", "'angle_maps': a Figs. 2-3 map job (241 x 401 strokes) needs"),
+    (("max_memory",), "lots", "config key 'max_memory': memory size must be a number"),
+    (("max_memory",), 1.5, "'max_memory': 1.5 is not of type 'string', 'integer', 'null'"),
+    (
+        ("mass_length", "fine_step"),
+        1e-4,
+        "'mass_length': a Figs. 5-6 job (13 x 13 points, 1581 + 1600080001 strokes each)",
+    ),
+    (
+        ("solver_study", "optimum", "reference_step"),
+        1e-5,
+        "'solver_study.optimum': the optimum search with steps 1/1e-05 deg",
+    ),
+    (
+        ("torque_delay", "fig9", "tau"),
+        {"start": 0.0, "stop": 0.3, "step": 1e-12},
+        "'torque_delay.fig9': a Fig. 9 map job (1 x 300000000001 strokes) needs",
+    ),
 ]
 
 
@@ -102,6 +155,49 @@ def test_every_bad_config_stops_snakemake_with_one_line(path, value, fragment, t
     assert fragment in lines[0]
     assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
     assert not (tmp_path / "results").exists()
+
+
+def test_chunks_make_a_large_map_fit():
+    """The memory check is per job: chunks of rows bring a map under the limit."""
+    config = copy.deepcopy(GOOD)
+    config["max_memory"] = "35M"
+    config["chunks"] = {"mass_length": 13}
+    assert "'angle_maps': a Figs. 2-3 map job (241 x 401" in config_errors(config, SCHEMA)[0]
+    config["chunks"]["angle_map"] = 4
+    assert config_errors(config, SCHEMA) == []
+
+
+def test_the_shipped_config_declares_max_memory_with_a_default():
+    schema = yaml.safe_load(SCHEMA.read_text())
+    spec = schema["properties"]["max_memory"]
+    assert spec["default"] is None and "TENNIS_STROKE_MAX_MEMORY" in spec["description"]
+    assert GOOD["max_memory"] is None
+
+
+@pytest.mark.parametrize(
+    "text, where, problem",
+    [
+        ("solver:\n  rtol: [1e-8\nmodel: {}\n", "line 3, column 6", "expected ',' or ']'"),
+        ("solver:\n\trtol: 1e-8\n", "line 2, column 1", "found character '\\t'"),
+        ("a: 1\na: {b: 2\n", "line 3, column 1", "expected ',' or '}'"),
+        ("key: 'unclosed\n", "line 2, column 1", "found unexpected end of stream"),
+    ],
+)
+def test_yaml_syntax_errors_name_the_file_and_the_line(text, where, problem, tmp_path):
+    path = tmp_path / "config.yaml"
+    path.write_text(text)
+    with pytest.raises(ConfigFileError) as err:
+        load_yaml(path)
+    message = str(err.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}, {where}: YAML syntax error: "), message
+    assert problem in message
+
+
+def test_load_yaml_reads_a_good_file_and_refuses_a_missing_one(tmp_path):
+    assert load_yaml(ROOT / "config" / "config.yaml") == GOOD
+    with pytest.raises(ConfigFileError, match="cannot read .*none.yaml"):
+        load_yaml(tmp_path / "none.yaml")
 
 
 def test_numbers_given_as_strings_are_numbers_again():

@@ -21,7 +21,7 @@ SCRIPT = ROOT / "tools" / "slurm" / "localhost_slurm.sh"
 RUN_DIR = Path(os.environ.get("TENNIS_STROKE_SLURM_DIR", "/tmp/tennis-stroke-slurm"))
 #: A map gathered from two chunk jobs and a single-chunk map: few jobs, as each SLURM
 #: job starts Snakemake twice (about 10 s here).
-TARGETS = ["results/torque_delay/fig9.nc", "results/angle_maps/L1_0.3.nc"]
+TARGETS = ["results/torque_delay/fig9.nc", "results/angle_maps/fig2.nc"]
 CONFIG = {**TINY, "chunks": {"angle_map": 2}}
 #: A hung run (e.g. job states that never arrive) is killed after this (s).
 TIMEOUT_S = 600
@@ -95,7 +95,7 @@ def test_jobs_ran_through_slurm(runs):
     logs = sorted((runs["slurm"] / ".snakemake" / "slurm_logs").rglob("*.log"))
     rules = {log.relative_to(runs["slurm"] / ".snakemake" / "slurm_logs").parts[0] for log in logs}
     assert {"rule_angle_map", "rule_delay_map", "rule_gather_map"} <= rules, logs
-    angle_chunks = runs["slurm"] / "results" / "chunks" / "angle_maps" / "L1_0.3"
+    angle_chunks = runs["slurm"] / "results" / "chunks" / "angle_maps" / "fig2"
     assert sorted(p.name for p in angle_chunks.glob("*.nc")) == ["0-of-2.nc", "1-of-2.nc"]
     for log in logs:
         assert "Finished jobid" in log.read_text(), log

@@ -9,7 +9,12 @@ from tennis_stroke.solver.stroke import strike, strike_batch
 from tennis_stroke.studies.ladder import impact_model
 from tennis_stroke.studies.methods import parse_method
 from tennis_stroke.studies.sampling import REFERENCE, sample_strokes
-from tennis_stroke.studies.stability import OUTCOMES, isolated_contact, stability_map
+from tennis_stroke.studies.stability import (
+    OUTCOMES,
+    check_case,
+    isolated_contact,
+    stability_map,
+)
 from tennis_stroke.studies.work_precision import work_precision
 
 
@@ -83,3 +88,31 @@ def test_unknown_methods_are_refused_by_name(name):
         parse_method(name)
     with pytest.raises(ValueError, match="unknown method"):
         stability_map([(name, 1e-3)], np.array([1e4]))
+
+
+@pytest.mark.parametrize(
+    "case, fragment",
+    [
+        (("fixed.RK5", 1e-3), "unknown method 'fixed.RK5' (known: tennis_stroke.DP54"),
+        (("tennis_stroke.dp54", 1e-3), "unknown method 'tennis_stroke.dp54'"),
+        (("fixed.RK4", 0.0), "RK4 step (s) of case 'fixed.RK4' must be a number > 0"),
+        (("scipy.RK45", -1e-3), "tolerance of case 'scipy.RK45' must be a number > 0"),
+        (("scipy.RK45", "1e-3"), "must be a number > 0, got '1e-3'"),
+        (("tennis_stroke.DOP853", float("nan")), "must be a number > 0, got nan"),
+    ],
+)
+def test_bad_stability_cases_are_refused_before_any_run(case, fragment):
+    with pytest.raises(ValueError) as err:
+        check_case(*case)
+    assert fragment in str(err.value) and "\n" not in str(err.value)
+    with pytest.raises(ValueError, match="must be a number|unknown method"):
+        stability_map([("tennis_stroke.DOP853", 5e-8), case], np.array([1e4]))
+
+
+def test_the_stability_study_runs_loose_compiled_tolerances_on_purpose():
+    """The accuracy bound of SolverSettings is lifted for this study only: it measures
+    what loose tolerances do."""
+    assert check_case("tennis_stroke.DP54", 1e-3) == ("tennis_stroke", "DP54")
+    assert check_case("fixed.RK4", 1e-4) == ("fixed", "RK4")
+    ds = stability_map([("tennis_stroke.DP54", 1e-3)], np.array([1e4]))
+    assert str(ds["case"].values[0]) == "tennis_stroke.DP54 @ 0.001"

@@ -78,8 +78,8 @@ ROBUSTNESS_CHUNKS = 2
 
 #: The maps (gathered from chunks).
 MAPS = [
-    "results/angle_maps/L1_0.3.nc",
-    "results/angle_maps/L1_0.4.nc",
+    "results/angle_maps/fig2.nc",
+    "results/angle_maps/fig3.nc",
     "results/mass_length/map.nc",
     "results/torque_delay/fig7.nc",
     "results/torque_delay/fig8.nc",

@@ -2,21 +2,70 @@
 
 :func:`config_errors` applies the JSON schema (``workflow/schemas/config.schema.yaml``),
 then what a schema cannot say (a range's ``stop`` below its ``start``, an empty grid, a
-search range the wrong way round), then the model overrides through
-:func:`tennis_stroke.model.params.resolve_params`, which knows every parameter's unit and
-bounds.  The Snakefile prints the first message and exits before any job starts.
+search range the wrong way round), then the package's own checks: the model overrides
+through :func:`tennis_stroke.model.params.resolve_params` (every parameter's unit and
+bounds), the solver section and the work-precision tolerances through
+:class:`~tennis_stroke.solver.settings.SolverSettings` (the accuracy bound), the
+stability cases through :func:`tennis_stroke.studies.stability.check_case` (the methods
+that exist), and last the memory of every map's job (:mod:`tennis_stroke.experiments.memory`)
+against the limit (config key ``max_memory``).  The Snakefile prints the first message and
+exits before any job starts.  :func:`load_yaml` reads a YAML file with syntax errors
+reported as one line naming the file and the line.
 """
 
 from __future__ import annotations
 
+import inspect
 import math
+import os
 from collections.abc import Iterator, Mapping
+from decimal import Decimal
 from pathlib import Path
 
 import jsonschema
 import yaml
 
+from .chunking import chunk_count
+from .experiments.grids import axis_size, grid_size
+from .experiments.memory import (
+    WORD,
+    MemoryLimitError,
+    batch_bytes,
+    check_memory,
+    memory_limit,
+    result_bytes,
+)
 from .model.params import ParameterError, resolve_params
+from .solver.settings import SolverSettingError, SolverSettings
+
+
+class ConfigFileError(ValueError):
+    """A configuration file cannot be read (message is one line naming file and line)."""
+
+
+def load_yaml(path: str | Path) -> object:
+    """The contents of the YAML file ``path``.
+
+    Raises
+    ------
+    ConfigFileError
+        The file is missing or unreadable, or not YAML: ``FILE, line L, column C: problem``
+        (lines and columns from 1).
+    """
+    try:
+        text = Path(path).read_text()
+    except OSError as exc:
+        raise ConfigFileError(f"cannot read {str(path)!r}: {exc.strerror}") from None
+    try:
+        return yaml.safe_load(text)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        problem = " ".join(str(exc.problem or exc.context or "invalid YAML").split())
+        raise ConfigFileError(f"{path}{where}: YAML syntax error: {problem}") from None
+    except yaml.YAMLError as exc:
+        problem = " ".join(str(exc).split())
+        raise ConfigFileError(f"{path}: YAML syntax error: {problem}") from None
 
 
 def _path(parts) -> str:
@@ -74,6 +123,133 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
         resolve_params(config.get("model") or {})
     except ParameterError as exc:
         yield f"config key 'model': {exc}"
+    yield from _solver_errors(config)
+
+
+def _solver_errors(config: Mapping) -> Iterator[str]:
+    """The solver section and the studies' methods and tolerances, checked by the code
+    that will run them."""
+    try:
+        SolverSettings(**(config.get("solver") or {}))
+    except SolverSettingError as exc:
+        yield f"config key 'solver.{exc.setting}': {exc} (rule: solver settings)"
+    study = config.get("solver_study") or {}
+    for i, tol in enumerate(study.get("compiled_tolerances") or []):
+        try:  # the work-precision study runs SolverSettings(rtol=tol, atol=tol)
+            SolverSettings(rtol=tol, atol=tol)
+        except SolverSettingError as exc:
+            yield (
+                f"config key 'solver_study.compiled_tolerances.{i}': {exc} (rule: solver settings)"
+            )
+    from .studies.stability import check_case
+
+    for i, case in enumerate((study.get("stability") or {}).get("cases") or []):
+        try:
+            check_case(*case)
+        except ValueError as exc:
+            yield f"config key 'solver_study.stability.cases.{i}': {exc} (rule: methods)"
+
+
+def _n(count: int) -> str:
+    """A count for a message: exact up to 1e12, else three digits."""
+    return str(count) if count < 10**12 else f"{Decimal(count):.3g}"
+
+
+def _rows_per_job(rows: int, requested: int) -> int:
+    """Rows of the largest chunk when ``rows`` are split into ``requested`` chunks."""
+    return -(-rows // chunk_count(requested, rows))
+
+
+def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
+    """``(config key, what, peak bytes)`` of the workflow's largest jobs, from the grid
+    sizes alone (nothing is allocated): each map's largest chunk job, and the gathering
+    of each chunked map (the chunks and the whole map in memory at once)."""
+    threads = os.cpu_count() or 1
+    history = SolverSettings().history
+    chunks = config.get("chunks") or {}
+
+    def job(n_strokes: int) -> int:
+        return batch_bytes(n_strokes, threads, history)
+
+    def gather(n_strokes: int) -> int:
+        return 2 * result_bytes(n_strokes)
+
+    am = config["angle_maps"]
+    nt, nd = axis_size(am["theta0"]), axis_size(am["delta0"])
+    rows = _rows_per_job(nt, chunks.get("angle_map", 1))
+    yield "angle_maps", f"a Figs. 2-3 map job ({_n(rows)} x {_n(nd)} strokes)", job(rows * nd)
+    yield "angle_maps", f"gathering a Figs. 2-3 map ({_n(nt)} x {_n(nd)} strokes)", gather(nt * nd)
+
+    ml = config["mass_length"]
+    n_m2, n_l1 = axis_size(ml["M2"]), axis_size(ml["L1"])
+    coarse = grid_size(*ml["theta0_range"], ml["coarse_step"]) * grid_size(
+        *ml["delta0_range"], ml["coarse_step"]
+    )
+    fine = grid_size(-ml["coarse_step"], ml["coarse_step"], ml["fine_step"]) ** 2
+    rows = _rows_per_job(n_m2, chunks.get("mass_length", 1))
+    yield (
+        "mass_length",
+        f"a Figs. 5-6 job ({_n(rows)} x {_n(n_l1)} points, {_n(coarse)} + {_n(fine)} strokes each)",
+        job(rows * n_l1 * coarse) + job(rows * n_l1 * fine),
+    )
+
+    td = config["torque_delay"]
+    for fig, first in (("fig7", "C2"), ("fig8", "delta0"), ("fig9", "delta0")):
+        section = td[fig]
+        n_tau = axis_size(section["tau"])
+        n_first = axis_size(section[first]) if isinstance(section[first], Mapping) else 1
+        rows = _rows_per_job(n_first, chunks.get("delay_map", 1))
+        key = f"torque_delay.{fig}"
+        yield key, f"a Fig. {fig[3:]} map job ({_n(rows)} x {_n(n_tau)} strokes)", job(rows * n_tau)
+        yield key, f"gathering the Fig. {fig[3:]} map", gather(n_first * n_tau)
+
+    ef = config["elbow_force"]
+    n_psi, n_tau = axis_size(ef["psi_F"]), axis_size(ef["tau_F"])
+    rows = _rows_per_job(n_psi, chunks.get("elbow_force_map", 1))
+    yield "elbow_force", f"a Fig. 13 map job ({_n(rows)} x {_n(n_tau)} strokes)", job(rows * n_tau)
+    yield "elbow_force", "gathering the Fig. 13 map", gather(n_psi * n_tau)
+
+    n = len(config["fig4"]["strokes"]) * int(config["k_sensitivity"]["points"])
+    yield "k_sensitivity", f"the k sensitivity job ({_n(n)} strokes)", job(n)
+
+    study = config["solver_study"]
+    opt = study["optimum"]
+    from .studies.optimum_cost import optimum_cost
+
+    defaults = inspect.signature(optimum_cost).parameters
+    th_range = defaults["theta0_range"].default
+    de_range = defaults["delta0_range"].default
+    points = len(opt["M2"]) * len(opt["L1"])
+    for coarse_step, fine_step in [(1.0, opt["reference_step"]), *opt["steps"]]:
+        coarse = grid_size(*th_range, coarse_step) * grid_size(*de_range, coarse_step)
+        fine = grid_size(-coarse_step, coarse_step, fine_step) ** 2
+        yield (
+            "solver_study.optimum",
+            f"the optimum search with steps {coarse_step:g}/{fine_step:g} deg "
+            f"({_n(points)} points, {_n(coarse)} + {_n(fine)} strokes each)",
+            job(points * coarse) + job(points * fine),
+        )
+    k = study["stability"]["k_contact"]
+    cases = len(study["stability"]["cases"])
+    yield (
+        "solver_study.stability.k_contact",
+        f"the stability map ({cases} cases x {_n(k['num'])} spring constants)",
+        WORD * int(k["num"]) * (1 + 5 * cases),  # log10 k grid, five fields per case
+    )
+
+
+def _memory_errors(config: Mapping) -> Iterator[str]:
+    try:
+        limit = memory_limit(config.get("max_memory"), "config key 'max_memory'")
+    except ValueError as exc:
+        yield f"{exc} (rule: memory size)"
+        return
+    for key, what, needed in map_jobs(config):
+        try:
+            check_memory(needed, what, limit)
+        except MemoryLimitError as exc:
+            yield f"config key {key!r}: {exc} (rule: memory)"
+            return
 
 
 def _number(text: str):
@@ -103,4 +279,4 @@ def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:
     """Every problem of ``config`` as one-line messages (empty: the config is good)."""
     schema = yaml.safe_load(Path(schema_path).read_text())
     errors = list(_schema_errors(config, schema))
-    return errors or list(_semantic_errors(config))
+    return errors or list(_semantic_errors(config)) or list(_memory_errors(config))

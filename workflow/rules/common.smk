@@ -1,6 +1,7 @@
 # Config validation and helpers shared by all rules.
 from pathlib import Path
 
+import os
 import sys
 
 from snakemake.utils import validate
@@ -13,7 +14,9 @@ from tennis_stroke.experiments.reading_space import (
     load_reading_space,
 )
 from tennis_stroke.experiments.strokes import sec5_stroke
+from tennis_stroke.replication.claims import claim_errors, load_claims
 from tennis_stroke.replication.registry import (
+    ANGLE_MAP_FIGURES,
     FIGURES,
     IDENTIFICATION_FILES,
     INFERENCE_RESULTS,
@@ -31,10 +34,18 @@ if _errors:
     sys.stderr.write(f"tennis-stroke config error: {_errors[0]}\n")
     sys.exit(1)
 validate(config, "../schemas/config.schema.yaml", set_default=True)
-# The reading space (config/readings.yaml), checked before any job: the robustness
-# analysis' chunks are planned from it.
+# The claims (config/claims.yaml), checked before any job: ids, result files,
+# measurements and their arguments, tolerances (else they fail after every simulation).
+_errors = claim_errors("config/claims.yaml")
+if _errors:
+    sys.stderr.write(f"tennis-stroke claims error: {_errors[0]}\n")
+    sys.exit(1)
+# The reading space (config/readings.yaml), checked before any job, with the claims its
+# fit sets name: the robustness analysis' chunks are planned from it.
 try:
-    READING_SPACE = load_reading_space("config/readings.yaml")
+    READING_SPACE = load_reading_space(
+        "config/readings.yaml", [c["id"] for c in load_claims("config/claims.yaml")]
+    )
 except ReadingSpaceError as _exc:
     sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
     sys.exit(1)
@@ -43,17 +54,29 @@ except ReadingSpaceError as _exc:
 #: inputs, so an edit reruns exactly the jobs that read it (Snakemake does not see code
 #: changes in an imported package).
 PACKAGE_DIR = Path(workflow.basedir) / "src" / "tennis_stroke"
+
+
+def checkout_path(path):
+    """A file of the checkout (the Snakefile's folder) as an input path relative to the
+    working directory.  Snakemake records input paths: relative ones stay the same when
+    the checkout and its working directory move together, so a moved or copied checkout
+    reruns nothing (``workflow.source_path`` records the absolute path)."""
+    return os.path.relpath(path, os.getcwd())
+
+
 #: Top-level modules every simulation job runs: package start-up, files, chunks.
 JOB_MODULES = ("__init__.py", "_cache.py", "io.py", "pipeline.py", "chunking.py")
 
 
 def sources(*parts):
     """Source files of the package's ``parts``: a layer folder (every module in it) or a
-    module path, as sorted absolute paths."""
+    module path, as sorted paths relative to the working directory (checkout_path)."""
     out = set()
     for part in parts:
         path = PACKAGE_DIR / part
-        out.update(str(p) for p in (path.glob("*.py") if path.is_dir() else [path]))
+        out.update(
+            checkout_path(p) for p in (path.glob("*.py") if path.is_dir() else [path])
+        )
     return sorted(out)
 
 
@@ -76,7 +99,7 @@ wildcard_constraints:
 #: Maps computed in chunks (paths under results/, without .nc) and gathered by rule
 #: gather_map.
 CHUNKED_MAPS = (
-    r"angle_maps/L1_[^/]+|mass_length/map|torque_delay/fig[789]|elbow_force/map"
+    r"angle_maps/fig[23]|mass_length/map|torque_delay/fig[789]|elbow_force/map"
     r"|robustness/claims"
 )
 
@@ -111,6 +134,13 @@ def chunk_files(wildcards):
     return [f"results/chunks/{wildcards.map}/{i}-of-{n}.nc" for i in range(n)]
 
 
+def angle_map_L1(wildcards):
+    """The rod-1 length (m) of the angle map of a paper figure: ``angle_maps.L1`` lists
+    them in the order of ANGLE_MAP_FIGURES (Fig. 2, Fig. 3)."""
+    lengths = dict(zip(ANGLE_MAP_FIGURES, config["angle_maps"]["L1"], strict=True))
+    return float(lengths[wildcards.fig])
+
+
 def model():
     """Model overrides as a plain dict in a fixed order (params compare by repr)."""
     return dict(sorted(config.get("model", {}).items()))
@@ -125,6 +155,20 @@ def delay_stroke():
     """The Sec. V-VI base stroke (plain dict): only what the stroke rules need, so that
     changing a map's grid does not rerun them."""
     return sec5_stroke(config)
+
+
+def work_precision_study():
+    """The work-precision settings of the solver study (plain dict): only what the rule
+    reads, so that changing the stability or optimum study does not rerun it."""
+    keys = (
+        "strokes",
+        "seed",
+        "compiled_tolerances",
+        "scipy_tolerances",
+        "rk4_steps",
+        "repeats",
+    )
+    return {k: config["solver_study"][k] for k in keys}
 
 
 def delay_section(wildcards):

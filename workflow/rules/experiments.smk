@@ -7,14 +7,17 @@ rule angle_map:
     input:
         SIMULATION_SOURCES,
     output:
-        "results/chunks/angle_maps/L1_{L1}/{chunk}-of-{chunks}.nc",
+        "results/chunks/angle_maps/{fig}/{chunk}-of-{chunks}.nc",
     log:
-        "logs/angle_map/L1_{L1}/{chunk}-of-{chunks}.log",
+        "logs/angle_map/{fig}/{chunk}-of-{chunks}.log",
     benchmark:
-        "benchmarks/workflow/angle_map_L1_{L1}_{chunk}-of-{chunks}.tsv"
+        "benchmarks/workflow/angle_map_{fig}_{chunk}-of-{chunks}.tsv"
+    wildcard_constraints:
+        fig="fig[23]",
     threads: 1
     params:
         common=common_params(),
+        L1=angle_map_L1,
         theta0=grid_spec(config["angle_maps"]["theta0"]),
         delta0=grid_spec(config["angle_maps"]["delta0"]),
     script:
@@ -265,7 +268,7 @@ rule work_precision:
     threads: 1
     params:
         common=common_params(),
-        study=config["solver_study"],
+        study=work_precision_study(),
     script:
         "../scripts/work_precision.py"
 

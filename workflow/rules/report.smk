@@ -31,7 +31,7 @@ rule report:
         inference=list(INFERENCE_RESULTS.values()),
         results=list(PAPER_RESULTS.values()),
         code=sources("replication/report.py", "replication/registry.py"),
-        assumptions=str(Path(workflow.basedir) / "docs" / "assumptions.md"),
+        assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
         studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],
     output:
         "report/index.html",

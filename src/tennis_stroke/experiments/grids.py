@@ -7,15 +7,32 @@ the grid; the grid spacing is recorded with every optimum.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
+from fractions import Fraction
 
 import numpy as np
 
 
+def grid_size(start: float, stop: float, step: float) -> int:
+    """Number of points of :func:`grid` ``(start, stop, step)``, computed without making it
+    (to check a grid's memory before allocating it)."""
+    count = (float(stop) - float(start)) / float(step)
+    if not math.isfinite(count):  # a step far below the span: count exactly
+        count = (Fraction(stop) - Fraction(start)) / Fraction(step)
+    return int(round(count)) + 1
+
+
 def grid(start: float, stop: float, step: float) -> np.ndarray:
     """Inclusive grid ``start, start + step, ..., stop`` (rounded to the step's decimals)."""
-    n = int(round((stop - start) / step)) + 1
-    return np.round(start + step * np.arange(n), 10)
+    return np.round(start + step * np.arange(grid_size(start, stop, step)), 10)
+
+
+def axis_size(spec) -> int:
+    """Number of points of :func:`axis` ``(spec)``, computed without making it."""
+    if isinstance(spec, Mapping):
+        spec = [spec["start"], spec["stop"], spec["step"]]
+    return grid_size(*map(float, spec))
 
 
 def axis(spec) -> np.ndarray:

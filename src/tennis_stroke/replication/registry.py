@@ -14,10 +14,14 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
-#: The paper's result files (the claims read these), by key.
+#: The paper's figures of the angle maps, in the order of the config's ``angle_maps.L1``
+#: (the rod-1 length of each): Fig. 2 first, Fig. 3 second.
+ANGLE_MAP_FIGURES = ("fig2", "fig3")
+#: The paper's result files (the claims read these), by key.  A file is named by the
+#: paper's figure, never by a parameter value the config can change (the value is in the
+#: file's attributes and the figure's title).
 PAPER_RESULTS = {
-    "fig2": "results/angle_maps/L1_0.3.nc",
-    "fig3": "results/angle_maps/L1_0.4.nc",
+    **{fig: f"results/angle_maps/{fig}.nc" for fig in ANGLE_MAP_FIGURES},
     "fig4": "results/strokes/fig4.nc",
     "k_sensitivity": "results/strokes/k_sensitivity.nc",
     "ml": "results/mass_length/map.nc",
@@ -78,14 +82,14 @@ FIGURES: dict[str, Figure] = {
     f.name: f
     for f in [
         Figure(
-            "fig02_angle_map_L1_0.3",
+            "fig02_angle_map",
             "III",
             ("fig2",),
             "angle_map",
             "Fig. 2: v_out over the initial angles: L1 = {L1:g} m",
         ),
         Figure(
-            "fig03_angle_map_L1_0.4",
+            "fig03_angle_map",
             "III",
             ("fig3",),
             "angle_map",

@@ -48,8 +48,7 @@ ROBUSTNESS = tuple(ROBUSTNESS_MEANING)
 EVIDENCE_MEANING = {
     "ill_conditioned": "an optimum's location whose objective at the paper's value lies "
     "within the speed tolerance of the optimum: the paper's argument is as good as ours",
-    "reading_dependent": "passes under some consistent readings (the deciding unknown "
-    "is named)",
+    "reading_dependent": "passes under some consistent readings (the deciding unknown is named)",
     "paper_inconsistency": "passes under some consistent readings, but none of them also "
     "passes every claim the default passes",
     "irreducible": "fails under every consistent reading (the best value reached is shown)",

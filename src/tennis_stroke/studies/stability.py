@@ -69,7 +69,7 @@ def isolated_contact(
     Returns ``outcome`` (index into :data:`OUTCOMES`), ``v_exit`` (m/s), ``duration``
     (s), ``energy_change`` (relative), ``expected_duration`` (s, two-body closed form).
     """
-    family, name = parse_method(method)
+    family, name = check_case(method, setting)
     cf, y0 = isolated_start(k)
     trig = (math.sin(THETA), math.cos(THETA), math.sin(PHI), math.cos(PHI))
     m = effective_mass(*trig, cf)
@@ -77,12 +77,13 @@ def isolated_contact(
     e0 = mechanical_energy(0.0, y0, cf, True)
     duration, y, failed, missed = math.nan, None, False, False
     if family == "tennis_stroke":
-        settings = SolverSettings(
+        settings = SolverSettings(  # loose tolerances on purpose: no accuracy bound
             method=name,
             rtol=setting,
             atol=setting,
             first_step=FIRST_STEP,
             contact_min_steps=SolverSettings.contact_min_steps if step_limit else 1e-9,
+            accuracy_bound=False,
         )
         separated, duration, y = solve_contact(cf, y0, t_end, settings)
         failed = not separated
@@ -127,6 +128,26 @@ def isolated_contact(
     return out
 
 
+def check_case(method: str, setting: float) -> tuple[str, str]:
+    """``(family, name)`` of a stability case ``(method, setting)``, or a one-line
+    ``ValueError``: the method must exist (:func:`~tennis_stroke.studies.methods.parse_method`)
+    and the setting be a tolerance or RK4 step > 0 (compiled methods: any
+    :class:`~tennis_stroke.solver.settings.SolverSettings` tolerance, the accuracy bound
+    lifted: this study measures how loose tolerances fail)."""
+    family, name = parse_method(method)
+    if not (
+        isinstance(setting, int | float)
+        and not isinstance(setting, bool)
+        and math.isfinite(setting)
+        and setting > 0
+    ):
+        what = "RK4 step (s)" if family == "fixed" else "tolerance"
+        raise ValueError(f"{what} of case {method!r} must be a number > 0, got {setting!r}")
+    if family == "tennis_stroke":
+        SolverSettings(method=name, rtol=setting, atol=setting, accuracy_bound=False)
+    return family, name
+
+
 def _outcome(y, out, missed, failed, duration, expected, v_ref) -> str:
     """Which failure mode (or ``ok``) a run of :func:`isolated_contact` shows."""
     if y is None or not np.all(np.isfinite(y)) or abs(out["energy_change"]) > 10.0:
@@ -145,8 +166,8 @@ def _outcome(y, out, missed, failed, duration, expected, v_ref) -> str:
 
 def stability_map(cases: Sequence[tuple[str, float]], k_values: np.ndarray) -> xr.Dataset:
     """Outcome of the isolated contact for each (method, setting) case and stiffness ``k``."""
-    for method, _ in cases:
-        parse_method(method)
+    for method, setting in cases:
+        check_case(method, setting)
     labels = [f"{m} @ {v:g}" for m, v in cases]
     shape = (len(cases), len(k_values))
     fields = {

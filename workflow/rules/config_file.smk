@@ -1,0 +1,11 @@
+# The config file read once before Snakemake reads it, so that a YAML syntax error is
+# named with its file and line (Snakemake's own message gives neither).
+import sys
+
+from tennis_stroke.config_check import ConfigFileError, load_yaml
+
+try:
+    load_yaml("config/config.yaml")
+except ConfigFileError as _exc:
+    sys.stderr.write(f"tennis-stroke config error: {_exc}\n")
+    sys.exit(1)
