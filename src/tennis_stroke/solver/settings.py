@@ -16,7 +16,7 @@ ORDERS = {"DP54": 5, "DOP853": 8}
 
 #: Loosest tolerances (rtol, atol) a result may be computed with.  Measured: every stroke
 #: of the maps of Figs. 2 and 3 (241 x 181), 8 (201 x 121) and 13 (181 x 41), both
-#: methods, against rtol = atol = 1e-12 (``strike_batch``, max |difference|).  At
+#: methods, against rtol = atol = 1e-12 (``benchmarks/tolerance_bound.py``).  At
 #: rtol = atol = 1e-4 the largest errors are 0.16 km/h (v_out), 0.11 rad/s (omega),
 #: 0.14 degree (theta) and 0.07 ms (event times): at least six times below the claims'
 #: tolerances (1 km/h, 0.5 rad/s, 1 degree, 2 ms).  At 1e-3 DP54 misses 1 km/h (1.3 km/h
