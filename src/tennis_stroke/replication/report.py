@@ -438,7 +438,7 @@ def build_report(
     score = {
         "held": int(held.sum()),
         "pass": int((held & (claims.status == "pass")).sum()),
-        "deviate": int((held & (claims.status == "known_deviation")).sum()),
+        "deviate": int((claims.status == "known_deviation").sum()),
         "fail": int((claims.status == "fail").sum()),
         "fit": int((~held).sum()),
         "fit_ok": int((claims.status == "used_for_fit").sum()),
