@@ -49,6 +49,7 @@ from .results import (
     STATUS_NAMES,
     STEP_FAILURE,
 )
+from .warmup import ensure_compiled
 
 #: Samples per phase for ``omega2_max`` on the reference path.
 OMEGA2_SAMPLES = 512
@@ -95,6 +96,7 @@ class ReferenceStroke:
 
 def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segments):
     """solve_ivp through the torque switches; returns (t, y, event_hit, nfev, ok)."""
+    ensure_compiled()
     nfev = 0
     while True:
         t_seg = next_switch(t, cf, t_stop)

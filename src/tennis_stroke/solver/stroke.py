@@ -105,6 +105,7 @@ from .settings import (
     S_TMAX,
     SolverSettings,
 )
+from .warmup import ensure_compiled
 
 
 @njit(**JIT)
@@ -258,6 +259,7 @@ def solve_coefficients(
     progress : bool
         Show a tqdm progress bar (in blocks of :data:`PROGRESS_BLOCK` strokes).
     """
+    ensure_compiled()
     settings = settings or SolverSettings()
     method = METHOD_IDS[settings.method]
     st = settings.as_array()
@@ -354,6 +356,7 @@ def solve_contact(
         Whether the ball left before ``t_end``, the time reached (s) and the state there
         (angle layout).
     """
+    ensure_compiled()
     cf = coefficient_tuple(cf_row)
     y = to_trig(y_angles)
     st = settings.as_array()
