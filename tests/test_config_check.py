@@ -6,12 +6,8 @@ import pytest
 import yaml
 from conftest import ROOT, run_snakemake, workdir
 
-from tennis_stroke.config_check import (
-    ConfigFileError,
-    config_errors,
-    load_yaml,
-    numbers_from_strings,
-)
+from tennis_stroke.config_check import config_errors, numbers_from_strings
+from tennis_stroke.io import ConfigFileError, load_yaml
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())

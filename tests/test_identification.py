@@ -196,5 +196,6 @@ def test_bad_reading_space_is_one_line_naming_the_key(tmp_path, claims, change, 
 def test_a_yaml_syntax_error_names_the_line(tmp_path):
     path = tmp_path / "readings.yaml"
     path.write_text("model:\n  inertia: [a,\n")
-    with pytest.raises(ReadingSpaceError, match=r"readings.yaml line \d+: not valid YAML"):
+    where = r"readings.yaml, line 3, column 1: YAML syntax error"
+    with pytest.raises(ReadingSpaceError, match=where):
         load_reading_space(path)

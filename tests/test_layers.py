@@ -25,7 +25,7 @@ LAYERS = {
     "config_check": 6,
     "cli": 6,
     "_version": 0,
-    "_cache": 6,
+    "_cache": 0,  # numba cache location: imports nothing of the package
     "__init__": 6,
 }
 

@@ -308,30 +308,27 @@ def _claims(args: argparse.Namespace) -> int:
 def _identify(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    import yaml
-
-    from .config_check import load_yaml
     from .experiments.identification import run_identification, summary
-    from .experiments.reading_space import ReadingSpaceError, load_reading_space
+    from .experiments.reading_space import load_reading_space
     from .experiments.strokes import sec5_stroke
-    from .replication.claims import ClaimError, load_claims
+    from .io import load_yaml
+    from .replication.claims import load_claims
 
     if args.rows < 1:
         raise ValueError(f"--rows must be >= 1, got {args.rows}")
-    loaded = {}
     for path in (args.claims, args.config, args.readings):
         if not Path(path).is_file():
             raise ValueError(f"{path!r} does not exist (run from the project's folder)")
-        loaded[path] = load_yaml(path)  # a syntax error: one line naming file and line
+    # Each loader's error is one line naming its file (and the line of a YAML error).
+    config = load_yaml(args.config)
+    claims = load_claims(args.claims)
+    space = load_reading_space(args.readings, [c["id"] for c in claims])
     try:
-        config = loaded[args.config]
-        claims = load_claims(args.claims)
-        space = load_reading_space(args.readings, [c["id"] for c in claims])
         stroke = sec5_stroke(config)
         strokes, force = config["fig4"]["strokes"], config["elbow_force"]
         base = config.get("model") or {}
-    except (ClaimError, ReadingSpaceError, KeyError, TypeError, yaml.YAMLError) as exc:
-        raise ValueError(f"cannot read the fit sets: {exc}") from None
+    except (KeyError, TypeError) as exc:
+        raise ValueError(f"{args.config}: cannot read the fit sets' experiments: {exc}") from None
     print(summary(run_identification(space, claims, strokes, force, stroke, base), args.rows))
     return 0
 

@@ -9,8 +9,7 @@ bounds), the solver section and the work-precision tolerances through
 stability cases through :func:`tennis_stroke.studies.stability.check_case` (the methods
 that exist), and last the memory of every map's job (:mod:`tennis_stroke.experiments.memory`)
 against the limit (config key ``max_memory``).  The Snakefile prints the first message and
-exits before any job starts.  :func:`load_yaml` reads a YAML file with syntax errors
-reported as one line naming the file and the line.
+exits before any job starts.
 """
 
 from __future__ import annotations
@@ -37,35 +36,6 @@ from .experiments.memory import (
 )
 from .model.params import ParameterError, resolve_params
 from .solver.settings import SolverSettingError, SolverSettings
-
-
-class ConfigFileError(ValueError):
-    """A configuration file cannot be read (message is one line naming file and line)."""
-
-
-def load_yaml(path: str | Path) -> object:
-    """The contents of the YAML file ``path``.
-
-    Raises
-    ------
-    ConfigFileError
-        The file is missing or unreadable, or not YAML: ``FILE, line L, column C: problem``
-        (lines and columns from 1).
-    """
-    try:
-        text = Path(path).read_text()
-    except OSError as exc:
-        raise ConfigFileError(f"cannot read {str(path)!r}: {exc.strerror}") from None
-    try:
-        return yaml.safe_load(text)
-    except yaml.MarkedYAMLError as exc:
-        mark = exc.problem_mark or exc.context_mark
-        where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""
-        problem = " ".join(str(exc.problem or exc.context or "invalid YAML").split())
-        raise ConfigFileError(f"{path}{where}: YAML syntax error: {problem}") from None
-    except yaml.YAMLError as exc:
-        problem = " ".join(str(exc).split())
-        raise ConfigFileError(f"{path}: YAML syntax error: {problem}") from None
 
 
 def _path(parts) -> str:

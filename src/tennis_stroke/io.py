@@ -1,4 +1,5 @@
-"""Result files: xarray datasets with CF attributes and provenance, written atomically.
+"""Files: result files (xarray datasets with CF attributes and provenance, written
+atomically) and the YAML files the package reads (:func:`load_yaml`).
 
 Every variable and coordinate gets ``units`` and ``long_name`` from one table
 (:data:`tennis_stroke.solver.results.VARIABLES`).  Global attributes record the resolved
@@ -21,6 +22,7 @@ import numba
 import numpy as np
 import scipy
 import xarray as xr
+import yaml
 
 from ._version import __version__
 from .model.params import PARAMETERS, READINGS, scalar_params
@@ -42,6 +44,36 @@ RUN_ATTRS = (
 
 class OutputError(OSError):
     """The output file cannot be written (message is one line)."""
+
+
+class ConfigFileError(ValueError):
+    """A YAML file (config, claims, readings) cannot be read; the message is one line
+    naming the file (and the line of a syntax error)."""
+
+
+def load_yaml(path: str | Path) -> object:
+    """The contents of the YAML file ``path``.
+
+    Raises
+    ------
+    ConfigFileError
+        The file is missing or unreadable, or not YAML: ``FILE, line L, column C: problem``
+        (lines and columns from 1).
+    """
+    try:
+        text = Path(path).read_text()
+    except OSError as exc:
+        raise ConfigFileError(f"cannot read {str(path)!r}: {exc.strerror}") from None
+    try:
+        return yaml.safe_load(text)
+    except yaml.MarkedYAMLError as exc:
+        mark = exc.problem_mark or exc.context_mark
+        where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""
+        problem = " ".join(str(exc.problem or exc.context or "invalid YAML").split())
+        raise ConfigFileError(f"{path}{where}: YAML syntax error: {problem}") from None
+    except yaml.YAMLError as exc:
+        problem = " ".join(str(exc).split())
+        raise ConfigFileError(f"{path}: YAML syntax error: {problem}") from None
 
 
 def git_commit() -> str:

@@ -21,6 +21,7 @@ import jsonschema
 import numpy as np
 import yaml
 
+from ..io import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS, ParameterError, resolve_params
 
 #: The schema of the file, beside the workflow's config schema.
@@ -125,13 +126,9 @@ def load_reading_space(
         The first problem, one line naming the key.
     """
     try:
-        raw = yaml.safe_load(Path(path).read_text())
-    except OSError as exc:
-        raise ReadingSpaceError(f"cannot read {path}: {exc.strerror}") from None
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        line = f" line {mark.line + 1}" if mark is not None else ""
-        raise ReadingSpaceError(f"{path}{line}: not valid YAML") from None
+        raw = load_yaml(path)
+    except ConfigFileError as exc:
+        raise ReadingSpaceError(str(exc)) from None
     validator = jsonschema.Draft202012Validator(yaml.safe_load(Path(schema).read_text()))
     errors = sorted(validator.iter_errors(raw), key=lambda e: list(e.absolute_path))
     if errors:

@@ -27,8 +27,8 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 import xarray as xr
-import yaml
 
+from ..io import ConfigFileError, load_yaml
 from .measures import MEASUREMENTS
 from .registry import PAPER_RESULTS
 
@@ -208,12 +208,14 @@ def claim_errors(path: str | Path, files: Collection[str] = tuple(PAPER_RESULTS)
     variable of one file.
     """
     try:
-        raw = yaml.safe_load(Path(path).read_text())
-    except OSError as exc:
-        return [f"cannot read {path}: {exc.strerror}"]
-    except yaml.YAMLError as exc:
-        mark = getattr(exc, "problem_mark", None)
-        return [f"{path}{f' line {mark.line + 1}' if mark else ''}: not valid YAML"]
+        raw = load_yaml(path)
+    except ConfigFileError as exc:
+        return [str(exc)]
+    return _claims_file_errors(raw, path, files)
+
+
+def _claims_file_errors(raw: object, path: str | Path, files: Collection[str]) -> list[str]:
+    """:func:`claim_errors` of the contents ``raw`` of the claims file ``path``."""
     claims = raw.get("claims") if isinstance(raw, Mapping) else None
     if not isinstance(claims, list) or not claims:
         return [f"{path}: no list of claims (key 'claims')"]
@@ -237,16 +239,14 @@ def claim_errors(path: str | Path, files: Collection[str] = tuple(PAPER_RESULTS)
 def load_claims(path: str | Path, files: Collection[str] = tuple(PAPER_RESULTS)) -> list[dict]:
     """Read ``claims.yaml``, checked by :func:`claim_errors` (``files``: the result file
     keys a measure may name); raises :class:`ClaimError` with the first problem."""
-    errors = claim_errors(path, files)
+    try:
+        raw = load_yaml(path)
+    except ConfigFileError as exc:
+        raise ClaimError(str(exc)) from None
+    errors = _claims_file_errors(raw, path, files)
     if errors:
         raise ClaimError(errors[0])
-    return yaml.safe_load(Path(path).read_text())["claims"]
-
-
-def load_statements(path: str | Path) -> dict[str, str]:
-    """What the paper says about each figure (``statements`` of ``claims.yaml``), by the
-    figure's key (``fig02`` ... ``fig14``)."""
-    return dict(yaml.safe_load(Path(path).read_text()).get("statements") or {})
+    return raw["claims"]
 
 
 def evaluate(

@@ -32,9 +32,8 @@ from markupsafe import Markup
 
 from .._version import __version__
 from ..failures import failure_counts
-from ..io import git_commit
+from ..io import git_commit, load_yaml
 from ..model.params import READINGS
-from .claims import load_statements
 from .registry import FIGURES
 from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING
 
@@ -425,12 +424,8 @@ def build_report(
     each figure and whose ``sections`` name the paper's sections)."""
     claims = pd.read_csv(claims_csv, keep_default_na=False, dtype=str)
     claims["reproduced_value"] = claims["reproduced_value"].astype(float)
-    statements = load_statements(statements_yaml) if statements_yaml else {}
-    sections = (
-        yaml.safe_load(Path(statements_yaml).read_text()).get("sections") or {}
-        if statements_yaml
-        else {}
-    )
+    paper = load_yaml(statements_yaml) if statements_yaml else {}
+    statements, sections = paper.get("statements") or {}, paper.get("sections") or {}
     rows = [_claim_row(c) for c in claims.to_dict("records")]
     entries = {e["name"]: e for e in map(_figure_entry, figures)}
     paper_figures = {n: e for n, e in entries.items() if FIGURES.get(n) and n.startswith("fig")}

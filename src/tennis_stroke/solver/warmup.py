@@ -25,6 +25,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+from .._cache import compiled_sources
+
 #: Set in the compiling process, and by a user who wants to compile in place.
 ENV = "TENNIS_STROKE_WARMUP"
 _done = False
@@ -35,11 +37,9 @@ def _marker() -> Path | None:
     cache = os.environ.get("NUMBA_CACHE_DIR")
     if not cache:
         return None
-    package = Path(__file__).resolve().parents[1]
-    digest = hashlib.sha256(str(package).encode())
-    for layer in ("model", "solver"):
-        for path in sorted((package / layer).glob("*.py")):
-            digest.update(f"{path.name}:{path.stat().st_mtime_ns}".encode())
+    digest = hashlib.sha256(str(Path(__file__).resolve().parents[1]).encode())
+    for path in compiled_sources():
+        digest.update(f"{path.name}:{path.stat().st_mtime_ns}".encode())
     return Path(cache) / f"compiled-{digest.hexdigest()[:16]}"
 
 
