@@ -43,7 +43,8 @@ st = SolverSettings().as_array()
 out, history, stats = np.empty(S.N_OUT), np.zeros((513, HISTORY_COLS)), np.zeros(N_STATS)
 timed("solve_stroke (the rest below it)", S.solve_stroke, METHOD_IDS["DOP853"], rows[0], st,
       out, history, stats)
-timed("solve_batch (parallel driver)", S.solve_batch, METHOD_IDS["DOP853"], rows, st, 1, 512)
+timed("solve_rows (the range driver)", S.solve_rows, METHOD_IDS["DOP853"], rows, st,
+      np.empty((1, S.N_OUT)), 0, 1, 512)
 """
 
 

@@ -12,15 +12,39 @@ Public API
     The independent scipy ``solve_ivp`` path on the same equations.
 """
 
+from importlib import import_module
+
 from ._cache import configure_numba_cache
 from ._version import __version__
 
 configure_numba_cache()
 
-from .model.params import PARAMETERS, READINGS, ParameterError, resolve_params  # noqa: E402
-from .solver.results import STATUS_NAMES  # noqa: E402
-from .solver.settings import SolverSettings  # noqa: E402
-from .solver.stroke import strike, strike_batch  # noqa: E402
+#: The public API and the module of each name.  Imported on first use (PEP 562), so that
+#: a job that only reads result files (a figure, the claims, the report) does not load
+#: numba and the compiled solver.
+_API = {
+    "PARAMETERS": ".model.params",
+    "READINGS": ".model.params",
+    "ParameterError": ".model.params",
+    "resolve_params": ".model.params",
+    "STATUS_NAMES": ".solver.results",
+    "SolverSettings": ".solver.settings",
+    "strike": ".solver.stroke",
+    "strike_batch": ".solver.stroke",
+}
+
+
+def __getattr__(name: str) -> object:
+    if name not in _API:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(import_module(_API[name], __name__), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted([*globals(), *_API])
+
 
 __all__ = [
     "PARAMETERS",

@@ -16,11 +16,10 @@ import subprocess
 import tempfile
 from collections.abc import Mapping, Sequence
 from datetime import UTC, datetime
+from importlib.metadata import version as _installed_version
 from pathlib import Path
 
-import numba
 import numpy as np
-import scipy
 import xarray as xr
 import yaml
 
@@ -100,6 +99,12 @@ def git_commit() -> str:
     return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
 
 
+def _version_of(package: str) -> str:
+    """Installed version of ``package``, read without importing it (a figure or report
+    job does not import the solver's compiler)."""
+    return _installed_version(package)
+
+
 def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[str, object]:
     """Global attributes: parameters (``param_*`` with units), readings, solver, versions."""
     attrs: dict[str, object] = {
@@ -110,8 +115,8 @@ def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[s
         "git_commit": git_commit(),
         "python_version": platform.python_version(),
         "numpy_version": np.__version__,
-        "numba_version": numba.__version__,
-        "scipy_version": scipy.__version__,
+        "numba_version": _version_of("numba"),
+        "scipy_version": _version_of("scipy"),
         "xarray_version": xr.__version__,
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} written by tennis-stroke",
     }

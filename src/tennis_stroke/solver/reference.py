@@ -96,7 +96,7 @@ class ReferenceStroke:
 
 def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segments):
     """solve_ivp through the torque switches; returns (t, y, event_hit, nfev, ok)."""
-    ensure_compiled()
+    ensure_compiled("reference")
     nfev = 0
     while True:
         t_seg = next_switch(t, cf, t_stop)

@@ -18,12 +18,14 @@ Failures are statuses (:data:`STATUS_NAMES`), never exceptions.
 
 from __future__ import annotations
 
+import contextlib
 import math
 from collections.abc import Mapping
+from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from ..model.dynamics import (
     BALL_W,
@@ -224,21 +226,42 @@ def solve_stroke(method, cf_row, st, out, history, stats):
     out[O_NSTEP] = stats[ST_NSTEP]
 
 
-@njit(parallel=True, **JIT)
-def solve_batch(method, cf_rows, st, n_chunks, history_capacity):
-    """Solve every stroke (row of ``cf_rows``) in parallel chunks: ``(n, N_OUT)``."""
-    n = cf_rows.shape[0]
-    out = np.empty((n, N_OUT))
-    for c in prange(n_chunks):
-        history = np.zeros((history_capacity + 1, HISTORY_COLS))
-        stats = np.zeros(N_STATS)
-        for i in range(c * n // n_chunks, (c + 1) * n // n_chunks):
-            solve_stroke(method, cf_rows[i], st, out[i], history, stats)
-    return out
+@njit(nogil=True, **JIT)
+def solve_rows(method, cf_rows, st, out, start, stop, history_capacity):
+    """Solve the strokes ``start:stop`` of ``cf_rows`` into the same rows of ``out``
+    (releases the GIL: threads run such ranges side by side)."""
+    history = np.zeros((history_capacity + 1, HISTORY_COLS))
+    stats = np.zeros(N_STATS)
+    for i in range(start, stop):
+        solve_stroke(method, cf_rows[i], st, out[i], history, stats)
 
 
-#: Strokes per call of the compiled batch when a progress bar is shown.
+#: Ranges per thread: a thread that finishes early takes another range, so strokes of
+#: unequal cost (failures stop early) even out.
+RANGES_PER_THREAD = 4
+#: Strokes per call of the compiled solver when a progress bar is shown.
 PROGRESS_BLOCK = 8192
+
+
+def default_threads() -> int:
+    """Threads used when none are asked for: numba's thread count (all cores, or the
+    environment's ``NUMBA_NUM_THREADS``)."""
+    return int(numba.config.NUMBA_NUM_THREADS)
+
+
+def _solve_block(method, cf_rows, st, out, history, n_threads, pool):
+    """Every stroke of ``cf_rows`` into ``out``: ranges of strokes, on ``pool``'s threads
+    when there is more than one."""
+    n = cf_rows.shape[0]
+    n_ranges = min(max(n, 1), RANGES_PER_THREAD * n_threads) if n_threads > 1 else 1
+    bounds = [(c * n // n_ranges, (c + 1) * n // n_ranges) for c in range(n_ranges)]
+    if pool is None:
+        for a, b in bounds:
+            solve_rows(method, cf_rows, st, out, a, b, history)
+        return
+    jobs = [pool.submit(solve_rows, method, cf_rows, st, out, a, b, history) for a, b in bounds]
+    for job in jobs:
+        job.result()
 
 
 def solve_coefficients(
@@ -249,33 +272,42 @@ def solve_coefficients(
 ) -> np.ndarray:
     """Run the compiled solver on prepared coefficient rows; returns ``(n, N_OUT)``.
 
+    Every stroke is computed on its own, so the result does not depend on the number of
+    threads or on how the strokes are split among them.
+
     Parameters
     ----------
     cf_rows : ndarray, shape (n, N_CF)
         From :func:`tennis_stroke.model.dynamics.coefficients`.
     settings : SolverSettings, optional
     threads : int, optional
-        Threads to use (default: numba's default, all cores).
+        Threads to use (default :func:`default_threads`; at most that many).
     progress : bool
         Show a tqdm progress bar (in blocks of :data:`PROGRESS_BLOCK` strokes).
     """
-    ensure_compiled()
+    ensure_compiled("batch")
     settings = settings or SolverSettings()
     method = METHOD_IDS[settings.method]
     st = settings.as_array()
+    n_threads = default_threads()
     if threads is not None:
-        numba.set_num_threads(max(1, min(int(threads), numba.config.NUMBA_NUM_THREADS)))
-    n_threads = numba.get_num_threads()
+        n_threads = max(1, min(int(threads), n_threads))
+    cf_rows = np.ascontiguousarray(cf_rows, dtype=float)
     n = cf_rows.shape[0]
-    if not progress or n <= PROGRESS_BLOCK:
-        return solve_batch(method, cf_rows, st, min(max(n, 1), 4 * n_threads), settings.history)
-    from tqdm import tqdm
-
     out = np.empty((n, N_OUT))
-    with tqdm(total=n, unit="stroke", leave=False) as bar:
+    with contextlib.ExitStack() as stack:
+        pool = None
+        if n_threads > 1 and n > 1:
+            pool = stack.enter_context(ThreadPoolExecutor(n_threads))
+        if not progress or n <= PROGRESS_BLOCK:
+            _solve_block(method, cf_rows, st, out, settings.history, n_threads, pool)
+            return out
+        from tqdm import tqdm
+
+        bar = stack.enter_context(tqdm(total=n, unit="stroke", leave=False))
         for a in range(0, n, PROGRESS_BLOCK):
             b = min(a + PROGRESS_BLOCK, n)
-            out[a:b] = solve_batch(method, cf_rows[a:b], st, 4 * n_threads, settings.history)
+            _solve_block(method, cf_rows[a:b], st, out[a:b], settings.history, n_threads, pool)
             bar.update(b - a)
     return out
 
@@ -356,7 +388,7 @@ def solve_contact(
         Whether the ball left before ``t_end``, the time reached (s) and the state there
         (angle layout).
     """
-    ensure_compiled()
+    ensure_compiled("contact")
     cf = coefficient_tuple(cf_row)
     y = to_trig(y_angles)
     st = settings.as_array()

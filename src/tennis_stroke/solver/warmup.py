@@ -4,13 +4,15 @@ Measured (2026-11-22): a process that compiles the solver itself can give result
 differ in the last bits (6e-14 km/h on one stroke of the tiny elbow-force map) from a
 process that loads the same functions from numba's on-disk cache.  So that every job of
 the workflow, every CLI call and every test gives the same bits whatever ran before, the
-first call of the compiled solver in a process (:func:`ensure_compiled`) makes sure the
-cache holds it: if not, it runs ``python -m tennis_stroke.solver.warmup`` (which compiles
-the entry points and writes the cache) and then loads from the cache.  A file lock makes
+first call of an entry point of the compiled solver in a process (:func:`ensure_compiled`)
+makes sure the cache holds it: if not, it runs ``python -m tennis_stroke.solver.warmup
+GROUP`` (which compiles that group of entry points and writes the cache) and then loads
+from the cache.  The groups (:data:`GROUPS`) compile apart, so a first stroke does not
+wait for the contact-phase entry or the scipy reference path's right-hand sides.  A file lock makes
 jobs that start together on a fresh machine wait for one compilation instead of each
 compiling.
 
-The cache is known to be complete by a marker file in ``NUMBA_CACHE_DIR`` named after the
+A group's cache is known to be complete by a marker file in ``NUMBA_CACHE_DIR`` named after the
 checkout's path and the compiled sources' modification times, the two things besides the
 sources' contents (already in the cache directory's name) that numba's cache index checks.
 ``TENNIS_STROKE_WARMUP=0`` turns the mechanism off (the process compiles in place).
@@ -29,33 +31,39 @@ from .._cache import compiled_sources
 
 #: Set in the compiling process, and by a user who wants to compile in place.
 ENV = "TENNIS_STROKE_WARMUP"
-_done = False
+#: Groups of entry points compiled together: the stroke batch (both methods), the
+#: contact phase alone (both methods), and the scipy reference path's right-hand sides.
+GROUPS = ("batch", "contact", "reference")
+_done: set[str] = set()
 
 
-def _marker() -> Path | None:
-    """The marker of a complete cache for this checkout, or None without a cache dir."""
+def _marker(group: str) -> Path | None:
+    """The marker of a complete cache of ``group`` for this checkout, or None without a
+    cache dir."""
     cache = os.environ.get("NUMBA_CACHE_DIR")
     if not cache:
         return None
     digest = hashlib.sha256(str(Path(__file__).resolve().parents[1]).encode())
     for path in compiled_sources():
         digest.update(f"{path.name}:{path.stat().st_mtime_ns}".encode())
-    return Path(cache) / f"compiled-{digest.hexdigest()[:16]}"
+    return Path(cache) / f"compiled-{group}-{digest.hexdigest()[:16]}"
 
 
-def ensure_compiled() -> None:
-    """Make sure numba's cache holds the solver (compiling it in a subprocess if not)."""
-    global _done
-    if _done or os.environ.get(ENV) == "0":
+def ensure_compiled(group: str = "batch") -> None:
+    """Make sure numba's cache holds the entry points of ``group`` (compiling them in a
+    subprocess if not)."""
+    if group not in GROUPS:
+        raise ValueError(f"unknown group of compiled entry points {group!r}")
+    if group in _done or os.environ.get(ENV) == "0":
         return
-    marker = _marker()
+    marker = _marker(group)
     if marker is not None and not marker.exists():
         marker.parent.mkdir(parents=True, exist_ok=True)
         with open(marker.parent / ".compile.lock", "w") as lock:
             fcntl.flock(lock, fcntl.LOCK_EX)
             if not marker.exists():
                 done = subprocess.run(
-                    [sys.executable, "-m", "tennis_stroke.solver.warmup"],
+                    [sys.executable, "-m", "tennis_stroke.solver.warmup", group],
                     env={**os.environ, ENV: "0"},
                     capture_output=True,
                     text=True,
@@ -64,13 +72,12 @@ def ensure_compiled() -> None:
                     last = (done.stderr.strip().splitlines() or ["(no output)"])[-1]
                     raise RuntimeError(f"compiling the solver failed: {last}")
                 marker.touch()
-    _done = True
+    _done.add(group)
 
 
-def warm_up() -> None:
-    """Compile (and cache) every compiled entry point with the argument types the package
-    passes: the stroke batch and the contact phase with both methods, and the right-hand
-    sides the scipy reference path calls."""
+def warm_up(group: str) -> None:
+    """Compile (and cache) the entry points of ``group`` with the argument types the
+    package passes."""
     import numpy as np
 
     from ..model.dynamics import coefficients
@@ -79,14 +86,18 @@ def warm_up() -> None:
     from .settings import METHOD_IDS, SolverSettings
     from .stroke import solve_contact, strike_batch
 
+    if group == "reference":
+        solve_stroke(120.0, 81.5, rtol=1e-6, atol=1e-6)
+        free_swing(120.0, 81.5, 0.05)
+        return
     cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
     for method in METHOD_IDS:
         settings = SolverSettings(method=method)
-        strike_batch(np.array([90.0, 120.0]), 45.0, settings=settings)
-        solve_contact(cf_row, np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0]), 0.01, settings)
-    solve_stroke(120.0, 81.5, rtol=1e-6, atol=1e-6)
-    free_swing(120.0, 81.5, 0.05)
+        if group == "batch":
+            strike_batch(np.array([90.0, 120.0]), 45.0, settings=settings, threads=1)
+        else:
+            solve_contact(cf_row, np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0]), 0.01, settings)
 
 
 if __name__ == "__main__":
-    warm_up()
+    warm_up(sys.argv[1])
