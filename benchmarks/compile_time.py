@@ -37,8 +37,9 @@ for method in ("dp54", "dop853"):
     for phase in ("swing", "contact"):
         step = getattr(K, f"step_{method}_{phase}")
         y1, f1, _ = timed(f"step_{method}_{phase}", step, 0.0, y, f, 1e-3, cf, 0.0, 1e-8, 1e-8)
-        dense = getattr(K, f"dense_{method}_{phase}")
-        timed(f"dense_{method}_{phase}", dense, 0.0, y, f, 1e-3, cf, 0.0, y1, f1)
+        dense = getattr(K, f"dense_{method}")
+        timed(f"dense_{method} ({phase})", dense, 0.0, y, f, 1e-3, cf, 0.0, y1, f1,
+              phase == "contact")
 st = SolverSettings().as_array()
 out, history, stats = np.empty(S.N_OUT), np.zeros((513, HISTORY_COLS)), np.zeros(N_STATS)
 timed("solve_stroke (the rest below it)", S.solve_stroke, METHOD_IDS["DOP853"], rows[0], st,

@@ -6,8 +6,10 @@ tuples, one set of functions per method and phase (free swing: 8 integrated comp
 contact: 10), all calling :func:`tennis_stroke.model.dynamics.rhs_trig`.  States are tuples, not
 arrays, so numba passes them by value (no reference counting per call) and LLVM keeps
 them in registers; zero coefficients disappear.  This makes a step several times faster
-than loops over padded tableau arrays.  The output is committed; a test checks that it is
-up to date.
+than loops over padded tableau arrays.  The dense output, needed only at an event (twice a
+stroke), is the exception: loops over the tableau, one function per method for both
+phases, because its straight-line form cost more compile time than anything else.  The
+output is committed; a test checks that it is up to date.
 
 Usage: ``python tools/generate_kernels.py [--check]``
 """
@@ -97,38 +99,89 @@ def _method(name: str, cls) -> list[str]:
             ]
         else:
             out.append(f"    return y_new, k{ns}, abs(h) * math.sqrt(e5 / {n})")
-        out += [
-            "",
-            "",
-            "@njit(**JIT_FAST)",
-            f"def dense_{name}_{phase}(t, y, f0, h, cf, c2, y_new, f_new):",
-            '    """Dense-output coefficients (7 rows) of the step ``y -> y_new``."""',
-            "    k0 = f0",
+    return out + _dense(name, cls)
+
+
+def _array(name: str, rows) -> list[str]:
+    """A module-level float array (numba compiles it in as a constant)."""
+    body = ",\n    ".join("[" + ", ".join(repr(float(v)) for v in row) + "]" for row in rows)
+    return [f"{name} = np.array([\n    {body},\n])"]
+
+
+def _dense(name: str, cls) -> list[str]:
+    """Dense-output coefficients of one method for both phases, as loops over the tableau.
+
+    Called only at an event (twice a stroke), so compile time counts more than speed
+    here: straight-line dense output was the largest part of the cold compilation
+    (``benchmarks/compile_time.py``).
+    """
+    extra = name == "dop853"
+    ns = cls.n_stages
+    a, c = _tableau(cls, extra)
+    n_k = len(c) if extra else ns + 1
+    tag = name.upper()
+    lines = ["", ""]
+    lines += _array(f"_A_{tag}", [[*row, *[0.0] * (n_k - len(row))] for row in a])
+    lines += [f"_C_{tag} = np.array([{', '.join(repr(float(v)) for v in c)}])"]
+    if extra:
+        lines += _array(f"_D_{tag}", [list(r) for r in cls.D])
+    else:
+        lines += _array(f"_P_{tag}", [list(cls.P[:, col]) for col in range(cls.P.shape[1])])
+    z = ",\n            ".join(
+        "(" + ", ".join(f"z[{r}, {i}]" for i in range(N_STATE)) + ")" for r in range(7)
+    )
+    y_stage = ", ".join(f"ys[{i}]" for i in range(N_STATE))
+    lines += [
+        "",
+        "",
+        "@njit(**JIT_FAST)",
+        f"def dense_{name}(t, y, f0, h, cf, c2, y_new, f_new, contact):",
+        '    """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:',
+        '    10 integrated components, else 8)."""',
+        f"    n = {N_STATE} if contact else 8",
+        f"    k = np.zeros(({n_k}, {N_STATE}))",
+        f"    ys = np.empty({N_STATE})",
+        f"    z = np.zeros((7, {N_STATE}))",
+        f"    for i in range({N_STATE}):",
+        "        k[0, i] = f0[i]",
+        f"        k[{ns}, i] = f_new[i]",
+        f"    for s in range(1, {n_k}):",
+        f"        if s == {ns}:",
+        "            continue",
+        f"        for i in range({N_STATE}):",
+        "            ys[i] = y[i]",
+        "        for i in range(n):",
+        "            acc = 0.0",
+        "            for m in range(s):",
+        f"                acc += _A_{tag}[s, m] * k[m, i]",
+        "            ys[i] = y[i] + h * acc",
+        f"        ks = rhs_trig(t + _C_{tag}[s] * h, ({y_stage}), cf, c2, contact)",
+        f"        for i in range({N_STATE}):",
+        "            k[s, i] = ks[i]",
+        "    for i in range(n):",
+    ]
+    if extra:
+        lines += [
+            "        dy = y_new[i] - y[i]",
+            "        z[0, i] = dy",
+            "        z[1, i] = h * k[0, i] - dy",
+            f"        z[2, i] = 2.0 * dy - h * (k[{ns}, i] + k[0, i])",
+            f"        for r in range({cls.D.shape[0]}):",
+            "            acc = 0.0",
+            f"            for m in range({n_k}):",
+            f"                acc += _D_{tag}[r, m] * k[m, i]",
+            "            z[3 + r, i] = h * acc",
         ]
-        out += _stages(a, c, 1, ns, n, contact)
-        out.append(f"    k{ns} = f_new")
-        zero = "0.0"
-        if extra:
-            out += _stages(a, c, ns + 1, ns + 1 + len(cls.C_EXTRA), n, contact)
-            rows = [
-                lambda i: f"y_new[{i}] - y[{i}]",
-                lambda i: f"h * k0[{i}] - (y_new[{i}] - y[{i}])",
-                lambda i: f"2.0 * (y_new[{i}] - y[{i}]) - h * (k{ns}[{i}] + k0[{i}])",
-            ] + [
-                lambda i, r=r: f"h * ({_combo(cls.D[r], range(16), 'k', i)})"
-                for r in range(cls.D.shape[0])
-            ]
-        else:  # padded to the 7 rows of DOP853, so both methods return one type
-            rows = [
-                lambda i, col=col: f"h * ({_combo(cls.P[:, col], range(ns + 1), 'k', i)})"
-                for col in range(cls.P.shape[1])
-            ]
-            rows += [lambda i: "0.0"] * (7 - len(rows))
-        tuples = [
-            "(" + ", ".join(row(i) if i < n else zero for i in range(N_STATE)) + ")" for row in rows
+    else:
+        lines += [
+            f"        for r in range({cls.P.shape[1]}):",
+            "            acc = 0.0",
+            f"            for m in range({n_k}):",
+            f"                acc += _P_{tag}[r, m] * k[m, i]",
+            "            z[r, i] = h * acc",
         ]
-        out.append("    return (" + ",\n            ".join(tuples) + ")")
-    return out
+    lines.append(f"    return ({z})")
+    return lines
 
 
 def _dense_evals() -> list[str]:
@@ -171,6 +224,7 @@ def render() -> str:
         "",
         "import math",
         "",
+        "import numpy as np",
         "from numba import njit",
         "",
         "from ..model.dynamics import JIT_FAST, rhs_trig",

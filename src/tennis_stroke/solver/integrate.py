@@ -147,12 +147,8 @@ def rk_step(method, contact, t, y, f, h, cf, c2, rtol, atol):
 def dense_coefficients(method, contact, t, y, f, h, cf, c2, y_new, f_new):
     """Dense-output coefficients (7 rows) of the step ``y -> y_new``."""
     if method == METHOD_DP54:
-        if contact:
-            return _kernels.dense_dp54_contact(t, y, f, h, cf, c2, y_new, f_new)
-        return _kernels.dense_dp54_swing(t, y, f, h, cf, c2, y_new, f_new)
-    if contact:
-        return _kernels.dense_dop853_contact(t, y, f, h, cf, c2, y_new, f_new)
-    return _kernels.dense_dop853_swing(t, y, f, h, cf, c2, y_new, f_new)
+        return _kernels.dense_dp54(t, y, f, h, cf, c2, y_new, f_new, contact)
+    return _kernels.dense_dop853(t, y, f, h, cf, c2, y_new, f_new, contact)
 
 
 @njit(**JIT)
