@@ -58,6 +58,15 @@ HISTORY_COLS = 3 + 2 * N_CONTACT
 
 
 @njit(**JIT)
+def flag(value):
+    """``value`` as a run-time bool.  A constant ``True`` or ``False`` passed to a compiled
+    function makes numba compile it, and everything it calls, once per constant (the phase
+    integrator was compiled three times, for 11 of the 41 s of the stroke driver's cold
+    compilation); the phase kind and the event switch go through this instead."""
+    return bool(value)
+
+
+@njit(**JIT)
 def peak_omega2(y0, y1, f0, f1, h, best):
     """Running maximum of omega2 updated with a step ``y0 -> y1`` of size ``h``.
 

@@ -63,6 +63,7 @@ from .integrate import (
     ST_NFEV,
     ST_NSTEP,
     ST_W2MAX,
+    flag,
     history_find,
     history_reset,
     history_state,
@@ -148,9 +149,8 @@ def restart_at(method, t_c, row, cf, st, stats):
     dt = t_c - t_i
     if dt <= 0.0:
         return y
-    y_new, f_new, _ = rk_step(
-        method, False, t_i, y, f, dt, cf, wrist_torque(t_i, t_i + h_i, cf), st[S_RTOL], st[S_ATOL]
-    )
+    c2 = wrist_torque(t_i, t_i + h_i, cf)
+    y_new, f_new, _ = rk_step(method, flag(False), t_i, y, f, dt, cf, c2, st[S_RTOL], st[S_ATOL])
     stats[ST_NFEV] += N_STAGES_BY_ID[method]
     stats[ST_W2MAX] = peak_omega2(y, y_new, f, f_new, dt, w2max)
     return y_new
@@ -171,8 +171,9 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     y = (s_th, c_th, s_ph, c_ph, w1, w2, y[THETA], y[PHI], s, w)
     h_max = contact_duration(s_th, c_th, s_ph, c_ph, cf) / st[S_CONTACT_STEPS]
     no_history = history[:1]
+    h = min(h, h_max)
     status, t, y, h = run_phases(
-        method, True, t_c, y, st[S_TMAX], min(h, h_max), h_max, cf, True, st, stats, no_history
+        method, flag(True), t_c, y, st[S_TMAX], h, h_max, cf, flag(True), st, stats, no_history
     )
     if status == PHASE_FAIL:
         return STEP_FAILURE
@@ -181,8 +182,9 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     out[O_T_SEP] = t
     out[O_VOUT] = rebound_speed_kmh(t, y[BALL_W], cf)
     if st[S_FOLLOW] > 0.0:
+        t_stop = t + st[S_FOLLOW]
         status, t, y, h = run_phases(
-            method, False, t, y, t + st[S_FOLLOW], h, np.inf, cf, False, st, stats, no_history
+            method, flag(False), t, y, t_stop, h, np.inf, cf, flag(False), st, stats, no_history
         )
         if status == PHASE_FAIL:
             return STEP_FAILURE
@@ -199,8 +201,9 @@ def solve_stroke(method, cf_row, st, out, history, stats):
     th0, ph0 = cf[CF_THETA0], cf[CF_PHI0]
     y = (math.sin(th0), math.cos(th0), math.sin(ph0), math.cos(ph0), 0.0, 0.0, th0, ph0, 0.0, 0.0)
     history_reset(history)
+    h = st[S_FIRST_STEP]
     status, t, y, h = run_phases(
-        method, False, 0.0, y, st[S_TMAX], st[S_FIRST_STEP], np.inf, cf, True, st, stats, history
+        method, flag(False), 0.0, y, st[S_TMAX], h, np.inf, cf, flag(True), st, stats, history
     )
     code = OK
     if status == PHASE_FAIL:
