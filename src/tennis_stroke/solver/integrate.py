@@ -61,8 +61,8 @@ HISTORY_COLS = 3 + 2 * N_CONTACT
 def flag(value):
     """``value`` as a run-time bool.  A constant ``True`` or ``False`` passed to a compiled
     function makes numba compile it, and everything it calls, once per constant (the phase
-    integrator was compiled three times, for 11 of the 41 s of the stroke driver's cold
-    compilation); the phase kind and the event switch go through this instead."""
+    integrator was compiled three times; a cold first stroke took about 17 s longer); the
+    phase kind and the event switch go through this instead."""
     return bool(value)
 
 
