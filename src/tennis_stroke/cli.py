@@ -248,11 +248,10 @@ def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress)
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    import numba
-
     from .experiments.memory import batch_bytes, check_memory, memory_limit, result_bytes
     from .io import check_writable, result_dataset, write_netcdf
     from .model.params import resolve_params
+    from .solver.stroke import default_threads
 
     theta_spec = range_spec(args.theta0, "theta0")
     delta_spec = range_spec(args.delta0, "delta0")
@@ -261,7 +260,7 @@ def _sweep(args: argparse.Namespace) -> int:
     settings = _settings(args)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"--threads must be >= 1, got {args.threads}")
-    threads = min(args.threads or numba.config.NUMBA_NUM_THREADS, numba.config.NUMBA_NUM_THREADS)
+    threads = min(args.threads or default_threads(), default_threads())
     n = theta_spec[2] * delta_spec[2]
     block = min(n, SWEEP_BLOCK_PER_THREAD * threads)
     check_memory(

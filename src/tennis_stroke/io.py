@@ -16,7 +16,7 @@ import subprocess
 import tempfile
 from collections.abc import Mapping, Sequence
 from datetime import UTC, datetime
-from importlib.metadata import version as _installed_version
+from importlib.metadata import version as installed_version
 from pathlib import Path
 
 import numpy as np
@@ -99,12 +99,6 @@ def git_commit() -> str:
     return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
 
 
-def _version_of(package: str) -> str:
-    """Installed version of ``package``, read without importing it (a figure or report
-    job does not import the solver's compiler)."""
-    return _installed_version(package)
-
-
 def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[str, object]:
     """Global attributes: parameters (``param_*`` with units), readings, solver, versions."""
     attrs: dict[str, object] = {
@@ -115,8 +109,9 @@ def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[s
         "git_commit": git_commit(),
         "python_version": platform.python_version(),
         "numpy_version": np.__version__,
-        "numba_version": _version_of("numba"),
-        "scipy_version": _version_of("scipy"),
+        # From the installed metadata: a figure or claims job does not import numba.
+        "numba_version": installed_version("numba"),
+        "scipy_version": installed_version("scipy"),
         "xarray_version": xr.__version__,
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} written by tennis-stroke",
     }
