@@ -4,7 +4,8 @@ Measures, in one run on one machine:
 
 * the compiled solver (default settings) on the 241 x 181 (theta0, delta0) grid of Fig. 2
   (theta0 60..120 deg, delta0 0..90 deg): microseconds per stroke, with 1 thread and with
-  all threads (median of ``--repeats``), and the largest |v_out - reference| where the
+  all threads (median of ``--repeats``), the mean right-hand-side evaluations and
+  accepted steps per stroke, and the largest |v_out - reference| where the
   reference is the compiled DOP853 at rtol = atol = 1e-12;
 * the whole ``tennis-stroke sweep`` process on that grid (start-up, cache load, netCDF);
 * ``scipy.integrate.solve_ivp`` (DOP853, events, the same phase splitting:
@@ -32,11 +33,11 @@ import tempfile
 import time
 from pathlib import Path
 
-import numba
 import numpy as np
 
 from tennis_stroke import SolverSettings, strike_batch
 from tennis_stroke.solver.reference import solve_stroke
+from tennis_stroke.solver.stroke import default_threads
 
 THETA0 = np.linspace(60.0, 120.0, 241)
 DELTA0 = np.linspace(0.0, 90.0, 181)
@@ -65,7 +66,7 @@ def main() -> int:
     settings = SolverSettings()
     reference = strike_batch(th, de, settings=SolverSettings(rtol=1e-12, atol=1e-12, history=4096))
     ok = reference["status"] == 0
-    n_threads = numba.config.NUMBA_NUM_THREADS
+    n_threads = default_threads()
     rows = {}
     for threads in sorted({1, n_threads}):
         strike_batch(th[:2], de, settings=settings, threads=threads)  # warm up
@@ -116,6 +117,8 @@ def main() -> int:
         "compiled_us_per_stroke_1_thread": us_core,
         "compiled_us_per_stroke_wall_all_threads": rows[max(rows)] / n * 1e6,
         "threads": n_threads,
+        "compiled_rhs_evals_per_stroke_mean": float(res["rhs_evals"][ok].mean()),
+        "compiled_steps_per_stroke_mean": float(res["steps"][ok].mean()),
         "compiled_max_err_kmh": compiled_err,
         "compiled_max_err_kmh_subset": sub_err,
         "sweep_process_s": process_wall,
