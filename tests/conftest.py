@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 import yaml
 
-from tennis_stroke.io import result_differences
+from tennis_stroke.io.compare import result_differences
 from tennis_stroke.model.dynamics import coefficients
 from tennis_stroke.model.params import resolve_params
 from tennis_stroke.solver._kernels import coefficient_tuple
@@ -64,7 +64,7 @@ def run_snakemake(targets, workdir, *options, timeout=300):
 
 def assert_same_results(a, b, also_differ=()):
     """Two results (datasets or netCDF paths) are the same
-    (:func:`tennis_stroke.io.result_differences`)."""
+    (:func:`tennis_stroke.io.compare.result_differences`)."""
     problems = result_differences(a, b, also_differ)
     assert not problems, "; ".join(problems)
 

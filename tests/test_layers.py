@@ -1,6 +1,8 @@
-"""The package's layers import downwards only: model -> solver -> files -> experiments ->
-studies -> replication -> entry points.  Checked by parsing every import (also those
-inside functions) of every module; run it alone with ``pytest tests/test_layers.py``."""
+"""The package's layers import downwards only: model -> solver -> io -> experiments ->
+studies -> inference -> replication -> entry points (the workflow's support and the
+CLI), and no two modules import each other, even through others or from inside a
+function.  Checked by parsing every import (also those inside functions) of every
+module; run it alone with ``pytest tests/test_layers.py``."""
 
 import ast
 from pathlib import Path
@@ -10,23 +12,22 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tennis_stroke"
 
 #: Rank of each layer: a module may import from its own rank or below.  Folders are
-#: layers; the top-level modules are the file layer (results on disk, chunks, failure
-#: counts) or the entry points (start-up, the workflow's adapters, config checks, CLI).
+#: layers; of the top-level modules, ``_version`` and ``_cache`` (the compiled code's
+#: cache location) import nothing of the package, and the CLI and the package's start-up
+#: are entry points.
 LAYERS = {
+    "_version": 0,
+    "_cache": 0,
     "model": 0,
     "solver": 1,
     "io": 2,
-    "chunking": 2,
-    "failures": 2,
     "experiments": 3,
     "studies": 4,
-    "replication": 5,
-    "pipeline": 6,
-    "config_check": 6,
-    "cli": 6,
-    "_version": 0,
-    "_cache": 0,  # numba cache location: imports nothing of the package
-    "__init__": 6,
+    "inference": 5,
+    "replication": 6,
+    "pipeline": 7,
+    "cli": 7,
+    "__init__": 7,
 }
 
 
@@ -89,10 +90,68 @@ def test_the_reference_path_shares_the_model_but_not_the_compiled_driver():
 
 
 def test_the_registry_is_pure_data():
-    """The Snakefile imports it: no package module, no plotting library."""
+    """The Snakefile imports it: no package module but the table of result files, no
+    plotting library."""
     source = (PACKAGE / "replication" / "registry.py").read_text()
-    assert _imports(PACKAGE / "replication" / "registry.py") == set()
+    assert _imports(PACKAGE / "replication" / "registry.py") == {"experiments.specs"}
     assert "matplotlib" not in source and "xarray" not in source
+
+
+def _graph(package: Path) -> dict[str, set[str]]:
+    """Module -> the package modules it imports (a folder's ``__init__`` for a folder)."""
+    global PACKAGE
+    saved, PACKAGE = PACKAGE, package
+    try:
+        modules = {_module(p): p for p in sorted(package.rglob("*.py"))}
+        graph = {}
+        for name, path in modules.items():
+            targets = set()
+            for target in _imports(path):
+                if target in modules:
+                    targets.add(target)
+                elif f"{target}.__init__" in modules:
+                    targets.add(f"{target}.__init__")
+            graph[name] = targets - {name}
+        return graph
+    finally:
+        PACKAGE = saved
+
+
+def _cycle(graph: dict[str, set[str]]) -> list[str]:
+    """One import cycle of ``graph`` (its modules in order), or [] when there is none."""
+    state: dict[str, int] = {}
+    stack: list[str] = []
+
+    def visit(node):
+        state[node] = 1
+        stack.append(node)
+        for nxt in sorted(graph.get(node, ())):
+            if state.get(nxt) == 1:
+                return [*stack[stack.index(nxt) :], nxt]
+            if nxt not in state and (found := visit(nxt)):
+                return found
+        stack.pop()
+        state[node] = 2
+        return []
+
+    for node in sorted(graph):
+        if node not in state and (found := visit(node)):
+            return found
+    return []
+
+
+def test_no_import_cycle_anywhere():
+    """No module imports itself through others, lazy imports inside functions included."""
+    cycle = _cycle(_graph(PACKAGE))
+    assert not cycle, "import cycle: " + " -> ".join(cycle)
+
+
+def test_the_cycle_check_sees_a_lazy_cycle(tmp_path):
+    """The check can fail: two modules importing each other, one inside a function."""
+    (tmp_path / "solver").mkdir()
+    (tmp_path / "solver" / "a.py").write_text("from .b import x\n")
+    (tmp_path / "solver" / "b.py").write_text("def x():\n    from .a import y\n")
+    assert _cycle(_graph(tmp_path)) == ["solver.a", "solver.b", "solver.a"]
 
 
 def test_the_checker_sees_an_upward_import(tmp_path):

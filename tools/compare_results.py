@@ -5,7 +5,7 @@ Usage: ``python tools/compare_results.py OLD_RESULTS NEW_RESULTS [--also-differ 
 netCDF files: every data variable and coordinate bit for bit (values, dtype, dimensions,
 attributes), except wall-clock measurements (variables with a ``timing`` attribute), and
 every global attribute except those that differ between two runs of one job
-(:data:`tennis_stroke.io.RUN_ATTRS`) and ``--also-differ`` (e.g. ``git_commit`` across
+(:data:`tennis_stroke.io.netcdf.RUN_ATTRS`) and ``--also-differ`` (e.g. ``git_commit`` across
 commits).  CSV files: equal cell for cell.  PNG figures are not compared (matplotlib
 output is not a result).  Prints one line per file and exits 1 if any differs or is
 missing on one side.
@@ -19,7 +19,7 @@ from pathlib import Path
 
 import pandas as pd
 
-from tennis_stroke.io import result_differences
+from tennis_stroke.io.compare import result_differences
 
 
 def compare(old: Path, new: Path, also_differ: list[str]) -> int:

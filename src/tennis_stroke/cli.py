@@ -248,9 +248,9 @@ def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress)
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from .experiments.memory import batch_bytes, check_memory, memory_limit, result_bytes
-    from .io import check_writable, result_dataset, write_netcdf
+    from .io.netcdf import check_writable, result_dataset, write_netcdf
     from .model.params import resolve_params
+    from .pipeline.memory import batch_bytes, check_memory, memory_limit, result_bytes
     from .solver.stroke import default_threads
 
     theta_spec = range_spec(args.theta0, "theta0")
@@ -307,11 +307,11 @@ def _claims(args: argparse.Namespace) -> int:
 def _identify(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from .experiments.identification import run_identification, summary
-    from .experiments.reading_space import load_reading_space
     from .experiments.strokes import sec5_stroke
-    from .io import load_yaml
-    from .replication.claims import load_claims
+    from .inference.claims import load_claims
+    from .inference.identification import run_identification, summary
+    from .inference.reading_space import load_reading_space
+    from .io.config_files import load_yaml
 
     if args.rows < 1:
         raise ValueError(f"--rows must be >= 1, got {args.rows}")
@@ -336,7 +336,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tennis-stroke`` console script."""
     try:
         args = build_parser().parse_args(argv)
-        from .io import OutputError
+        from .io.netcdf import OutputError
         from .model.params import ParameterError
 
         commands = {"strike": _strike, "sweep": _sweep, "claims": _claims, "identify": _identify}

@@ -6,23 +6,19 @@ import sys
 
 from snakemake.utils import validate
 
-from tennis_stroke.chunking import chunk_count
-from tennis_stroke.config_check import config_errors, numbers_from_strings
-from tennis_stroke.experiments.grids import grid
-from tennis_stroke.experiments.reading_space import (
-    ReadingSpaceError,
-    load_reading_space,
-)
-from tennis_stroke.experiments.strokes import sec5_stroke
-from tennis_stroke.replication.claims import claim_errors, load_claims
-from tennis_stroke.replication.registry import (
+from tennis_stroke.experiments.grids import chunk_count, grid
+from tennis_stroke.experiments.specs import (
     ANGLE_MAP_FIGURES,
-    FIGURES,
     IDENTIFICATION_FILES,
     INFERENCE_RESULTS,
     PAPER_RESULTS,
     RESULT_FILES,
 )
+from tennis_stroke.experiments.strokes import sec5_stroke
+from tennis_stroke.inference.claims import claim_errors, load_claims
+from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
+from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
+from tennis_stroke.replication.registry import FIGURES
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
 config.update(numbers_from_strings(config))
@@ -65,7 +61,7 @@ def checkout_path(path):
 
 
 #: Top-level modules every simulation job runs: package start-up, files, chunks.
-JOB_MODULES = ("__init__.py", "_cache.py", "io.py", "pipeline.py", "chunking.py")
+JOB_MODULES = ("__init__.py", "_cache.py", "io", "pipeline")
 
 
 def sources(*parts):
@@ -82,6 +78,8 @@ def sources(*parts):
 
 #: What a simulation runs: the model, the solver and the experiments.
 SIMULATION_SOURCES = sources("model", "solver", "experiments", *JOB_MODULES)
+#: What an inference job runs: the same and the inference.
+INFERENCE_SOURCES = sources("model", "solver", "experiments", "inference", *JOB_MODULES)
 #: What a solver study runs: the same and the studies.
 STUDY_SOURCES = sources("model", "solver", "experiments", "studies", *JOB_MODULES)
 

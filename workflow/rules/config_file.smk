@@ -2,7 +2,7 @@
 # named with its file and line (Snakemake's own message gives neither).
 import sys
 
-from tennis_stroke.io import ConfigFileError, load_yaml
+from tennis_stroke.io.config_files import ConfigFileError, load_yaml
 
 try:
     load_yaml("config/config.yaml")

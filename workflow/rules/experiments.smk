@@ -27,7 +27,7 @@ rule angle_map:
 rule gather_map:
     input:
         chunks=chunk_files,
-        code=sources("chunking.py", "failures.py", "io.py", "pipeline.py"),
+        code=sources("pipeline", "io", "experiments/grids.py"),
     output:
         "results/{map}.nc",
     log:
@@ -182,7 +182,7 @@ rule elbow_force_strokes:
 
 rule identification:
     input:
-        SIMULATION_SOURCES,
+        INFERENCE_SOURCES,
         claims="config/claims.yaml",
         readings="config/readings.yaml",
     output:
@@ -206,7 +206,7 @@ rule identification:
 
 rule robustness_screen:
     input:
-        SIMULATION_SOURCES,
+        INFERENCE_SOURCES,
         claims="config/claims.yaml",
         readings="config/readings.yaml",
         model_fits=IDENTIFICATION_FILES["model_fits"],
@@ -233,12 +233,7 @@ rule robustness_screen:
 
 rule robustness_chunk:
     input:
-        SIMULATION_SOURCES,
-        sources(
-            "replication/robustness.py",
-            "replication/claims.py",
-            "replication/measures.py",
-        ),
+        INFERENCE_SOURCES,
         kept=RESULT_FILES["robustness_readings"],
         claims="config/claims.yaml",
         readings="config/readings.yaml",

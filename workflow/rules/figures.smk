@@ -6,8 +6,9 @@ rule figure:
         figure_inputs,
         sources(
             "replication/figures.py",
-            "replication/measures.py",
+            "inference/measures.py",
             "replication/registry.py",
+            "experiments/specs.py",
         ),
     output:
         report(

@@ -9,9 +9,9 @@ rule claims:
         robustness=RESULT_FILES["robustness"],
         code=sources(
             "replication/claims.py",
-            "replication/measures.py",
             "replication/robustness.py",
-            "experiments/reading_space.py",
+            "inference",
+            "experiments/specs.py",
         ),
     output:
         report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
@@ -30,7 +30,9 @@ rule report:
         statements="config/claims.yaml",
         inference=list(INFERENCE_RESULTS.values()),
         results=list(PAPER_RESULTS.values()),
-        code=sources("replication/report.py", "replication/registry.py"),
+        code=sources(
+            "replication/report.py", "replication/registry.py", "experiments/specs.py"
+        ),
         assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
         studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],
     output:

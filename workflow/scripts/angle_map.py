@@ -2,7 +2,7 @@
 
 from tennis_stroke.experiments.grids import axis
 from tennis_stroke.experiments.maps import angle_map
-from tennis_stroke.pipeline import Timer, chunk, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, chunk, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -3,9 +3,10 @@ claim's robustness across the consistent readings and each deviation's evidence.
 
 import xarray as xr
 
-from tennis_stroke.experiments.reading_space import load_reading_space
-from tennis_stroke.pipeline import logged
-from tennis_stroke.replication.claims import evaluate, load_claims
+from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.inference.reading_space import load_reading_space
+from tennis_stroke.pipeline.jobs import logged
+from tennis_stroke.replication.claims import evaluate
 from tennis_stroke.replication.robustness import annotate
 
 with logged(snakemake.log[0]):

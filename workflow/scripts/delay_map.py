@@ -2,7 +2,7 @@
 one chunk of rows of C2 or delta0."""
 
 from tennis_stroke.experiments.maps import torque_delay_map
-from tennis_stroke.pipeline import Timer, chunk_position, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, chunk_position, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -2,7 +2,7 @@
 one chunk of psi_F rows."""
 
 from tennis_stroke.experiments.maps import elbow_force_section_map
-from tennis_stroke.pipeline import Timer, chunk_position, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, chunk_position, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -1,7 +1,7 @@
 """Fig. 4: omega1(t), omega2(t) of the two strokes."""
 
 from tennis_stroke.experiments.strokes import fig4_strokes
-from tennis_stroke.pipeline import Timer, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -1,6 +1,6 @@
 """Draw one figure from its result files."""
 
-from tennis_stroke.pipeline import logged
+from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.figures import draw
 
 with logged(snakemake.log[0]):

@@ -1,9 +1,9 @@
 """One map from its chunks; fails when its share of failed strokes is above the limit."""
 
-from tennis_stroke.chunking import gather_chunks
-from tennis_stroke.failures import check_failure_share
-from tennis_stroke.io import write_netcdf
-from tennis_stroke.pipeline import logged
+from tennis_stroke.io.failures import check_failure_share
+from tennis_stroke.io.netcdf import write_netcdf
+from tennis_stroke.pipeline.chunks import gather_chunks
+from tennis_stroke.pipeline.jobs import logged
 
 with logged(snakemake.log[0]):
     ds = gather_chunks(snakemake.input.chunks)

@@ -1,10 +1,10 @@
 """Identification as a fit (config/readings.yaml): fits, profiles and leave-one-out of
 both declared fit sets, one netCDF file each."""
 
-from tennis_stroke.experiments.identification import run_identification, summary, to_datasets
-from tennis_stroke.experiments.reading_space import load_reading_space
-from tennis_stroke.pipeline import Timer, logged, save, settings
-from tennis_stroke.replication.claims import load_claims
+from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.inference.identification import run_identification, summary, to_datasets
+from tennis_stroke.inference.reading_space import load_reading_space
+from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -1,7 +1,7 @@
 """Sec. II: v_out of the Fig. 4 strokes over the paper's range of the spring constant."""
 
 from tennis_stroke.experiments.maps import k_sensitivity_map
-from tennis_stroke.pipeline import Timer, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -3,7 +3,7 @@ of M2 rows."""
 
 from tennis_stroke.experiments.grids import axis
 from tennis_stroke.experiments.maps import mass_length_map
-from tennis_stroke.pipeline import Timer, chunk, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, chunk, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

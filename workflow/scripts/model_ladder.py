@@ -1,6 +1,6 @@
 """Model ladder (spring contact vs instantaneous impact) and the optimum-search cost."""
 
-from tennis_stroke.pipeline import Timer, logged, save
+from tennis_stroke.pipeline.jobs import Timer, logged, save
 from tennis_stroke.studies.ladder import ladder
 from tennis_stroke.studies.optimum_cost import optimum_cost
 from tennis_stroke.studies.sampling import sample_strokes

@@ -1,7 +1,7 @@
 """Build report/index.html from the figures, claims, ledger and run metadata."""
 
-from tennis_stroke.pipeline import logged
-from tennis_stroke.replication.registry import INFERENCE_RESULTS
+from tennis_stroke.experiments.specs import INFERENCE_RESULTS
+from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.report import build_report
 
 with logged(snakemake.log[0]):

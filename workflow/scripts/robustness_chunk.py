@@ -2,10 +2,10 @@
 
 import xarray as xr
 
-from tennis_stroke.experiments.reading_space import load_reading_space
-from tennis_stroke.pipeline import Timer, chunk_position, logged, save, settings
-from tennis_stroke.replication.claims import load_claims
-from tennis_stroke.replication.robustness import evaluate_readings
+from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.inference.reading_space import load_reading_space
+from tennis_stroke.inference.robustness import evaluate_readings
+from tennis_stroke.pipeline.jobs import Timer, chunk_position, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -3,10 +3,10 @@ fit sets, and the consistent readings kept (config/readings.yaml, multiverse).""
 
 import xarray as xr
 
-from tennis_stroke.experiments.multiverse import best_fits, readings_dataset, screen
-from tennis_stroke.experiments.reading_space import load_reading_space
-from tennis_stroke.pipeline import Timer, logged, save, settings
-from tennis_stroke.replication.claims import load_claims
+from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.inference.multiverse import best_fits, readings_dataset, screen
+from tennis_stroke.inference.reading_space import load_reading_space
+from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -2,7 +2,7 @@
 
 import numpy as np
 
-from tennis_stroke.pipeline import Timer, logged, save
+from tennis_stroke.pipeline.jobs import Timer, logged, save
 from tennis_stroke.studies.stability import stability_map
 
 p = snakemake.params

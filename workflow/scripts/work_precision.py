@@ -1,6 +1,6 @@
 """Speed against accuracy: the work-precision table of every integrator."""
 
-from tennis_stroke.pipeline import Timer, logged, save
+from tennis_stroke.pipeline.jobs import Timer, logged, save
 from tennis_stroke.studies.sampling import sample_strokes
 from tennis_stroke.studies.work_precision import work_precision
 

@@ -1,3 +1,3 @@
-"""The paper's experiments as functions of plain parameters, and the identification of
-the paper's unstated readings.  Imports the solver and the model, never a layer above.
+"""The paper's experiments as functions of plain parameters, their grids, and the
+table of result files.  Imports the solver, the model and io, never a layer above.
 """

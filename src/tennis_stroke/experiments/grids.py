@@ -65,3 +65,22 @@ def refine_peak(x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
 def ok_speeds(res: Mapping[str, np.ndarray]) -> np.ndarray:
     """v_out with failed strokes as NaN."""
     return np.where(res["status"] == 0, res["v_out_kmh"], np.nan)
+
+
+def chunk_count(requested: int, rows: int) -> int:
+    """Number of chunks actually used: ``requested``, at most one per row (>= 1)."""
+    if requested < 1:
+        raise ValueError(f"chunk count must be >= 1, got {requested}")
+    return max(1, min(int(requested), int(rows)))
+
+
+def chunk_rows(values: np.ndarray, index: int, count: int) -> np.ndarray:
+    """Rows ``index`` (0-based) of ``count`` contiguous, nearly equal blocks of ``values``."""
+    if not 0 <= index < count:
+        raise ValueError(f"chunk index {index} is outside 0..{count - 1}")
+    return np.array_split(np.asarray(values), count)[index]
+
+
+def select_rows(values: np.ndarray, rows: tuple[int, int] | None) -> np.ndarray:
+    """All of ``values``, or only chunk ``rows = (index, count)`` of them (:func:`chunk_rows`)."""
+    return np.asarray(values) if rows is None else chunk_rows(values, *rows)

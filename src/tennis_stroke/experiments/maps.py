@@ -3,8 +3,8 @@
 Every function takes model overrides (``params``: scalars and readings), solver settings
 and a thread count, runs strokes through :func:`tennis_stroke.solver.stroke.strike_batch`
 and returns an :class:`xarray.Dataset` with CF metadata
-(:func:`tennis_stroke.io.result_dataset`).  The first axis of every map can be computed
-in chunks of rows (:mod:`tennis_stroke.chunking`); the workflow's scripts only call
+(:func:`tennis_stroke.io.netcdf.result_dataset`).  The first axis of every map can be computed
+in chunks of rows (:mod:`tennis_stroke.pipeline.chunks`); the workflow's scripts only call
 these and write the files.
 """
 
@@ -15,13 +15,12 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from ..chunking import select_rows
-from ..io import result_dataset
+from ..io.netcdf import result_dataset
 from ..model.params import resolve_params
 from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
-from .grids import axis, grid, ok_speeds, refine_peak
+from .grids import axis, grid, ok_speeds, refine_peak, select_rows
 
 
 def angle_map(
@@ -196,7 +195,7 @@ def torque_delay_map(
     ``C2`` gives a one-row map, Fig. 9).
 
     ``rows``: ``(index, count)``, only that chunk of the first axis
-    (:func:`tennis_stroke.chunking.chunk_rows`).
+    (:func:`tennis_stroke.pipeline.chunks.chunk_rows`).
     """
     model = {**params, "L1": section["L1"]}
     tau = axis(section["tau"])

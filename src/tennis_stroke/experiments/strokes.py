@@ -8,7 +8,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from ..io import result_dataset
+from ..io.netcdf import result_dataset
 from ..model.dynamics import coefficients, elbow_position
 from ..model.params import resolve_params
 from ..solver.reference import free_swing, solve_stroke

@@ -17,7 +17,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
-from .measures import measure_delay_threshold, valid_v_out  # noqa: E402
+from ..inference.measures import measure_delay_threshold, valid_v_out  # noqa: E402
 from .registry import FIGURES  # noqa: E402
 
 DPI = 110

@@ -31,8 +31,9 @@ from markdown_it import MarkdownIt
 from markupsafe import Markup
 
 from .._version import __version__
-from ..failures import failure_counts
-from ..io import git_commit, load_yaml
+from ..io.config_files import load_yaml
+from ..io.failures import failure_counts
+from ..io.netcdf import git_commit
 from ..model.params import READINGS
 from .registry import FIGURES
 from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING

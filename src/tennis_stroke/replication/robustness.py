@@ -3,7 +3,7 @@ deviation (``config/readings.yaml``: ``multiverse``, ``evidence``).
 
 :func:`evaluate_readings` evaluates every claim of ``config/claims.yaml`` on the paper's
 experiments run under each kept reading of the multiverse
-(:mod:`tennis_stroke.experiments.multiverse`), under every combination of the
+(:mod:`tennis_stroke.inference.multiverse`), under every combination of the
 claim-level readings (the instant Fig. 11's theta and Table I's omega2 are quoted at,
 the figures' curves).  :func:`classify` gives each claim its robustness class and
 :func:`evidence` each deviation of the default reading its evidence class, both by the
@@ -12,27 +12,16 @@ rules declared in ``config/readings.yaml`` before any result existed.
 
 from __future__ import annotations
 
-import copy
-import itertools
 from collections.abc import Mapping, Sequence
 
 import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..chunking import select_rows
-from ..experiments.identification import quoted_variable
-from ..experiments.multiverse import (
+from ..inference.multiverse import (
     CLAIM_LEVEL,
-    CURVE_FILES,
-    experiment_config,
-    paper_results,
-    reading_of,
 )
-from ..experiments.reading_space import ReadingSpace
-from ..io import labelled
-from ..solver.settings import SolverSettings
-from .claims import measure, within
+from ..inference.reading_space import ReadingSpace
 
 #: Robustness classes with their meaning, in the order of config/readings.yaml.
 ROBUSTNESS_MEANING = {
@@ -64,153 +53,6 @@ COLUMNS = (
     "evidence",
     "objective_gap",
 )
-
-
-def variants(space: ReadingSpace) -> list[dict[str, str]]:
-    """Every combination of the claim-level readings (:data:`CLAIM_LEVEL`)."""
-    names = list(CLAIM_LEVEL)
-    return [
-        dict(zip(names, combo, strict=True))
-        for combo in itertools.product(*(space.discrete[n] for n in names))
-    ]
-
-
-def quoted_claims(
-    claims: Sequence[Mapping], space: ReadingSpace, instants: Mapping[str, str]
-) -> list[dict]:
-    """The claims with each quoted variable read at the instant of its quoting group
-    (``instants``: group -> ``phi0`` or ``contact``; groups not named keep the file's
-    variable of ``config/claims.yaml``)."""
-    group_of = space.quoting_of_claim()
-    out = []
-    for c in claims:
-        group = group_of.get(c["id"])
-        if group in instants and "var" in c["measure"]:
-            c = copy.deepcopy(dict(c))
-            c["measure"]["var"] = quoted_variable(c["measure"]["var"], instants[group], space)
-        out.append(c)
-    return out
-
-
-def files_of_reading(
-    results: Mapping[str, xr.Dataset], curves: str, l1_max: float | None
-) -> dict[str, xr.Dataset]:
-    """The result files one claim evaluation reads: the curve files of ``curves``, and
-    the Figs. 5-6 map cut at ``L1 <= l1_max`` (the unknown end of the figures' axis)."""
-    files = {k: v for k, v in results.items() if "/" not in k}
-    for key in CURVE_FILES:
-        files[key] = results[f"{key}/{curves}"]
-    if l1_max is not None and "ml" in files:
-        ml = files["ml"]
-        files["ml"] = ml.isel(L1=np.flatnonzero(ml["L1"].values <= l1_max + 1e-9))
-    return files
-
-
-def evaluate_reading(
-    claims: Sequence[Mapping],
-    space: ReadingSpace,
-    results: Mapping[str, xr.Dataset],
-    reading: Mapping[str, object],
-) -> tuple[np.ndarray, list[dict[str, str]]]:
-    """Values of every claim (``variant x claim``) under ``reading`` (its discrete
-    readings and continuous unknowns) and every claim-level variant.
-
-    Claims that no claim-level reading touches are evaluated once."""
-    level = space.quoting_of_claim()
-    touched = {c for c, g in level.items() if g in CLAIM_LEVEL}
-    touched |= set(space.raw["figure_curves"].get("claims", []))
-    fixed = {g: str(reading[g]) for g in space.raw["quoting"] if g in reading}
-    l1_max = reading.get("fig6_L1_max")
-    out = []
-    cases = variants(space)
-    first: np.ndarray | None = None
-    for case in cases:
-        instants = {**fixed, **{g: case[g] for g in CLAIM_LEVEL if g in space.raw["quoting"]}}
-        files = files_of_reading(results, case["figure_curves"], l1_max)
-        row = []
-        for j, c in enumerate(quoted_claims(claims, space, instants)):
-            if first is not None and c["id"] not in touched:
-                row.append(first[j])
-                continue
-            row.append(measure(c["measure"], files))
-        values = np.array(row, dtype=float)
-        first = values if first is None else first
-        out.append(values)
-    return np.array(out), cases
-
-
-def readings_results(
-    claims: Sequence[Mapping],
-    space: ReadingSpace,
-    readings: xr.Dataset,
-    values: np.ndarray,
-    cases: Sequence[Mapping[str, str]],
-) -> xr.Dataset:
-    """The claims x readings file: ``value`` and ``within`` (1 if within the claim's
-    tolerance) over ``(reading, variant, claim)``, with each reading's discrete readings
-    and unknowns and each variant's claim-level readings."""
-    paper = np.array([c["paper_value"] for c in claims], dtype=float)
-    tol = np.array([c["tolerance"] for c in claims], dtype=float)
-    ok = within(values, paper, tol)
-    ds = xr.Dataset(
-        {
-            "value": (
-                ("reading", "variant", "claim"),
-                values,
-                {"long_name": "reproduced value of the claim (its unit: claim_unit)"},
-            ),
-            "within": (
-                ("reading", "variant", "claim"),
-                ok.astype(np.int8),
-                {"long_name": "1 if within the claim's declared tolerance", "units": "1"},
-            ),
-            **{
-                k: ("variant", [case[k] for case in cases], {"long_name": f"reading {k}"})
-                for k in CLAIM_LEVEL
-            },
-            "paper_value": ("claim", paper, {"long_name": "paper's value"}),
-            "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),
-            "claim_unit": ("claim", [c["unit"] for c in claims], {"long_name": "unit"}),
-            "fit_set": (
-                "claim",
-                [space.fit_of_claim().get(c["id"], "") for c in claims],
-                {"long_name": "fit set that uses the claim (empty: held out)"},
-            ),
-        },
-        coords={
-            "reading": readings["reading"],
-            "variant": ("variant", np.arange(len(cases), dtype=np.int32), {"units": "1"}),
-            "claim": ("claim", [c["id"] for c in claims], {"long_name": "claim id"}),
-        },
-    )
-    for k, v in readings.data_vars.items():
-        ds[k] = v
-    ds.attrs.update(readings.attrs)  # provenance of the screen that chose the readings
-    return labelled(ds)
-
-
-def evaluate_readings(
-    claims: Sequence[Mapping],
-    space: ReadingSpace,
-    readings: xr.Dataset,
-    config: Mapping,
-    settings: SolverSettings,
-    rows: tuple[int, int] | None = None,
-    threads: int | None = 1,
-) -> xr.Dataset:
-    """Every claim under every kept reading (or chunk ``rows = (index, count)`` of them,
-    :func:`tennis_stroke.chunking.chunk_rows`): the paper's experiments run at the
-    multiverse's resolution over the workflow ``config``, the claims evaluated under
-    every claim-level variant (:func:`readings_results`)."""
-    index = select_rows(np.arange(readings.sizes["reading"]), rows)
-    cases = variants(space)
-    values = np.full((index.size, len(cases), len(claims)), np.nan)
-    for n, i in enumerate(index):
-        reading = reading_of(readings, int(i))
-        cfg, model = experiment_config(config, space, reading)
-        results = paper_results(cfg, model, settings, space.discrete["figure_curves"], threads)
-        values[n] = evaluate_reading(claims, space, results, reading)[0]
-    return readings_results(claims, space, readings.isel(reading=index), values, cases)
 
 
 def _deciding(ok: np.ndarray, ds: xr.Dataset, space: ReadingSpace) -> str:

@@ -39,6 +39,7 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.params import resolve_params
+from .compiled import ensure_compiled
 from .results import (
     EARLY_CONTACT,
     NO_APPROACH,
@@ -49,7 +50,6 @@ from .results import (
     STATUS_NAMES,
     STEP_FAILURE,
 )
-from .warmup import ensure_compiled
 
 #: Samples per phase for ``omega2_max`` on the reference path.
 OMEGA2_SAMPLES = 512

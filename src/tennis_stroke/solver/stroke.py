@@ -54,6 +54,7 @@ from ..model.dynamics import (
 )
 from ..model.params import ParameterError, resolve_params
 from ._kernels import N_STAGES_BY_ID, coefficient_tuple
+from .compiled import ensure_compiled
 from .integrate import (
     HISTORY_COLS,
     N_STATS,
@@ -108,7 +109,6 @@ from .settings import (
     S_TMAX,
     SolverSettings,
 )
-from .warmup import ensure_compiled
 
 
 @njit(**JIT)

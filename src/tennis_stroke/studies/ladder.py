@@ -8,7 +8,7 @@ from collections.abc import Mapping
 import numpy as np
 import xarray as xr
 
-from ..io import provenance
+from ..io.netcdf import provenance
 from ..model.dynamics import coefficients
 from ..model.impact import impact_rebound_kmh
 from ..model.params import resolve_params

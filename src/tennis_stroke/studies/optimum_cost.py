@@ -9,7 +9,7 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.maps import mass_length_map
-from ..io import provenance
+from ..io.netcdf import provenance
 from ..model.params import resolve_params
 from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings

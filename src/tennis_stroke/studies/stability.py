@@ -16,7 +16,7 @@ import numpy as np
 import xarray as xr
 from scipy.integrate import solve_ivp
 
-from ..io import provenance
+from ..io.netcdf import provenance
 from ..model.dynamics import (
     A_BALL_W,
     CF_MB,

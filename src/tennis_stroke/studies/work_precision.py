@@ -15,7 +15,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from ..io import provenance
+from ..io.netcdf import provenance
 from ..model.params import resolve_params
 from ..solver.reference import solve_stroke
 from ..solver.results import cf_attrs

@@ -1,0 +1,235 @@
+"""The paper's claims, evaluated against the result files.
+
+``config/claims.yaml`` lists every claim: ``id``, ``source``, ``quantity``, ``unit``,
+``paper_value``, ``tolerance`` (absolute, in the claim's unit), ``expectation``
+(``reproduce`` or ``known_deviation`` with a ``reason``) and ``measure``: how to compute
+the reproduced value from the results, either a variable of a file
+(``{file, var, sel, abs}``) or a named measurement of :data:`MEASUREMENTS`
+(``{function, file, ...}``).  Qualitative claims are measurements returning 1 (true) or
+0 (false), with ``paper_value: 1`` and ``tolerance: 0``.
+
+:func:`evaluate` returns the table written to ``results/claims.csv`` with the columns
+``id, source, quantity, unit, paper_value, reproduced_value, tolerance, status``.
+
+:func:`claim_errors` checks a claims file before any job runs (the workflow calls it when
+it parses the Snakefile): a bad entry is one line naming the claim, not a failure of the
+``claims`` job after every simulation.
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+import typing
+from collections.abc import Collection, Iterator, Mapping
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..experiments.specs import PAPER_RESULTS
+from ..io.config_files import ConfigFileError, load_yaml
+from .measures import MEASUREMENTS
+
+EXPECTATIONS = ("reproduce", "known_deviation")
+#: The fields every claim has.
+REQUIRED = (
+    "id",
+    "source",
+    "quantity",
+    "unit",
+    "paper_value",
+    "tolerance",
+    "expectation",
+    "measure",
+)
+#: The keys of a measure that reads one variable of a file (no ``function``).
+VARIABLE_MEASURE = ("file", "var", "sel", "abs")
+#: The unit of a qualitative claim (1 true, 0 false), the only kind with tolerance 0.
+QUALITATIVE_UNIT = "1"
+
+
+class ClaimError(ValueError):
+    """A claim definition is malformed (message is one line)."""
+
+
+def within(value, paper, tolerance):
+    """True where ``value`` is finite and within ``tolerance`` of ``paper`` (the rule of
+    every claim; a rounding margin of 1e-12)."""
+    value = np.asarray(value, dtype=float)
+    with np.errstate(invalid="ignore"):
+        return np.isfinite(value) & (np.abs(value - paper) <= np.asarray(tolerance) + 1e-12)
+
+
+def measure(spec: Mapping, files: Mapping[str, xr.Dataset]) -> float:
+    """The value a claim's ``measure`` computes from the result files (by key)."""
+    spec = dict(spec)
+    if "function" in spec:
+        name = spec.pop("function")
+        fn = MEASUREMENTS.get(name)
+        if fn is None:
+            raise ClaimError(f"unknown measurement {name!r}")
+        names = spec.pop("file")
+        names = names if isinstance(names, list) else [names]
+        return float(fn(*(files[n] for n in names), **spec))
+    da = files[spec["file"]][spec["var"]]
+    if "sel" in spec:
+        da = da.isel(spec["sel"])
+    value = float(da)
+    return abs(value) if spec.get("abs") else value
+
+
+def _number(value) -> bool:
+    return isinstance(value, int | float) and not isinstance(value, bool)
+
+
+def _fits(value, annotation) -> bool:
+    """True if an argument ``value`` fits a measurement parameter's ``annotation``."""
+    if typing.get_origin(annotation) is typing.Literal:
+        return value in typing.get_args(annotation) and not isinstance(value, bool)
+    if annotation is float:
+        return _number(value)
+    if annotation is int:
+        return isinstance(value, int) and not isinstance(value, bool)
+    if annotation in (str, bool):
+        return isinstance(value, annotation)
+    return True
+
+
+def _argument_errors(name: str, n_files: int, args: Mapping) -> Iterator[str]:
+    """Problems of calling measurement ``name`` with ``n_files`` datasets and ``args``."""
+    signature = inspect.signature(MEASUREMENTS[name], eval_str=True)
+    try:
+        bound = signature.bind(*[None] * n_files, **args)
+    except TypeError as exc:
+        yield f"measurement {name!r} with {n_files} file(s) and arguments {dict(args)}: {exc}"
+        return
+    for key, value in bound.arguments.items():
+        annotation = signature.parameters[key].annotation
+        if key in args and annotation is xr.Dataset:
+            yield f"measurement {name!r}: {key!r} is a file (give it in 'file'), not an argument"
+        elif key in args and not _fits(value, annotation):
+            wanted = (
+                f"one of {typing.get_args(annotation)}"
+                if typing.get_origin(annotation) is typing.Literal
+                else f"a {annotation.__name__}"
+            )
+            yield f"measurement {name!r}: argument {key!r} = {value!r} is not {wanted}"
+        elif key not in args and annotation is not xr.Dataset:
+            yield f"measurement {name!r}: {key!r} is an argument, not a file"
+
+
+def _measure_errors(spec, files: Collection[str]) -> Iterator[str]:
+    if not isinstance(spec, Mapping):
+        yield f"measure must be a mapping, got {spec!r}"
+        return
+    names = spec.get("file", [])
+    names = names if isinstance(names, list) else [names]
+    if not names:
+        yield "measure lacks 'file' (the result file it reads)"
+    for key in names:
+        if key not in files:
+            yield f"unknown result file {key!r} (known: {', '.join(sorted(files))})"
+    if "function" in spec:
+        name = spec["function"]
+        if not isinstance(name, str) or name not in MEASUREMENTS:
+            yield f"unknown measurement {name!r} (known: {', '.join(sorted(MEASUREMENTS))})"
+            return
+        args = {k: v for k, v in spec.items() if k not in ("function", "file")}
+        yield from _argument_errors(name, len(names), args)
+        return
+    unknown = sorted(set(spec) - set(VARIABLE_MEASURE))
+    if unknown:
+        yield (
+            f"measure has unknown keys {unknown} (a variable of a file takes "
+            f"{', '.join(VARIABLE_MEASURE)}; a named measurement takes 'function')"
+        )
+    if not isinstance(spec.get("var"), str):
+        yield "measure lacks 'var' (the variable of the file) or 'function'"
+    if len(names) != 1:
+        yield f"a variable is read from one file, got {names}"
+    sel = spec.get("sel", {})
+    if not isinstance(sel, Mapping) or not all(
+        isinstance(i, int) and not isinstance(i, bool) for i in sel.values()
+    ):
+        yield f"sel must map dimensions to integer positions, got {sel!r}"
+    if not isinstance(spec.get("abs", False), bool):
+        yield f"abs must be true or false, got {spec['abs']!r}"
+
+
+def _claim_errors(claim, files: Collection[str]) -> Iterator[str]:
+    """Problems of one claim (without its id)."""
+    for key in REQUIRED:
+        if key not in claim:
+            yield f"lacks {key!r}"
+    if claim.get("expectation", EXPECTATIONS[0]) not in EXPECTATIONS:
+        yield f"expectation must be one of {EXPECTATIONS}, got {claim['expectation']!r}"
+    if claim.get("expectation") == "known_deviation" and not claim.get("reason"):
+        yield "a known deviation needs a reason"
+    for key in ("paper_value", "tolerance"):
+        if key in claim and not (_number(claim[key]) and math.isfinite(claim[key])):
+            yield f"{key} must be a finite number, got {claim[key]!r}"
+    tolerance = claim.get("tolerance")
+    if _number(tolerance) and tolerance < 0:
+        yield f"tolerance must be >= 0, got {tolerance}"
+    elif tolerance == 0 and claim.get("unit") != QUALITATIVE_UNIT:
+        yield (
+            f"tolerance must be > 0 (0 only for a qualitative claim, unit "
+            f"{QUALITATIVE_UNIT!r}; unit here {claim.get('unit')!r})"
+        )
+    if "measure" in claim:
+        yield from _measure_errors(claim["measure"], files)
+
+
+def claim_errors(path: str | Path, files: Collection[str] = tuple(PAPER_RESULTS)) -> list[str]:
+    """Every problem of the claims file ``path`` as one-line messages naming the file and
+    the claim (empty: the claims are good).
+
+    Checked without any result file: the required fields, unique ids, the expectation
+    (a known deviation with its reason), finite values, tolerances (> 0; 0 only for a
+    qualitative claim, unit ``"1"``), the result files (``files``: the keys a measure may
+    name, by default those of :data:`~tennis_stroke.replication.registry.PAPER_RESULTS`),
+    and the measurement: a function of :data:`MEASUREMENTS` called with its files and
+    arguments as its signature says (names, count, annotated types and choices), or one
+    variable of one file.
+    """
+    try:
+        raw = load_yaml(path)
+    except ConfigFileError as exc:
+        return [str(exc)]
+    return _claims_file_errors(raw, path, files)
+
+
+def _claims_file_errors(raw: object, path: str | Path, files: Collection[str]) -> list[str]:
+    """:func:`claim_errors` of the contents ``raw`` of the claims file ``path``."""
+    claims = raw.get("claims") if isinstance(raw, Mapping) else None
+    if not isinstance(claims, list) or not claims:
+        return [f"{path}: no list of claims (key 'claims')"]
+    errors, seen = [], set()
+    for i, claim in enumerate(claims):
+        if not isinstance(claim, Mapping):
+            errors.append(f"{path}: claim {i + 1} is not a mapping: {claim!r}")
+            continue
+        cid = claim.get("id")
+        if not isinstance(cid, str) or not cid:
+            if "id" in claim:
+                errors.append(f"{path}: claim {i + 1}: id must be a name, got {cid!r}")
+            cid = f"number {i + 1}"
+        elif cid in seen:
+            errors.append(f"{path}: duplicate claim id {cid!r}")
+        seen.add(cid)
+        errors.extend(f"{path}: claim {cid!r}: {e}" for e in _claim_errors(claim, files))
+    return errors
+
+
+def load_claims(path: str | Path, files: Collection[str] = tuple(PAPER_RESULTS)) -> list[dict]:
+    """Read ``claims.yaml``, checked by :func:`claim_errors` (``files``: the result file
+    keys a measure may name); raises :class:`ClaimError` with the first problem."""
+    try:
+        raw = load_yaml(path)
+    except ConfigFileError as exc:
+        raise ClaimError(str(exc)) from None
+    errors = _claims_file_errors(raw, path, files)
+    if errors:
+        raise ClaimError(errors[0])
+    return raw["claims"]

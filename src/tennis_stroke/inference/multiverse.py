@@ -1,0 +1,357 @@
+"""The robustness analysis (the multiverse): readings consistent with the paper, and the
+paper's experiments under each of them (``config/readings.yaml``, ``multiverse``).
+
+Three steps, each a workflow job:
+
+1. :func:`screen` draws ``candidates`` points of a scrambled Sobol design (seeded) over
+   every continuous unknown (its declared ``range``, log where its scale is log) and
+   simulates, for every combination of the model fit's discrete readings, the strokes of
+   both fit sets (Fig. 4's two strokes, Table I's strokes) at each point.  A candidate is
+   *consistent* when every fit claim lies within ``consistent.max_abs_residual``
+   tolerances (or, for a fit set that no fitted reading brings all within, its RMS
+   normalised residual is at most the best fit's + ``fallback_margin``).
+2. :func:`select` keeps up to ``readings`` consistent readings, in Sobol order,
+   round-robin over the consistent discrete combinations (so each is represented).
+3. :func:`paper_results` runs every paper experiment of one reading (the grids of
+   ``multiverse.resolution`` merged over the workflow config); the replication layer
+   evaluates every claim on them (:mod:`tennis_stroke.replication.robustness`).
+"""
+
+from __future__ import annotations
+
+import copy
+import itertools
+import math
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+from scipy.stats import qmc
+
+from ..experiments.grids import axis
+from ..experiments.maps import (
+    angle_map,
+    elbow_force_section_map,
+    k_sensitivity_map,
+    mass_length_map,
+    torque_delay_map,
+)
+from ..experiments.strokes import delay_strokes, elbow_force_strokes, fig4_strokes, sec5_stroke
+from ..io.netcdf import labelled, provenance
+from ..model.params import PARAMETERS
+from ..solver.settings import SolverSettings
+from .identification import elbow_simulator, model_simulator, residuals, targets
+from .reading_space import ReadingSpace
+
+#: The claim-level readings: each kept reading is evaluated under all their combinations.
+CLAIM_LEVEL = ("fig11_theta", "table1_omega", "figure_curves")
+#: Result files whose curves depend on ``figure_curves``.
+CURVE_FILES = ("fig4", "delay")
+
+
+class MultiverseError(ValueError):
+    """The robustness analysis cannot run as declared (one line)."""
+
+
+def unknowns(space: ReadingSpace) -> list[str]:
+    """The continuous unknowns in their declared order (the design's dimensions)."""
+    return list(space.continuous)
+
+
+def design(space: ReadingSpace) -> dict[str, np.ndarray]:
+    """The declared Sobol design: ``candidates`` points over every continuous unknown,
+    as values in each unknown's unit (the same points for every discrete combination)."""
+    spec = space.raw["multiverse"]
+    names = unknowns(space)
+    n = int(spec["candidates"])
+    sobol = qmc.Sobol(len(names), scramble=True, seed=int(spec["seed"]))
+    u = sobol.random(2 ** math.ceil(math.log2(n)))[:n]
+    return {name: space.continuous[name].from_unit(u[:, i]) for i, name in enumerate(names)}
+
+
+def model_combinations(space: ReadingSpace) -> list[dict[str, str]]:
+    """Every combination of the model fit's discrete readings, in declared order."""
+    names = list(space.fits["model"].discrete)
+    return [
+        dict(zip(names, combo, strict=True))
+        for combo in itertools.product(*(space.discrete[n] for n in names))
+    ]
+
+
+def _bound(fit_summary: Mapping[str, float] | None, space: ReadingSpace, n_claims: int):
+    """(max |residual|, max RMS) of the consistency rule for one fit set: all claims
+    within ``max_abs_residual``, or the fallback when the best fit does not reach that."""
+    rule = space.raw["consistent"]
+    if fit_summary is None or fit_summary["passed"] >= n_claims:
+        return float(rule["max_abs_residual"]), math.inf
+    return math.inf, float(fit_summary["score"]) + float(rule["fallback_margin"])
+
+
+def _within(res: np.ndarray, rms: np.ndarray, bound: tuple[float, float]) -> np.ndarray:
+    """Candidates whose residuals (last axis) and RMS meet a consistency ``bound``
+    (NaN: not computed, inconsistent)."""
+    with np.errstate(invalid="ignore"):
+        return (np.max(np.abs(res), axis=-1) <= bound[0] + 1e-12) & (rms <= bound[1])
+
+
+def screen(
+    space: ReadingSpace,
+    claims: Sequence[Mapping],
+    fig4: Sequence[Sequence[float]],
+    force: Mapping[str, object],
+    stroke: Mapping[str, object],
+    base: Mapping[str, object] | None = None,
+    best_fits: Mapping[str, Mapping[str, float]] | None = None,
+    settings: SolverSettings | None = None,
+) -> xr.Dataset:
+    """Fit-set residuals of every candidate under every model combination.
+
+    ``best_fits``: per fit set, ``passed`` and ``score`` of the identification's best fit
+    (the fallback of the consistency rule).  Returns a dataset over ``(combination,
+    candidate)`` (and ``claim``) with the residuals, the RMS per fit set and
+    ``consistent``.  Table I's strokes are simulated only for candidates the Fig. 4 fit
+    set leaves consistent (the others have NaN Table I residuals: ruled out already).
+    """
+    base = dict(base or {})
+    points = design(space)
+    n = len(next(iter(points.values())))
+    combos = model_combinations(space)
+    physical = [k for k in space.fits["model"].discrete if k in space.raw["model"]]
+    quoting = [k for k in space.fits["model"].discrete if k in space.raw["quoting"]]
+    fits = [space.fits["model"], space.fits["elbow_force"]]
+    goals = {f.name: targets(space, f, claims) for f in fits}
+    sims = {
+        "model": model_simulator(fig4, settings),
+        "elbow_force": elbow_simulator(force, stroke, settings),
+    }
+    if [f.name for f in fits] != ["model", "elbow_force"] or "table1_tau_F" not in points:
+        raise MultiverseError("the screen expects the model and elbow_force fit sets")
+    params = {k: v[:, None] for k, v in points.items() if k in PARAMETERS}
+    claim_ids = [t.claim for f in fits for t in goals[f.name]]
+    res = np.full((len(combos), n, len(claim_ids)), np.nan)
+    rms = np.full((len(combos), n, len(fits)), np.nan)
+    bounds = [_bound((best_fits or {}).get(f.name), space, len(goals[f.name])) for f in fits]
+    cache: dict[tuple, dict] = {}
+    for c, combo in enumerate(combos):
+        key = tuple(combo[k] for k in physical)
+        overrides = {**base, **{k: combo[k] for k in physical}}
+        if key not in cache:
+            cache[key] = {"model": sims["model"]({**overrides, **params})}
+        instants = {k: combo[k] for k in quoting}
+        model_res = residuals(cache[key]["model"], goals["model"], instants, space)[1]
+        res[c, :, : model_res.shape[1]] = model_res
+        rms[c, :, 0] = np.sqrt(np.mean(model_res**2, axis=1))
+        ok = _within(model_res, rms[c, :, 0], bounds[0])
+        # Table I's strokes only where the model fit set leaves the candidate consistent
+        todo = np.flatnonzero(ok)
+        if todo.size == 0:
+            continue
+        sub = {k: v[todo] for k, v in params.items()}
+        sub["table1_tau_F"] = points["table1_tau_F"][todo, None]
+        elbow = sims["elbow_force"]({**overrides, **sub})
+        elbow_res = residuals(elbow, goals["elbow_force"], instants, space)[1]
+        res[c, todo, model_res.shape[1] :] = elbow_res
+        rms[c, todo, 1] = np.sqrt(np.mean(elbow_res**2, axis=1))
+    consistent = _within(res[..., : len(goals["model"])], rms[..., 0], bounds[0]) & _within(
+        res[..., len(goals["model"]) :], rms[..., 1], bounds[1]
+    )
+    names = unknowns(space)
+    ds = xr.Dataset(
+        {
+            **{
+                k: ("combination", [combo[k] for combo in combos], {"long_name": f"reading {k}"})
+                for k in combos[0]
+            },
+            **{
+                k: ("candidate", points[k], {"units": space.continuous[k].unit, "long_name": k})
+                for k in names
+            },
+            "residual": (
+                ("combination", "candidate", "claim"),
+                res,
+                {"long_name": "normalised residual (simulated - paper) / tolerance", "units": "1"},
+            ),
+            "rms": (
+                ("combination", "candidate", "fit_set"),
+                rms,
+                {"long_name": "RMS normalised residual of the fit set", "units": "1"},
+            ),
+            "consistent": (
+                ("combination", "candidate"),
+                consistent.astype(np.int8),
+                {
+                    "long_name": "1 if consistent with the paper (config/readings.yaml)",
+                    "units": "1",
+                },
+            ),
+            "max_abs_residual": (
+                "fit_set",
+                [b[0] for b in bounds],
+                {"long_name": "bound on every normalised residual", "units": "1"},
+            ),
+            "max_rms": (
+                "fit_set",
+                [b[1] for b in bounds],
+                {"long_name": "bound on the RMS normalised residual (fallback)", "units": "1"},
+            ),
+        },
+        coords={
+            "combination": ("combination", np.arange(len(combos), dtype=np.int32), {"units": "1"}),
+            "candidate": ("candidate", np.arange(n, dtype=np.int32), {"units": "1"}),
+            "claim": ("claim", claim_ids, {"long_name": "fit claim id (config/claims.yaml)"}),
+            "fit_set": ("fit_set", [f.name for f in fits], {"long_name": "fit set"}),
+        },
+    )
+    ds.attrs.update(provenance({}, settings or SolverSettings()))
+    ds.attrs["design_seed"] = int(space.raw["multiverse"]["seed"])
+    return labelled(ds)
+
+
+def select(screened: xr.Dataset, count: int) -> list[tuple[int, int]]:
+    """Up to ``count`` consistent ``(combination, candidate)`` pairs, in Sobol order,
+    round-robin over the combinations that have consistent candidates."""
+    ok = screened["consistent"].values.astype(bool)
+    queues = [list(np.flatnonzero(row)) for row in ok]
+    chosen: list[tuple[int, int]] = []
+    for rank in itertools.count():
+        progressed = False
+        for c, queue in enumerate(queues):
+            if rank < len(queue) and len(chosen) < count:
+                chosen.append((c, int(queue[rank])))
+                progressed = True
+        if not progressed or len(chosen) >= count:
+            return chosen
+    return chosen  # pragma: no cover (itertools.count never ends)
+
+
+def readings_dataset(space: ReadingSpace, screened: xr.Dataset) -> xr.Dataset:
+    """The selected readings (``multiverse.readings`` of the consistent candidates) as a
+    dataset over ``reading``: each discrete reading and continuous unknown."""
+    chosen = select(screened, int(space.raw["multiverse"]["readings"]))
+    if not chosen:
+        raise MultiverseError(
+            "no candidate of the declared design is consistent with the paper "
+            "(config/readings.yaml, consistent)"
+        )
+    combos = [c for c, _ in chosen]
+    cands = [i for _, i in chosen]
+    names = [k for k in screened.data_vars if screened[k].dims == ("combination",)]
+    out = xr.Dataset(
+        {
+            **{k: ("reading", screened[k].values[combos], screened[k].attrs) for k in names},
+            **{
+                k: ("reading", screened[k].values[cands], screened[k].attrs)
+                for k in unknowns(space)
+            },
+            "combination": ("reading", np.array(combos, dtype=np.int32), {"units": "1"}),
+            "candidate": ("reading", np.array(cands, dtype=np.int32), {"units": "1"}),
+        },
+        coords={"reading": ("reading", np.arange(len(chosen), dtype=np.int32), {"units": "1"})},
+    )
+    out.attrs.update(screened.attrs)
+    return labelled(out)
+
+
+def reading_of(readings: xr.Dataset, index: int) -> dict[str, object]:
+    """One reading of :func:`readings_dataset` as a plain dict (strings and floats)."""
+    row = readings.isel(reading=index)
+    out = {}
+    for k, v in row.data_vars.items():
+        if k in ("combination", "candidate"):
+            continue
+        value = v.values.item()
+        out[k] = value if isinstance(value, str) else float(value)
+    return out
+
+
+def _merge(config: Mapping, update: Mapping) -> dict:
+    out = copy.deepcopy(dict(config))
+    for k, v in update.items():
+        if isinstance(v, Mapping) and isinstance(out.get(k), Mapping):
+            out[k] = _merge(out[k], v)
+        else:
+            out[k] = copy.deepcopy(v)
+    return out
+
+
+def experiment_config(
+    config: Mapping, space: ReadingSpace, reading: Mapping[str, object]
+) -> tuple[dict, dict]:
+    """The workflow config at the multiverse's resolution (``angle_maps`` and
+    ``mass_length`` merged over their sections, ``fig7_tau`` as Fig. 7's ``tau``) with
+    ``reading``'s experiment unknowns, and the model overrides of ``reading`` (readings
+    and parameters) on top of the config's ``model``."""
+    resolution = dict(space.raw["multiverse"]["resolution"])
+    fig7_tau = resolution.pop("fig7_tau", None)
+    cfg = _merge(config, resolution)
+    if fig7_tau is not None:
+        cfg["torque_delay"]["fig7"]["tau"] = dict(fig7_tau)
+    if "table1_tau_F" in reading:
+        cfg["elbow_force"]["table1_tau_F"] = float(reading["table1_tau_F"])
+    model = dict(cfg.get("model") or {})
+    model.update({k: v for k, v in reading.items() if k in space.raw["model"]})
+    model.update({k: float(v) for k, v in reading.items() if k in PARAMETERS})
+    return cfg, model
+
+
+def paper_results(
+    config: Mapping,
+    model: Mapping[str, object],
+    settings: SolverSettings,
+    curves: Sequence[str] = ("free_swing",),
+    threads: int | None = 1,
+) -> dict[str, xr.Dataset]:
+    """Every paper experiment from the workflow ``config`` with ``model`` overrides, by
+    result key (``fig2`` ... ``elbow``; the keys of
+    :data:`tennis_stroke.replication.registry.PAPER_RESULTS`).  The curve files
+    (:data:`CURVE_FILES`) are computed once per entry of ``curves``, keyed
+    ``"{key}/{curves}"``, the others once."""
+    a, ml, td, ef = (
+        config[k] for k in ("angle_maps", "mass_length", "torque_delay", "elbow_force")
+    )
+    sec5 = sec5_stroke(config)
+    out: dict[str, xr.Dataset] = {}
+    for key, l1 in zip(("fig2", "fig3"), a["L1"], strict=False):
+        out[key] = angle_map(
+            axis(a["theta0"]), axis(a["delta0"]), {**model, "L1": float(l1)}, settings, threads
+        )
+    f4 = config["fig4"]
+    for c in curves:
+        out[f"fig4/{c}"] = fig4_strokes(
+            f4["strokes"], f4["t_end"], f4["samples"], model, settings, c
+        )
+        out[f"delay/{c}"] = delay_strokes(sec5, model, settings, c)
+    k = config["k_sensitivity"]
+    out["k_sensitivity"] = k_sensitivity_map(
+        f4["strokes"], k["k_contact"], k["points"], model, settings, threads
+    )
+    out["ml"] = mass_length_map(
+        axis(ml["M2"]),
+        axis(ml["L1"]),
+        ml["coarse_step"],
+        ml["fine_step"],
+        tuple(ml["theta0_range"]),
+        tuple(ml["delta0_range"]),
+        model,
+        settings,
+        threads,
+    )
+    for fig in ("fig7", "fig8", "fig9"):
+        section = {**td[fig], "L1": td["L1"], "theta0": td["theta0"]}
+        out[fig] = torque_delay_map(section, model, settings, None, threads)
+    force = {k: ef[k] for k in ("F0", "t_d")}
+    out["elbow_map"] = elbow_force_section_map(
+        force, ef["psi_F"], ef["tau_F"], sec5, model, settings, None, threads
+    )
+    table1 = {k: ef[k] for k in ("F0", "t_d", "table1_psi", "table1_tau_F")}
+    out["elbow"] = elbow_force_strokes(table1, sec5, model, settings, curves[0])
+    return out
+
+
+def best_fits(fits: Mapping[str, xr.Dataset]) -> dict[str, dict[str, float]]:
+    """``passed`` and ``score`` of the best fit of each fit set (the identification's
+    ``{fit}_fits`` files, best first): the fallback of the consistency rule."""
+    return {
+        name: {"passed": int(ds["passed"].values[0]), "score": float(ds["score"].values[0])}
+        for name, ds in fits.items()
+    }

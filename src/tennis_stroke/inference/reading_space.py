@@ -1,0 +1,227 @@
+"""The reading space of the paper (``config/readings.yaml``), loaded and checked.
+
+The file declares, before any fit, every choice the paper leaves open: the discrete
+readings of the model (:data:`tennis_stroke.model.params.READINGS`), the instant each
+quoted angle or angular velocity is read at, how the figures' curves are computed, and
+the continuous unknowns with the range the paper supports.  It also fixes the fit sets,
+the rule that picks the defaults, the rule that makes a reading consistent with the
+paper and the sampling design of the robustness analysis.  :func:`load_reading_space`
+validates it against its schema (``readings.schema.yaml``, package data beside this
+module) and against the package (every choice, parameter and claim it names must
+exist); each error is one line.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Iterable
+from dataclasses import dataclass
+from pathlib import Path
+
+import jsonschema
+import numpy as np
+import yaml
+
+from ..io.config_files import ConfigFileError, load_yaml
+from ..model.params import PARAMETERS, READINGS, ParameterError, resolve_params
+
+#: The schema of the file, beside the workflow's config schema.
+SCHEMA = Path(__file__).with_name("readings.schema.yaml")
+#: Continuous unknowns that are not model parameters but settings of one experiment.
+EXPERIMENT_UNKNOWNS = ("table1_tau_F", "fig6_L1_max")
+
+
+class ReadingSpaceError(ValueError):
+    """``config/readings.yaml`` is malformed (message is one line, naming the key)."""
+
+
+@dataclass(frozen=True)
+class Unknown:
+    """A continuous unknown: its declared ``range`` (and wider ``exploratory`` range) in
+    ``unit``, fitted and sampled in log or linear ``scale``."""
+
+    name: str
+    unit: str
+    low: float
+    high: float
+    scale: str
+    exploratory: tuple[float, float] | None = None
+
+    def to_unit(self, value, exploratory: bool = False):
+        """The fit variable in [0, 1] of ``value`` over the (exploratory) range."""
+        lo, hi = self.bounds(exploratory)
+        f = np.log if self.scale == "log" else np.asarray
+        return (f(value) - f(lo)) / (f(hi) - f(lo))
+
+    def from_unit(self, u, exploratory: bool = False):
+        """The value at the fit variable ``u`` in [0, 1] (inverse of :meth:`to_unit`)."""
+        lo, hi = self.bounds(exploratory)
+        u = np.asarray(u, dtype=float)
+        if self.scale == "log":
+            return np.exp(np.log(lo) + u * (np.log(hi) - np.log(lo)))
+        return lo + u * (hi - lo)
+
+    def bounds(self, exploratory: bool = False) -> tuple[float, float]:
+        """The declared range, or the exploratory one (the declared one if none)."""
+        if exploratory and self.exploratory is not None:
+            return self.exploratory
+        return (self.low, self.high)
+
+
+@dataclass(frozen=True)
+class FitSet:
+    """Claims fitted together, the discrete readings enumerated and the unknowns fitted."""
+
+    name: str
+    claims: tuple[str, ...]
+    discrete: tuple[str, ...]
+    unknowns: tuple[str, ...]
+    starts: int
+    given: str | None = None
+
+
+@dataclass(frozen=True)
+class ReadingSpace:
+    """The validated declaration (``raw``: the file as read)."""
+
+    raw: dict
+    discrete: dict[str, tuple[str, ...]]
+    continuous: dict[str, Unknown]
+    fits: dict[str, FitSet]
+
+    def fit_of_claim(self) -> dict[str, str]:
+        """Claim id -> the name of the fit set that uses it."""
+        return {c: f.name for f in self.fits.values() for c in f.claims}
+
+    def quoting_of_claim(self) -> dict[str, str]:
+        """Claim id -> the quoting group (``fig4_theta`` ...) that decides its variable."""
+        return {c: g for g, spec in self.raw["quoting"].items() for c in spec.get("claims", [])}
+
+
+def _schema_error(error: jsonschema.ValidationError) -> str:
+    where = ".".join(str(p) for p in error.absolute_path) or "(top level)"
+    return f"readings key {where!r}: {error.message} (rule: {error.validator})"
+
+
+def _check(condition: bool, message: str) -> None:
+    if not condition:
+        raise ReadingSpaceError(message)
+
+
+def load_reading_space(
+    path: str | Path = "config/readings.yaml",
+    claim_ids: Iterable[str] | None = None,
+    schema: str | Path = SCHEMA,
+) -> ReadingSpace:
+    """Read, validate and cross-check the reading space.
+
+    Parameters
+    ----------
+    path : path of ``readings.yaml``
+    claim_ids : ids of ``config/claims.yaml`` (when given, every claim named must exist)
+    schema : the JSON schema
+
+    Raises
+    ------
+    ReadingSpaceError
+        The first problem, one line naming the key.
+    """
+    try:
+        raw = load_yaml(path)
+    except ConfigFileError as exc:
+        raise ReadingSpaceError(str(exc)) from None
+    validator = jsonschema.Draft202012Validator(yaml.safe_load(Path(schema).read_text()))
+    errors = sorted(validator.iter_errors(raw), key=lambda e: list(e.absolute_path))
+    if errors:
+        raise ReadingSpaceError(_schema_error(errors[0]))
+
+    discrete: dict[str, tuple[str, ...]] = {}
+    for name, spec in raw["model"].items():
+        _check(name in READINGS, f"readings key 'model.{name}': not a model reading")
+        bad = sorted(set(spec["choices"]) - set(READINGS[name].choices))
+        _check(not bad, f"readings key 'model.{name}': unknown choice {bad[:1]}")
+        discrete[name] = tuple(spec["choices"])
+    for name, spec in raw["quoting"].items():
+        bad = sorted(set(spec["choices"]) - {"phi0", "contact"})
+        _check(not bad, f"readings key 'quoting.{name}': unknown instant {bad[:1]}")
+        discrete[name] = tuple(spec["choices"])
+    discrete["figure_curves"] = tuple(raw["figure_curves"]["choices"])
+    for name, by_instant in raw["quoted_variables"].items():
+        _check(
+            set(by_instant) == {"phi0", "contact"},
+            f"readings key 'quoted_variables.{name}': needs phi0 and contact",
+        )
+
+    continuous: dict[str, Unknown] = {}
+    for name, spec in raw["continuous"].items():
+        lo, hi = (float(x) for x in spec["range"])
+        _check(lo < hi, f"readings key 'continuous.{name}.range': low must be below high")
+        explo = tuple(float(x) for x in spec["exploratory"]) if "exploratory" in spec else None
+        if explo is not None:
+            _check(
+                explo[0] <= lo and hi <= explo[1],
+                f"readings key 'continuous.{name}.exploratory': must contain the range",
+            )
+        _check(
+            math.isfinite(lo) and math.isfinite(hi),
+            f"readings key 'continuous.{name}.range': must be finite",
+        )
+        if spec["scale"] == "log":
+            _check(lo > 0, f"readings key 'continuous.{name}': a log scale needs a positive range")
+        if name in PARAMETERS:
+            for value in (lo, hi, *(explo or ())):
+                try:
+                    resolve_params({name: value})
+                except ParameterError as exc:
+                    raise ReadingSpaceError(f"readings key 'continuous.{name}': {exc}") from None
+        else:
+            _check(
+                name in EXPERIMENT_UNKNOWNS,
+                f"readings key 'continuous.{name}': neither a model parameter nor one of "
+                f"{', '.join(EXPERIMENT_UNKNOWNS)}",
+            )
+        continuous[name] = Unknown(name, spec["unit"], lo, hi, spec["scale"], explo)
+
+    fits: dict[str, FitSet] = {}
+    for name in ("model", "elbow_force"):
+        spec = raw["fits"][name]
+        for d in spec["discrete"]:
+            _check(d in discrete, f"readings key 'fits.{name}.discrete': unknown reading {d!r}")
+        for u in spec["unknowns"]:
+            _check(u in continuous, f"readings key 'fits.{name}.unknowns': unknown {u!r}")
+        given = spec.get("given")
+        _check(
+            given is None or given in fits,
+            f"readings key 'fits.{name}.given': must name an earlier fit",
+        )
+        fits[name] = FitSet(
+            name,
+            tuple(spec["claims"]),
+            tuple(spec["discrete"]),
+            tuple(spec["unknowns"]),
+            int(spec["starts"]),
+            given,
+        )
+
+    if claim_ids is not None:
+        known = set(claim_ids)
+        named = [
+            *(("fits." + f.name, c) for f in fits.values() for c in f.claims),
+            *(("quoting." + g, c) for g, s in raw["quoting"].items() for c in s.get("claims", [])),
+            *(("figure_curves", c) for c in raw["figure_curves"].get("claims", [])),
+            *(
+                (f"continuous.{u}", c)
+                for u, s in raw["continuous"].items()
+                for c in s.get("claims", [])
+            ),
+            *(("evidence.objective", c) for c in raw["evidence"]["objective"]),
+        ]
+        for where, claim in named:
+            _check(claim in known, f"readings key {where!r}: unknown claim {claim!r}")
+    return ReadingSpace(raw, discrete, continuous, fits)
+
+
+def literal_rank(name: str, choice: str) -> int:
+    """0 for a reading's literal choice (the paper word for word), else 1."""
+    reading = READINGS.get(name)
+    return 0 if reading is not None and reading.literal == choice else 1

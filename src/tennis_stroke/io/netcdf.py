@@ -1,0 +1,244 @@
+"""Files: result files (xarray datasets with CF attributes and provenance, written
+atomically) and the YAML files the package reads (:func:`load_yaml`).
+
+Every variable and coordinate gets ``units`` and ``long_name`` from one table
+(:data:`tennis_stroke.solver.results.VARIABLES`).  Global attributes record the resolved
+parameters, the readings, the solver settings, the package version and the git commit.
+Files are written under a temporary name and renamed, so a final name never holds a
+truncated file.
+"""
+
+from __future__ import annotations
+
+import os
+import platform
+import subprocess
+import tempfile
+from collections.abc import Mapping
+from datetime import UTC, datetime
+from importlib.metadata import version as installed_version
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from .._version import __version__
+from ..model.params import PARAMETERS, READINGS, scalar_params
+from ..solver.results import FILE_NAMES, STATUS_NAMES, cf_attrs
+from ..solver.settings import SolverSettings
+
+#: Global attributes that differ between two runs of the same job, and only those: when
+#: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
+#: model ladder's two models).  Variables holding wall-clock measurements carry a
+#: ``timing`` attribute instead.
+RUN_ATTRS = (
+    "history",
+    "wall_time_s",
+    "chunk_wall_times_s",
+    "us_per_stroke_spring",
+    "us_per_stroke_impact_python",
+)
+
+
+class OutputError(OSError):
+    """The output file cannot be written (message is one line)."""
+
+
+def git_commit() -> str:
+    """Commit of the source tree this package runs from, or ``"unknown"``."""
+    try:
+        out = subprocess.run(
+            ["git", "rev-parse", "HEAD"],
+            cwd=Path(__file__).parent,
+            capture_output=True,
+            text=True,
+            timeout=5,
+            check=True,
+        )
+        dirty = subprocess.run(
+            ["git", "status", "--porcelain", "--untracked-files=no"],
+            cwd=Path(__file__).parent,
+            capture_output=True,
+            text=True,
+            timeout=5,
+            check=True,
+        )
+    except (OSError, subprocess.SubprocessError):
+        return "unknown"
+    return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
+
+
+def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[str, object]:
+    """Global attributes: parameters (``param_*`` with units), readings, solver, versions."""
+    attrs: dict[str, object] = {
+        "Conventions": "CF-1.10",
+        "title": "Youn double-pendulum tennis stroke with ball collision",
+        "source": f"tennis-stroke {__version__}",
+        "tennis_stroke_version": __version__,
+        "git_commit": git_commit(),
+        "python_version": platform.python_version(),
+        "numpy_version": np.__version__,
+        # From the installed metadata: a figure or claims job does not import numba.
+        "numba_version": installed_version("numba"),
+        "scipy_version": installed_version("scipy"),
+        "xarray_version": xr.__version__,
+        "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} written by tennis-stroke",
+    }
+    for name, value in scalar_params(params).items():
+        if name in READINGS:
+            attrs[f"reading_{name}"] = str(value)
+        else:
+            attrs[f"param_{name}"] = float(value)
+            attrs[f"param_{name}_units"] = PARAMETERS[name].unit
+    for name, value in settings.as_dict().items():
+        attrs[f"solver_{name}"] = value
+    return attrs
+
+
+def result_dataset(
+    results: Mapping[str, np.ndarray],
+    coords: Mapping[str, np.ndarray],
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    extra_attrs: Mapping[str, object] | None = None,
+) -> xr.Dataset:
+    """A dataset of stroke results on named grid axes, with CF metadata and provenance.
+
+    Parameters
+    ----------
+    results : mapping of str to ndarray
+        Result fields (:data:`RESULT_FIELDS`) shaped like the grid.
+    coords : mapping of str to 1-D ndarray
+        Grid axes in order, each named in :data:`tennis_stroke.solver.results.VARIABLES`.
+    params : mapping
+        Resolved parameters (scalars become attributes).
+    settings : SolverSettings
+    extra_attrs : mapping, optional
+        More global attributes (e.g. wall time).
+    """
+    dims = list(coords)
+    coord_vars = {}
+    for name, values in coords.items():
+        coord_vars[name] = (name, np.asarray(values, dtype=float), cf_attrs(name))
+    data_vars = {}
+    for field, values in results.items():
+        attrs = cf_attrs(FILE_NAMES.get(field, field))
+        if field == "status":
+            attrs["flag_values"] = np.array(sorted(STATUS_NAMES), dtype=np.int64)
+            attrs["flag_meanings"] = " ".join(STATUS_NAMES[k] for k in sorted(STATUS_NAMES))
+        data_vars[FILE_NAMES.get(field, field)] = (dims, np.asarray(values), attrs)
+    ds = xr.Dataset(data_vars, coords=coord_vars)
+    ds.attrs.update(provenance(params, settings))
+    ds.attrs.update(extra_attrs or {})
+    return ds
+
+
+def labelled(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with ``units`` and ``long_name`` on every variable and coordinate: those
+    without get units ``"1"`` (labels, counts, values in a per-row unit named beside
+    them) and their own name as long name."""
+    for name in [*ds.data_vars, *ds.coords]:
+        ds[name].attrs.setdefault("units", "1")
+        ds[name].attrs.setdefault("long_name", name)
+    return ds
+
+
+def _umask() -> int:
+    """The process's umask (read without changing it where ``/proc`` tells it)."""
+    try:
+        for line in Path("/proc/self/status").read_text().splitlines():
+            if line.startswith("Umask:"):
+                return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)  # the only portable way to read it: set and restore at once
+    os.umask(mask)
+    return mask
+
+
+def temporary_beside(path: Path) -> Path:
+    """An empty new file in ``path``'s folder, to be renamed to ``path``, with the
+    permissions any new file gets under the umask (``mkstemp`` would give 0600)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    try:
+        os.fchmod(fd, 0o666 & ~_umask())
+    finally:
+        os.close(fd)
+    return Path(tmp)
+
+
+def check_writable(path: str | os.PathLike) -> Path:
+    """Fail early (:class:`OutputError`) if ``path`` cannot be created; return it.
+
+    Creates and removes a temporary file beside ``path``: the only reliable test.
+    """
+    path = Path(path)
+    parent = path.parent
+    if path.is_dir():
+        raise OutputError(f"output path {str(path)!r} is a directory")
+    file = next((p for p in (parent, *parent.parents) if p.exists() and not p.is_dir()), None)
+    if file is not None:
+        raise OutputError(f"output directory {str(file)!r} is a file, not a directory")
+    if not parent.is_dir():
+        raise OutputError(f"output directory {str(parent)!r} does not exist")
+    try:
+        temporary_beside(path).unlink()
+    except OSError as exc:
+        raise OutputError(f"cannot write to {str(parent)!r}: {exc.strerror}") from None
+    return path
+
+
+def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` (a shallow copy) with the encodings and attribute types CF asks for where
+    xarray's defaults differ; values, dtypes as read back and attributes are unchanged.
+
+    - A coordinate variable (1-D, named like its dimension) has no ``_FillValue``
+      (CF 2.5.1): xarray would write NaN on float ones.
+    - A string coordinate variable is written as a character array
+      (``name(name, stringN)``, CF 2.2): CF coordinate variables are numeric and
+      monotonic, so a variable-length string one is not one, and the CF checker fails on
+      it; xarray reads the character array back as the same strings and index.
+    - ``flag_values`` has the type of its variable (CF 3.5), when that type holds the
+      flag values exactly.
+    """
+    out = ds.copy(deep=False)
+    for name in out.dims:
+        if name not in out.variables:
+            continue
+        var = out.variables[name]
+        encoding = dict(var.encoding)
+        if var.dtype.kind in "fc":
+            encoding["_FillValue"] = None
+        elif var.dtype.kind in "OUS":
+            encoding.pop("_FillValue", None)
+            encoding["dtype"] = "S1"
+        var.encoding = encoding
+    for var in out.variables.values():
+        flags = var.attrs.get("flag_values")
+        if flags is None or var.dtype.kind not in "iuf":
+            continue
+        flags = np.asarray(flags)
+        typed = flags.astype(var.dtype)
+        if flags.dtype != var.dtype and np.array_equal(typed, flags):
+            var.attrs["flag_values"] = typed
+    return out
+
+
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename),
+    CF-encoded (:func:`cf_encoded`), with the permissions the umask gives a new file."""
+    path = check_writable(path)
+    try:
+        tmp = temporary_beside(path)
+    except OSError as exc:
+        raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
+    try:
+        cf_encoded(ds).to_netcdf(tmp, engine="netcdf4")
+        os.replace(tmp, path)
+    except OSError as exc:
+        tmp.unlink(missing_ok=True)
+        raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
+    except BaseException:
+        tmp.unlink(missing_ok=True)
+        raise
+    return path

@@ -1,0 +1,244 @@
+"""Checks of the workflow configuration, each failure one line naming the key and the rule.
+
+:func:`config_errors` applies the JSON schema (``workflow/schemas/config.schema.yaml``),
+then what a schema cannot say (a range's ``stop`` below its ``start``, an empty grid, a
+search range the wrong way round), then the package's own checks: the model overrides
+through :func:`tennis_stroke.model.params.resolve_params` (every parameter's unit and
+bounds), the solver section and the work-precision tolerances through
+:class:`~tennis_stroke.solver.settings.SolverSettings` (the accuracy bound), the
+stability cases through :func:`tennis_stroke.studies.stability.check_case` (the methods
+that exist), and last the memory of every map's job (:mod:`tennis_stroke.pipeline.memory`)
+against the limit (config key ``max_memory``).  The Snakefile prints the first message and
+exits before any job starts.
+"""
+
+from __future__ import annotations
+
+import inspect
+import math
+import os
+from collections.abc import Iterator, Mapping
+from decimal import Decimal
+from pathlib import Path
+
+import jsonschema
+import yaml
+
+from ..experiments.grids import axis_size, chunk_count, grid_size
+from ..model.params import ParameterError, resolve_params
+from ..solver.settings import SolverSettingError, SolverSettings
+from .memory import WORD, MemoryLimitError, batch_bytes, check_memory, memory_limit, result_bytes
+
+
+def _path(parts) -> str:
+    return ".".join(str(p) for p in parts) or "(top level)"
+
+
+def _schema_errors(config: Mapping, schema: Mapping) -> Iterator[str]:
+    validator = jsonschema.Draft202012Validator(schema)
+    for error in sorted(validator.iter_errors(config), key=lambda e: list(e.absolute_path)):
+        if error.validator == "required":
+            missing = error.message.split("'")[1]
+            yield f"config key {_path([*error.absolute_path, missing])!r} is missing (required)"
+        elif error.validator == "additionalProperties":
+            yield (f"config key {_path(error.absolute_path)!r}: {error.message} (unknown key)")
+        else:
+            yield (
+                f"config key {_path(error.absolute_path)!r}: {error.message} "
+                f"(rule: {error.validator})"
+            )
+
+
+def _walk(node, parts=()) -> Iterator[tuple[tuple, object]]:
+    yield parts, node
+    if isinstance(node, Mapping):
+        for key, value in node.items():
+            yield from _walk(value, (*parts, key))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from _walk(value, (*parts, i))
+
+
+def _semantic_errors(config: Mapping) -> Iterator[str]:
+    for parts, node in _walk(config):
+        if isinstance(node, float) and not math.isfinite(node):
+            yield f"config key {_path(parts)!r}: {node} is not a finite number (rule: finite)"
+        if isinstance(node, Mapping) and {"start", "stop"} <= set(node):
+            start, stop = node["start"], node["stop"]
+            if isinstance(start, int | float) and isinstance(stop, int | float) and stop < start:
+                yield (
+                    f"config key {_path(parts)!r}: stop {stop} is below start {start} "
+                    "(rule: stop >= start)"
+                )
+        if (
+            parts
+            and str(parts[-1]).endswith("_range")
+            and isinstance(node, list)
+            and len(node) == 2
+            and all(isinstance(v, int | float) for v in node)
+            and node[1] <= node[0]
+        ):
+            yield (
+                f"config key {_path(parts)!r}: {node} is empty or reversed (rule: lower < upper)"
+            )
+    try:
+        resolve_params(config.get("model") or {})
+    except ParameterError as exc:
+        yield f"config key 'model': {exc}"
+    yield from _solver_errors(config)
+
+
+def _solver_errors(config: Mapping) -> Iterator[str]:
+    """The solver section and the studies' methods and tolerances, checked by the code
+    that will run them."""
+    try:
+        SolverSettings(**(config.get("solver") or {}))
+    except SolverSettingError as exc:
+        yield f"config key 'solver.{exc.setting}': {exc} (rule: solver settings)"
+    study = config.get("solver_study") or {}
+    for i, tol in enumerate(study.get("compiled_tolerances") or []):
+        try:  # the work-precision study runs SolverSettings(rtol=tol, atol=tol)
+            SolverSettings(rtol=tol, atol=tol)
+        except SolverSettingError as exc:
+            yield (
+                f"config key 'solver_study.compiled_tolerances.{i}': {exc} (rule: solver settings)"
+            )
+    from ..studies.stability import check_case
+
+    for i, case in enumerate((study.get("stability") or {}).get("cases") or []):
+        try:
+            check_case(*case)
+        except ValueError as exc:
+            yield f"config key 'solver_study.stability.cases.{i}': {exc} (rule: methods)"
+
+
+def _n(count: int) -> str:
+    """A count for a message: exact up to 1e12, else three digits."""
+    return str(count) if count < 10**12 else f"{Decimal(count):.3g}"
+
+
+def _rows_per_job(rows: int, requested: int) -> int:
+    """Rows of the largest chunk when ``rows`` are split into ``requested`` chunks."""
+    return -(-rows // chunk_count(requested, rows))
+
+
+def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
+    """``(config key, what, peak bytes)`` of the workflow's largest jobs, from the grid
+    sizes alone (nothing is allocated): each map's largest chunk job, and the gathering
+    of each chunked map (the chunks and the whole map in memory at once)."""
+    threads = os.cpu_count() or 1
+    history = SolverSettings().history
+    chunks = config.get("chunks") or {}
+
+    def job(n_strokes: int) -> int:
+        return batch_bytes(n_strokes, threads, history)
+
+    def gather(n_strokes: int) -> int:
+        return 2 * result_bytes(n_strokes)
+
+    am = config["angle_maps"]
+    nt, nd = axis_size(am["theta0"]), axis_size(am["delta0"])
+    rows = _rows_per_job(nt, chunks.get("angle_map", 1))
+    yield "angle_maps", f"a Figs. 2-3 map job ({_n(rows)} x {_n(nd)} strokes)", job(rows * nd)
+    yield "angle_maps", f"gathering a Figs. 2-3 map ({_n(nt)} x {_n(nd)} strokes)", gather(nt * nd)
+
+    ml = config["mass_length"]
+    n_m2, n_l1 = axis_size(ml["M2"]), axis_size(ml["L1"])
+    coarse = grid_size(*ml["theta0_range"], ml["coarse_step"]) * grid_size(
+        *ml["delta0_range"], ml["coarse_step"]
+    )
+    fine = grid_size(-ml["coarse_step"], ml["coarse_step"], ml["fine_step"]) ** 2
+    rows = _rows_per_job(n_m2, chunks.get("mass_length", 1))
+    yield (
+        "mass_length",
+        f"a Figs. 5-6 job ({_n(rows)} x {_n(n_l1)} points, {_n(coarse)} + {_n(fine)} strokes each)",
+        job(rows * n_l1 * coarse) + job(rows * n_l1 * fine),
+    )
+
+    td = config["torque_delay"]
+    for fig, first in (("fig7", "C2"), ("fig8", "delta0"), ("fig9", "delta0")):
+        section = td[fig]
+        n_tau = axis_size(section["tau"])
+        n_first = axis_size(section[first]) if isinstance(section[first], Mapping) else 1
+        rows = _rows_per_job(n_first, chunks.get("delay_map", 1))
+        key = f"torque_delay.{fig}"
+        yield key, f"a Fig. {fig[3:]} map job ({_n(rows)} x {_n(n_tau)} strokes)", job(rows * n_tau)
+        yield key, f"gathering the Fig. {fig[3:]} map", gather(n_first * n_tau)
+
+    ef = config["elbow_force"]
+    n_psi, n_tau = axis_size(ef["psi_F"]), axis_size(ef["tau_F"])
+    rows = _rows_per_job(n_psi, chunks.get("elbow_force_map", 1))
+    yield "elbow_force", f"a Fig. 13 map job ({_n(rows)} x {_n(n_tau)} strokes)", job(rows * n_tau)
+    yield "elbow_force", "gathering the Fig. 13 map", gather(n_psi * n_tau)
+
+    n = len(config["fig4"]["strokes"]) * int(config["k_sensitivity"]["points"])
+    yield "k_sensitivity", f"the k sensitivity job ({_n(n)} strokes)", job(n)
+
+    study = config["solver_study"]
+    opt = study["optimum"]
+    from ..studies.optimum_cost import optimum_cost
+
+    defaults = inspect.signature(optimum_cost).parameters
+    th_range = defaults["theta0_range"].default
+    de_range = defaults["delta0_range"].default
+    points = len(opt["M2"]) * len(opt["L1"])
+    for coarse_step, fine_step in [(1.0, opt["reference_step"]), *opt["steps"]]:
+        coarse = grid_size(*th_range, coarse_step) * grid_size(*de_range, coarse_step)
+        fine = grid_size(-coarse_step, coarse_step, fine_step) ** 2
+        yield (
+            "solver_study.optimum",
+            f"the optimum search with steps {coarse_step:g}/{fine_step:g} deg "
+            f"({_n(points)} points, {_n(coarse)} + {_n(fine)} strokes each)",
+            job(points * coarse) + job(points * fine),
+        )
+    k = study["stability"]["k_contact"]
+    cases = len(study["stability"]["cases"])
+    yield (
+        "solver_study.stability.k_contact",
+        f"the stability map ({cases} cases x {_n(k['num'])} spring constants)",
+        WORD * int(k["num"]) * (1 + 5 * cases),  # log10 k grid, five fields per case
+    )
+
+
+def _memory_errors(config: Mapping) -> Iterator[str]:
+    try:
+        limit = memory_limit(config.get("max_memory"), "config key 'max_memory'")
+    except ValueError as exc:
+        yield f"{exc} (rule: memory size)"
+        return
+    for key, what, needed in map_jobs(config):
+        try:
+            check_memory(needed, what, limit)
+        except MemoryLimitError as exc:
+            yield f"config key {key!r}: {exc} (rule: memory)"
+            return
+
+
+def _number(text: str):
+    for kind in (int, float):
+        try:
+            return kind(text)
+        except ValueError:
+            pass
+    return text
+
+
+def numbers_from_strings(node):
+    """``node`` with every string that spells a number turned into that number.
+
+    Snakemake's ``--config key={a: 2}`` reads nested values with YAML's BaseLoader, as
+    strings (``'2'``); this restores the numbers the YAML file would have given.  No
+    string option of the config spells a number.
+    """
+    if isinstance(node, Mapping):
+        return {key: numbers_from_strings(value) for key, value in node.items()}
+    if isinstance(node, list):
+        return [numbers_from_strings(value) for value in node]
+    return _number(node) if isinstance(node, str) else node
+
+
+def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:
+    """Every problem of ``config`` as one-line messages (empty: the config is good)."""
+    schema = yaml.safe_load(Path(schema_path).read_text())
+    errors = list(_schema_errors(config, schema))
+    return errors or list(_semantic_errors(config)) or list(_memory_errors(config))

@@ -1,0 +1,103 @@
+"""Support for the workflow's thin scripts: settings, chunks, logging, provenance.
+
+A script reads ``snakemake.params`` and ``snakemake.wildcards``, makes one package call
+and saves its result with :func:`save`; :func:`logged` turns any exception into one
+line on stderr and the traceback in the job's log.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import hashlib
+import json
+import sys
+import time
+import traceback
+from collections.abc import Iterator, Mapping
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from ..experiments.grids import chunk_rows
+from ..io.netcdf import write_netcdf
+from ..solver.settings import SolverSettings
+from .chunks import mark_chunk
+
+
+def settings(common: Mapping[str, object]) -> SolverSettings:
+    """Solver settings from the ``common`` params of a rule."""
+    return SolverSettings(**common["solver"])
+
+
+@contextlib.contextmanager
+def logged(log_path: str | Path) -> Iterator[None]:
+    """Send stdout and stderr of a script to its Snakemake log file.
+
+    An exception ends the job with its traceback in the log, one line on stderr naming
+    the problem and the log, and exit status 1 (Snakemake then reports the failed rule).
+    """
+    Path(log_path).parent.mkdir(parents=True, exist_ok=True)
+    with open(log_path, "w") as log:
+        try:
+            with contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
+                yield
+        except Exception as exc:
+            traceback.print_exc(file=log)
+            message = str(exc).splitlines()[0] if str(exc) else ""
+            problem = f"{type(exc).__name__}: {message}" if message else type(exc).__name__
+        else:
+            return
+    sys.stderr.write(f"tennis-stroke job failed: {problem} (traceback in {log_path})\n")
+    raise SystemExit(1)
+
+
+def chunk_position(wildcards) -> tuple[int, int]:
+    """Index and count of this job's chunk (wildcards ``chunk`` of ``chunks``)."""
+    return int(wildcards.chunk), int(wildcards.chunks)
+
+
+def chunk(values: np.ndarray, wildcards) -> np.ndarray:
+    """The rows of ``values`` that this job computes (wildcards ``chunk`` of ``chunks``)."""
+    return chunk_rows(values, *chunk_position(wildcards))
+
+
+class Timer:
+    """Wall time since creation (s)."""
+
+    def __init__(self) -> None:
+        self.start = time.perf_counter()
+
+    def __call__(self) -> float:
+        return time.perf_counter() - self.start
+
+
+def params_hash(params) -> str:
+    """SHA-256 (16 hex digits) of a rule's params: the configuration this job used.
+
+    (A hash of the whole config as a rule param would rerun every job on any change.)
+    """
+    items = dict(params.items()) if hasattr(params, "items") else dict(params)
+    return hashlib.sha256(json.dumps(items, sort_keys=True, default=str).encode()).hexdigest()[:16]
+
+
+def save(
+    ds: xr.Dataset,
+    path: str | Path,
+    params,
+    wall_time: float,
+    chunk_of=None,
+) -> None:
+    """Add the job's provenance (config hash and text, wall time) and write atomically.
+
+    ``chunk_of``: the job's wildcards, to mark the file as chunk ``chunk`` of ``chunks``
+    of a map (:func:`tennis_stroke.pipeline.chunks.mark_chunk`).
+    """
+    if chunk_of is not None:
+        mark_chunk(ds, *chunk_position(chunk_of))
+    items = dict(params.items()) if hasattr(params, "items") else dict(params)
+    ds.attrs["config_sha256_16"] = params_hash(items)
+    ds.attrs["config"] = json.dumps(items, sort_keys=True, default=str)
+    ds.attrs["wall_time_s"] = float(wall_time)
+    write_netcdf(ds, path)
+    print(f"wrote {path} in {wall_time:.2f} s")

@@ -1,0 +1,218 @@
+"""Claims are checked before any job: every kind of bad entry of config/claims.yaml is one
+line naming the claim (tennis_stroke.inference.claims.claim_errors)."""
+
+import copy
+import inspect
+import typing
+
+import pytest
+import xarray as xr
+import yaml
+from conftest import ROOT
+
+from tennis_stroke.experiments.specs import PAPER_RESULTS
+from tennis_stroke.inference.claims import ClaimError, claim_errors, load_claims
+from tennis_stroke.inference.measures import MEASUREMENTS
+
+CLAIMS = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())
+
+
+def _claims_file(tmp_path, change):
+    """config/claims.yaml with ``change`` applied to its list of claims (by id)."""
+    raw = copy.deepcopy(CLAIMS)
+    by_id = {c["id"]: c for c in raw["claims"]}
+    change(raw["claims"], by_id)
+    path = tmp_path / "claims.yaml"
+    path.write_text(yaml.safe_dump(raw, sort_keys=False))
+    return path
+
+
+def _set(claim_id, **values):
+    def change(claims, by_id):
+        by_id[claim_id].update(values)
+
+    return change
+
+
+def _measure(claim_id, **values):
+    def change(claims, by_id):
+        by_id[claim_id]["measure"].update(values)
+
+    return change
+
+
+def _drop(claim_id, key, where=None):
+    def change(claims, by_id):
+        target = by_id[claim_id] if where is None else by_id[claim_id][where]
+        del target[key]
+
+    return change
+
+
+def _duplicate(claims, by_id):
+    claims[2]["id"] = claims[1]["id"]
+
+
+BAD = {
+    "duplicate id": (_duplicate, "duplicate claim id 'fig2_best_delta0_at_120'"),
+    "missing field": (
+        _drop("fig4_t_a", "unit"),
+        "claim 'fig4_t_a': lacks 'unit'",
+    ),
+    "missing id": (_drop("fig4_t_a", "id"), "claim 'number 7': lacks 'id'"),
+    "unknown file": (
+        _measure("fig2_best_delta0_at_120", file="fig44"),
+        "claim 'fig2_best_delta0_at_120': unknown result file 'fig44' (known: delay, elbow,",
+    ),
+    "unknown file in a list": (
+        _measure("fig3_delta0_smaller_than_fig2", file=["fig2", "fig33"]),
+        "claim 'fig3_delta0_smaller_than_fig2': unknown result file 'fig33'",
+    ),
+    "unknown measurement": (
+        _measure("fig2_best_delta0_at_120", function="best_delta"),
+        "claim 'fig2_best_delta0_at_120': unknown measurement 'best_delta' (known: ",
+    ),
+    "missing argument": (
+        _drop("fig2_best_delta0_at_120", "theta0", "measure"),
+        "claim 'fig2_best_delta0_at_120': measurement 'best_delta0' with 1 file(s) and "
+        "arguments {}: missing a required argument: 'theta0'",
+    ),
+    "unknown argument": (
+        _measure("fig8_tau_opt", coordinate="tau"),
+        "claim 'fig8_tau_opt': measurement 'optimum' with 1 file(s) and arguments "
+        "{'coord': 'tau', 'coordinate': 'tau'}: got an unexpected keyword argument "
+        "'coordinate'",
+    ),
+    "too few files": (
+        _measure("fig3_delta0_smaller_than_fig2", file="fig2"),
+        "claim 'fig3_delta0_smaller_than_fig2': measurement "
+        "'delta0_smaller_for_longer_arm' with 1 file(s) and arguments {}: missing a "
+        "required argument: 'long'",
+    ),
+    "too many files": (
+        _measure("fig2_best_delta0_at_120", file=["fig2", "fig3"]),
+        "claim 'fig2_best_delta0_at_120': measurement 'best_delta0' with 2 file(s) and "
+        "arguments {'theta0': 120.0}: multiple values for argument 'theta0'",
+    ),
+    "argument of the wrong type": (
+        _measure("fig2_best_delta0_at_120", theta0="120"),
+        "claim 'fig2_best_delta0_at_120': measurement 'best_delta0': argument 'theta0' = "
+        "'120' is not a float",
+    ),
+    "argument not among the choices": (
+        _measure("fig6_theta_c_folded_arm", end="smallest"),
+        "claim 'fig6_theta_c_folded_arm': measurement 'theta_c': argument 'end' = "
+        "'smallest' is not one of ('small', 'large')",
+    ),
+    "a file given as an argument": (
+        _measure("fig2_best_delta0_at_120", ds="fig2"),
+        "claim 'fig2_best_delta0_at_120': measurement 'best_delta0' with 1 file(s) and "
+        "arguments {'theta0': 120.0, 'ds': 'fig2'}: multiple values for argument 'ds'",
+    ),
+    "variable measure with an unknown key": (
+        _measure("fig4_theta_c_a", absolute=True),
+        "claim 'fig4_theta_c_a': measure has unknown keys ['absolute']",
+    ),
+    "variable measure without a variable": (
+        _drop("fig4_t_a", "var", "measure"),
+        "claim 'fig4_t_a': measure lacks 'var' (the variable of the file) or 'function'",
+    ),
+    "variable measure with a label for a position": (
+        _measure("fig4_t_a", sel={"stroke": "b"}),
+        "claim 'fig4_t_a': sel must map dimensions to integer positions",
+    ),
+    "measure without a file": (
+        _drop("fig4_t_a", "file", "measure"),
+        "claim 'fig4_t_a': measure lacks 'file' (the result file it reads)",
+    ),
+    "negative tolerance": (
+        _set("fig4_t_a", tolerance=-0.002),
+        "claim 'fig4_t_a': tolerance must be >= 0, got -0.002",
+    ),
+    "zero tolerance of a quantitative claim": (
+        _set("fig4_t_a", tolerance=0),
+        "claim 'fig4_t_a': tolerance must be > 0 (0 only for a qualitative claim, unit '1'; "
+        "unit here 's')",
+    ),
+    "tolerance not a number": (
+        _set("fig4_t_a", tolerance="2 ms"),
+        "claim 'fig4_t_a': tolerance must be a finite number, got '2 ms'",
+    ),
+    "paper value not finite": (
+        _set("fig4_t_a", paper_value=float("nan")),
+        "claim 'fig4_t_a': paper_value must be a finite number, got nan",
+    ),
+    "unknown expectation": (
+        _set("fig4_t_a", expectation="reproduced"),
+        "claim 'fig4_t_a': expectation must be one of ('reproduce', 'known_deviation')",
+    ),
+    "known deviation without a reason": (
+        _set("fig4_t_a", expectation="known_deviation"),
+        "claim 'fig4_t_a': a known deviation needs a reason",
+    ),
+}
+
+
+def test_the_paper_claims_are_good():
+    assert claim_errors(ROOT / "config" / "claims.yaml") == []
+
+
+@pytest.mark.parametrize("kind", sorted(BAD))
+def test_each_kind_of_bad_claim_is_one_line_naming_it(tmp_path, kind):
+    change, expected = BAD[kind]
+    path = _claims_file(tmp_path, change)
+    errors = claim_errors(path)
+    assert errors, kind
+    assert errors[0].startswith(f"{path}: ")
+    assert expected in errors[0], errors[0]
+    assert "\n" not in errors[0]
+    with pytest.raises(ClaimError, match="^" + str(path)):
+        load_claims(path)
+
+
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        ("claims: [\n", ", line 2, column 1: YAML syntax error: expected the node content"),
+        ("statements: {}\n", "no list of claims (key 'claims')"),
+        ("claims: [just a claim]\n", "claim 1 is not a mapping: 'just a claim'"),
+    ],
+)
+def test_a_claims_file_that_is_not_a_list_of_claims(tmp_path, text, expected):
+    path = tmp_path / "claims.yaml"
+    path.write_text(text)
+    errors = claim_errors(path)
+    assert len(errors) == 1
+    if expected.startswith(","):  # a YAML error: file, line and column, then the problem
+        assert errors[0].startswith(f"{path}{expected}"), errors
+    else:
+        assert errors == [f"{path}: {expected}"]
+
+
+def test_a_missing_claims_file(tmp_path):
+    assert claim_errors(tmp_path / "nothing.yaml") == [
+        f"cannot read {str(tmp_path / 'nothing.yaml')!r}: No such file or directory"
+    ]
+
+
+def test_the_known_files_are_the_registry_s_paper_results(tmp_path):
+    """A claim may name only a file the workflow makes for the claims job."""
+    path = _claims_file(tmp_path, _measure("fig2_best_delta0_at_120", file="work_precision"))
+    assert "unknown result file 'work_precision'" in claim_errors(path)[0]
+    assert claim_errors(path, [*PAPER_RESULTS, "work_precision"]) == []
+
+
+KNOWN_ANNOTATIONS = (xr.Dataset, float, int, str, bool)
+
+
+@pytest.mark.parametrize("name", sorted(MEASUREMENTS))
+def test_every_measurement_says_what_it_takes(name):
+    """The check reads the signatures: every parameter is annotated with a dataset, a
+    plain type or a Literal of choices, and the datasets come first."""
+    parameters = inspect.signature(MEASUREMENTS[name], eval_str=True).parameters.values()
+    kinds = []
+    for p in parameters:
+        literal = typing.get_origin(p.annotation) is typing.Literal
+        assert literal or p.annotation in KNOWN_ANNOTATIONS, (name, p.name, p.annotation)
+        kinds.append(p.annotation is xr.Dataset)
+    assert kinds[0] and kinds == sorted(kinds, reverse=True), name

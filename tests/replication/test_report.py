@@ -1,0 +1,175 @@
+"""The report page: escaping of every text from a file, the ledger rendered from markdown,
+the page in a real browser (Debian's headless Chromium), and Snakemake's own report."""
+
+import json
+import os
+import shutil
+import subprocess
+from pathlib import Path
+
+import pandas as pd
+import pytest
+import yaml
+from conftest import ROOT, merged, run_snakemake
+
+from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS
+from tennis_stroke.experiments.specs import RESULT_FILES as FILES
+from tennis_stroke.replication.registry import FIGURES
+from tennis_stroke.replication.report import _paper_place, build_report, markdown_html
+
+CLAIM_IDS = [c["id"] for c in yaml.safe_load((ROOT / "config/claims.yaml").read_text())["claims"]]
+#: Chromium as Debian installs it (.ci/run); the browser tests skip without it.
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+HOSTILE = '<script>alert("claim")</script> & <b>co</b>'
+
+
+def _build(work: Path, output: Path, claims_csv: Path, statements: Path) -> str:
+    """The report of a workflow run in ``work``, as the report rule builds it."""
+    build_report(
+        figures=[str(work / f"results/figures/{name}.png") for name in sorted(FIGURES)],
+        claims_csv=str(claims_csv),
+        inference={k: str(work / v) for k, v in INFERENCE_RESULTS.items()},
+        results=[str(work / v) for v in PAPER_RESULTS.values()],
+        config=merged(
+            yaml.safe_load((ROOT / "config/config.yaml").read_text()),
+            yaml.safe_load((work / "config/config.yaml").read_text()),
+        ),
+        benchmarks_dir=str(work / "benchmarks/workflow"),
+        output=str(output),
+        assumptions_md=str(ROOT / "docs/assumptions.md"),
+        studies=[str(work / FILES[k]) for k in ("ladder", "optimum_cost", "stability")],
+        statements_yaml=str(statements),
+    )
+    return output.read_text()
+
+
+def test_markdown_renders_tables_and_escapes_raw_html():
+    html = str(markdown_html("# T\n\n| a | b |\n|---|---|\n| 1 | <i>x</i> & y |\n<!-- gone -->"))
+    assert "<table>" in html and "<td>1</td>" in html
+    assert "&lt;i&gt;x&lt;/i&gt; &amp; y" in html and "<i>" not in html
+    assert "gone" not in html
+
+
+@pytest.mark.parametrize(
+    ("source", "claim_id", "place"),
+    [
+        ("Sec. V, Fig. 9", "fig9_v_H", ("V", "fig09")),
+        ("Sec. V, Figs. 11-12", "fig12_x", ("V", "fig11")),
+        ("Sec. III", "fig4_theta_c_a", ("III", "fig04")),
+        ("Sec. III", "sec3_statement", ("III", "")),
+        ("Table I", "table1_v_180", ("VI", "Table I")),
+        ("Sec. IX", "x", ("IX", "")),
+        ("abstract", "x", (None, "")),
+    ],
+)
+def test_each_claim_is_placed_by_its_source(source, claim_id, place):
+    sections = {"V": {}, "VI": {"tables": ["Table I"]}}
+    assert _paper_place(source, claim_id, sections) == place
+
+
+def test_text_from_files_is_escaped(tiny_run, tmp_path):
+    """A '<script>' or '&' in a claim's text, its reason or the paper's statement is shown
+    as text, never run as HTML."""
+    claims = pd.read_csv(tiny_run / "results/claims.csv", keep_default_na=False, dtype=str)
+    claims.loc[0, "quantity"] = HOSTILE
+    claims.loc[1, "reason"] = HOSTILE
+    claims.loc[1, "status"] = "known_deviation"
+    claims.to_csv(tmp_path / "claims.csv", index=False)
+    statements = yaml.safe_load((ROOT / "config/claims.yaml").read_text())
+    statements["statements"]["fig04"] = HOSTILE
+    (tmp_path / "claims.yaml").write_text(yaml.safe_dump(statements))
+    html = _build(
+        tiny_run, tmp_path / "index.html", tmp_path / "claims.csv", tmp_path / "claims.yaml"
+    )
+    assert "<script>" not in html and "<b>co</b>" not in html
+    escaped = "&lt;script&gt;alert(&#34;claim&#34;)&lt;/script&gt; &amp; &lt;b&gt;co&lt;/b&gt;"
+    assert html.count(escaped) >= 3, html.count(escaped)
+
+
+#: Run in the page by the browser test: what a reader would see go wrong.
+CHECKS = """<script>
+window.addEventListener("load", () => {
+  const cells = [...document.querySelectorAll("td, th")];
+  const result = {
+    images: [...document.images].map(i => [i.alt, i.complete && i.naturalWidth > 0]),
+    text: document.body.innerText,
+    overflowing: cells.filter(c => c.scrollWidth > c.clientWidth + 1)
+                      .map(c => c.textContent.trim().slice(0, 60)),
+    pageWidth: document.documentElement.scrollWidth,
+    viewport: window.innerWidth,
+  };
+  const out = document.createElement("pre");
+  out.id = "browser-check";
+  out.textContent = JSON.stringify(result);
+  document.body.appendChild(out);
+});
+</script></body>"""
+
+
+def _chromium(page: Path, width: int, height: int, *options: str) -> str:
+    """Run headless Chromium on ``page`` in a ``width`` x ``height`` window; its stdout."""
+    done = subprocess.run(
+        [
+            CHROMIUM,
+            "--headless",
+            "--no-sandbox",
+            "--disable-gpu",
+            "--hide-scrollbars",
+            f"--window-size={width},{height}",
+            *options,
+            page.as_uri(),
+        ],
+        capture_output=True,
+        text=True,
+        timeout=120,
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    return done.stdout
+
+
+def _in_browser(page: Path, width: int) -> dict:
+    """The page's checks (:data:`CHECKS`) as Chromium computes them at ``width`` px."""
+    checked = page.with_name(f"checked-{width}.html")
+    checked.write_text(page.read_text().replace("</body>", CHECKS))
+    dom = _chromium(checked, width, 1000, "--virtual-time-budget=10000", "--dump-dom")
+    start = dom.index('<pre id="browser-check">') + len('<pre id="browser-check">')
+    text = dom[start : dom.index("</pre>", start)]
+    for entity, char in (("&lt;", "<"), ("&gt;", ">"), ("&quot;", '"'), ("&amp;", "&")):
+        text = text.replace(entity, char)
+    return json.loads(text)
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium on PATH (.ci/run installs it)")
+# 500 px: the narrowest window headless Chromium opens (a narrower --window-size gives 500).
+@pytest.mark.parametrize("width", [1280, 500])
+def test_the_page_in_a_real_browser(tiny_run, tmp_path, width):
+    """At a desktop and a phone width: every figure loads, every claim id is on the page,
+    no text overflows its table cell, nothing makes the page wider than the window; and a
+    screenshot for a person to look at."""
+    page = tmp_path / "index.html"
+    shutil.copy(tiny_run / "report/index.html", page)
+    seen = _in_browser(page, width)
+    assert sorted(alt for alt, _ in seen["images"]) == sorted(FIGURES)
+    assert all(loaded for _, loaded in seen["images"]), seen["images"]
+    missing = [c for c in CLAIM_IDS if c not in seen["text"]]
+    assert not missing, missing
+    assert not seen["overflowing"], seen["overflowing"]
+    assert seen["pageWidth"] <= seen["viewport"], (seen["pageWidth"], seen["viewport"])
+    shots = Path(os.environ.get("REPORT_SCREENSHOTS", tmp_path))
+    shots.mkdir(parents=True, exist_ok=True)
+    shot = shots / f"report-{width}px.png"
+    _chromium(page, width, 2400, f"--screenshot={shot}")
+    assert shot.stat().st_size > 0
+    print(f"screenshot: {shot}")
+
+
+def test_snakemake_builds_its_own_report(tiny_run, tmp_path):
+    """`snakemake --report` (README): the caption files are found and every figure and the
+    claims table are in it."""
+    out = tmp_path / "snakemake-report.html"
+    done = run_snakemake([], tiny_run, "--report", str(out))
+    assert done.returncode == 0, done.stderr[-3000:]
+    html = out.read_text(errors="replace")
+    assert "claims.csv" in html
+    for name in FIGURES:
+        assert f"{name}.png" in html, name

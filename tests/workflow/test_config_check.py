@@ -1,0 +1,218 @@
+"""Bad workflow configs: each stops before any job, with one line naming key and rule."""
+
+import copy
+
+import pytest
+import yaml
+from conftest import ROOT, run_snakemake, workdir
+
+from tennis_stroke.io.config_files import ConfigFileError, load_yaml
+from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
+
+SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+def _set(config, path, value):
+    node = config
+    for key in path[:-1]:
+        node = node[key]
+    if value is _DELETE:
+        del node[path[-1]]
+    else:
+        node[path[-1]] = value
+
+
+_DELETE = object()
+
+BAD = [  # (path, value, fragment of the message)
+    (("chunks", "angle_map"), 0, "'chunks.angle_map': 0 is less than the minimum of 1"),
+    (("chunks", "delay_map"), 2.5, "'chunks.delay_map': 2.5 is not of type 'integer'"),
+    (("max_failure_share",), 1.5, "'max_failure_share': 1.5 is greater than the maximum"),
+    (("max_failure_share",), "1%", "'max_failure_share': '1%' is not of type 'number'"),
+    (("threads",), 2, "'threads' was unexpected) (unknown key)"),
+    (("solver", "rtol"), 0.0, "'solver.rtol': 0.0 is less than or equal to the minimum"),
+    (("solver", "rtol"), -1e-6, "'solver.rtol'"),
+    (("solver", "method"), "RK4", "'solver.method': 'RK4' is not one of"),
+    (("solver", "atol"), float("nan"), "'solver.atol': nan is not a finite number"),
+    (("model",), {"M2": -0.3}, "'M2' must be > 0 kg"),
+    (("model",), {"L1": 0.0}, "'L1' must be > 0 m"),
+    (("model",), {"bogus": 1.0}, "unknown parameter 'bogus'"),
+    (("model",), {"k_contact": float("nan")}, "'model.k_contact': nan is not a finite"),
+    (("model",), {"inertia": "hollow"}, "reading 'inertia' must be one of"),
+    (("angle_maps", "theta0", "stop"), 10.0, "'angle_maps.theta0': stop 10.0 is below start"),
+    (("angle_maps", "delta0", "step"), 0.0, "'angle_maps.delta0.step': 0.0 is less than or"),
+    (("angle_maps", "L1"), [], "'angle_maps.L1': [] is too short"),
+    (("angle_maps", "L1"), [-0.3, 0.4], "'angle_maps.L1.0': -0.3 is less than or equal"),
+    (
+        ("mass_length", "theta0_range"),
+        [120.0, 60.0],
+        "'mass_length.theta0_range': [120.0, 60.0] is empty",
+    ),
+    (("mass_length", "coarse_step"), -2.0, "'mass_length.coarse_step'"),
+    (("torque_delay", "fig7", "tau"), _DELETE, "'torque_delay.fig7.tau' is missing"),
+    (("elbow_force", "F0"), -20.0, "'elbow_force.F0': -20.0 is less than the minimum"),
+    (("fig4", "samples"), 1, "'fig4.samples': 1 is less than the minimum of 2"),
+    (("figure_curves",), "sketch", "'figure_curves': 'sketch' is not one of"),
+    (("unknown_section",), 1, "(unknown key)"),
+    (("solver_study", "stability", "cases"), [], "'solver_study.stability.cases': []"),
+    # the accuracy bound of SolverSettings, the same as the CLI's and the Python API's
+    (("solver", "rtol"), 10.0, "'solver.rtol': solver setting 'rtol' must be <= 0.0001"),
+    (("solver", "atol"), 1e-3, "'solver.atol': solver setting 'atol' must be <= 0.0001"),
+    (
+        ("solver_study", "compiled_tolerances"),
+        [1e-4, 1e-2],
+        "'solver_study.compiled_tolerances.1': solver setting 'rtol' must be <= 0.0001",
+    ),
+    # method names: a case named fixed.RK5 is not run as RK4 under that label
+    (
+        ("solver_study", "stability", "cases"),
+        [["tennis_stroke.DOP853", 1e-3], ["fixed.RK5", 1e-3]],
+        "'solver_study.stability.cases.1': unknown method 'fixed.RK5' (known: ",
+    ),
+    (
+        ("solver_study", "stability", "cases"),
+        [["DOP853", 1e-3]],
+        "'solver_study.stability.cases.0': unknown method 'DOP853'",
+    ),
+    (
+        ("solver_study", "stability", "cases"),
+        [["fixed.RK4", 0.0]],
+        "'solver_study.stability.cases.0.1': 0.0 is less than or equal to the minimum",
+    ),
+    # memory, estimated from the grid sizes (the job failed with MemoryError 179 GiB)
+    (
+        ("angle_maps", "theta0", "step"),
+        1e-6,
+        "'angle_maps': a Figs. 2-3 map job (60000001 x 401 strokes) needs about 9.45 TiB",
+    ),
+    (("max_memory",), "1M", "'angle_maps': a Figs. 2-3 map job (241 x 401 strokes) needs"),
+    (("max_memory",), "lots", "config key 'max_memory': memory size must be a number"),
+    (("max_memory",), 1.5, "'max_memory': 1.5 is not of type 'string', 'integer', 'null'"),
+    (
+        ("mass_length", "fine_step"),
+        1e-4,
+        "'mass_length': a Figs. 5-6 job (13 x 13 points, 1581 + 1600080001 strokes each)",
+    ),
+    (
+        ("solver_study", "optimum", "reference_step"),
+        1e-5,
+        "'solver_study.optimum': the optimum search with steps 1/1e-05 deg",
+    ),
+    (
+        ("torque_delay", "fig9", "tau"),
+        {"start": 0.0, "stop": 0.3, "step": 1e-12},
+        "'torque_delay.fig9': a Fig. 9 map job (1 x 300000000001 strokes) needs",
+    ),
+]
+
+
+def test_the_shipped_config_is_good():
+    assert config_errors(GOOD, SCHEMA) == []
+
+
+@pytest.mark.parametrize(
+    "path, value, fragment", BAD, ids=[".".join(map(str, b[0])) + f"={b[1]!r}"[:20] for b in BAD]
+)
+def test_bad_config_gives_one_line_naming_the_key(path, value, fragment):
+    config = copy.deepcopy(GOOD)
+    _set(config, path, value)
+    errors = config_errors(config, SCHEMA)
+    assert errors, "not detected"
+    assert "\n" not in errors[0]
+    assert fragment in errors[0], errors[0]
+
+
+def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
+    config = copy.deepcopy(GOOD)
+    config["solver"]["rtol"] = -1.0
+    path = tmp_path / "bad.yaml"
+    path.write_text(yaml.safe_dump(config))
+    done = run_snakemake("report", ROOT, "-n", "--configfile", str(path))
+    assert done.returncode != 0
+    lines = [line for line in done.stderr.splitlines() if "config error" in line]
+    assert lines == [
+        "tennis-stroke config error: config key 'solver.rtol': -1.0 is less "
+        "than or equal to the minimum of 0 (rule: exclusiveMinimum)"
+    ]
+    assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
+
+
+@pytest.mark.parametrize(
+    "path, value, fragment", BAD, ids=[".".join(map(str, b[0])) + f"={b[1]!r}"[:20] for b in BAD]
+)
+def test_every_bad_config_stops_snakemake_with_one_line(path, value, fragment, tmp_path):
+    config = copy.deepcopy(GOOD)
+    _set(config, path, value)
+    done = run_snakemake("report", workdir(tmp_path, config), "-n")
+    assert done.returncode == 1
+    lines = [line for line in done.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1 and lines[0].startswith("tennis-stroke config error: "), lines
+    assert fragment in lines[0]
+    assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
+    assert not (tmp_path / "results").exists()
+
+
+def test_chunks_make_a_large_map_fit():
+    """The memory check is per job: chunks of rows bring a map under the limit."""
+    config = copy.deepcopy(GOOD)
+    config["max_memory"] = "35M"
+    config["chunks"] = {"mass_length": 13}
+    assert "'angle_maps': a Figs. 2-3 map job (241 x 401" in config_errors(config, SCHEMA)[0]
+    config["chunks"]["angle_map"] = 4
+    assert config_errors(config, SCHEMA) == []
+
+
+def test_the_shipped_config_declares_max_memory_with_a_default():
+    schema = yaml.safe_load(SCHEMA.read_text())
+    spec = schema["properties"]["max_memory"]
+    assert spec["default"] is None and "TENNIS_STROKE_MAX_MEMORY" in spec["description"]
+    assert GOOD["max_memory"] is None
+
+
+@pytest.mark.parametrize(
+    "text, where, problem",
+    [
+        ("solver:\n  rtol: [1e-8\nmodel: {}\n", "line 3, column 6", "expected ',' or ']'"),
+        ("solver:\n\trtol: 1e-8\n", "line 2, column 1", "found character '\\t'"),
+        ("a: 1\na: {b: 2\n", "line 3, column 1", "expected ',' or '}'"),
+        ("key: 'unclosed\n", "line 2, column 1", "found unexpected end of stream"),
+    ],
+)
+def test_yaml_syntax_errors_name_the_file_and_the_line(text, where, problem, tmp_path):
+    path = tmp_path / "config.yaml"
+    path.write_text(text)
+    with pytest.raises(ConfigFileError) as err:
+        load_yaml(path)
+    message = str(err.value)
+    assert "\n" not in message
+    assert message.startswith(f"{path}, {where}: YAML syntax error: "), message
+    assert problem in message
+
+
+def test_load_yaml_reads_a_good_file_and_refuses_a_missing_one(tmp_path):
+    assert load_yaml(ROOT / "config" / "config.yaml") == GOOD
+    with pytest.raises(ConfigFileError, match="cannot read .*none.yaml"):
+        load_yaml(tmp_path / "none.yaml")
+
+
+def test_numbers_given_as_strings_are_numbers_again():
+    given = {"chunks": {"angle_map": "3"}, "solver": {"rtol": "1e-9", "method": "DP54"}}
+    given["angle_maps"] = {"L1": ["0.3", "x"]}
+    assert numbers_from_strings(given) == {
+        "chunks": {"angle_map": 3},
+        "solver": {"rtol": 1e-9, "method": "DP54"},
+        "angle_maps": {"L1": [0.3, "x"]},
+    }
+
+
+def test_nested_command_line_overrides_work(tmp_path):
+    # Snakemake reads the nested values as strings; the workflow takes them as numbers.
+    done = run_snakemake(
+        "report", workdir(tmp_path, GOOD), "-n", "--config", "chunks={angle_map: 3}"
+    )
+    assert done.returncode == 0, (done.stdout + done.stderr)[-2000:]
+    stats = (done.stdout + done.stderr).split("Job stats:")[1].split("total")[0]
+    counts = dict(line.split() for line in stats.splitlines()[3:] if line.strip())
+    # 7 maps and the robustness analysis' claims x readings file are gathered
+    assert counts["angle_map"] == "6" and counts["gather_map"] == "8"

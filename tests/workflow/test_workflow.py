@@ -1,0 +1,170 @@
+"""A tiny end-to-end run of the Snakemake workflow: every rule, small grids; chunked maps,
+a map with too many failed strokes, and a run killed midway and restarted."""
+
+import os
+import signal
+import subprocess
+import time
+
+import pandas as pd
+import pytest
+import xarray as xr
+import yaml
+from conftest import (
+    ROOT,
+    assert_same_results,
+    result_files,
+    run_snakemake,
+    snakemake_command,
+    workdir,
+)
+from tiny import MAPS, ROBUSTNESS_CHUNKS, TINY, TINY_READINGS
+
+from tennis_stroke.experiments.specs import RESULT_FILES
+from tennis_stroke.replication.claims import COLUMNS
+from tennis_stroke.replication.registry import FIGURES
+from tennis_stroke.replication.robustness import COLUMNS as ROBUSTNESS_COLUMNS
+from tennis_stroke.replication.robustness import ROBUSTNESS
+
+
+def test_report_and_claims_are_built(tiny_run):
+    html = (tiny_run / "report" / "index.html").read_text()
+    assert 'id="scoreboard"' in html and "data:image/png;base64," in html
+    claims = pd.read_csv(tiny_run / "results" / "claims.csv")
+    expected = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())["claims"]
+    assert list(claims["id"]) == [c["id"] for c in expected]
+    assert set(claims["status"]) <= {"pass", "fail", "known_deviation", "used_for_fit"}
+    fitted = claims[claims["fit_set"].notna()]
+    assert set(fitted["status"]) <= {"used_for_fit", "fail", "known_deviation"}
+    assert list(claims.columns) == [*COLUMNS, *ROBUSTNESS_COLUMNS]
+    assert set(claims["robustness"]) <= set(ROBUSTNESS)
+    assert (claims["robustness"] == "used_for_fit").sum() == claims["fit_set"].notna().sum()
+    with xr.open_dataset(tiny_run / RESULT_FILES["robustness"]) as ds:
+        assert ds.sizes["reading"] == TINY_READINGS["multiverse"]["readings"]
+        assert list(ds["claim"].values) == list(claims["id"])
+
+
+def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
+    """Units everywhere, and what is needed to rerun: the job's config, versions, commit."""
+    files = sorted((tiny_run / "results").rglob("*.nc"))
+    expected = len(RESULT_FILES)
+    assert len(result_files(tiny_run)) == expected
+    # one chunk per map by default; the robustness analysis as readings.yaml says
+    assert len(files) == expected + len(MAPS) + ROBUSTNESS_CHUNKS
+    for path in files:
+        with xr.open_dataset(path) as ds:
+            for name in [*ds.data_vars, *ds.coords]:
+                assert "units" in ds[name].attrs and "long_name" in ds[name].attrs, (path, name)
+            for key in (
+                "tennis_stroke_version",
+                "git_commit",
+                "python_version",
+                "numpy_version",
+                "numba_version",
+                "scipy_version",
+                "xarray_version",
+                "config",
+                "config_sha256_16",
+                "wall_time_s",
+                "solver_rtol",
+            ):
+                assert key in ds.attrs, (path, key)
+
+
+def test_every_figure_is_drawn(tiny_run):
+    figures = sorted(p.stem for p in (tiny_run / "results" / "figures").glob("*.png"))
+    assert figures == sorted(FIGURES)
+
+
+@pytest.mark.parametrize("name", sorted(FIGURES))
+def test_each_figure_draws_from_the_tiny_files_with_labelled_axes(tiny_run, name):
+    import matplotlib.pyplot as plt
+
+    from tennis_stroke.replication.figures import DRAWERS
+
+    figure = FIGURES[name]
+    datasets = [xr.load_dataset(tiny_run / path) for path in figure.inputs]
+    drawn = DRAWERS[figure.draw](datasets, figure.title, *figure.args)
+    try:
+        main = drawn.axes[0]
+        assert main.get_xlabel() and main.get_ylabel() and main.get_title()
+    finally:
+        plt.close(drawn)
+
+
+def test_the_report_shows_every_figure_and_every_claim(tiny_run):
+    html = (tiny_run / "report" / "index.html").read_text()
+    for name in FIGURES:
+        assert f'alt="{name}"' in html, name
+    for claim in yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())["claims"]:
+        assert f">{claim['id']}<" in html, claim["id"]
+
+
+def test_changing_one_parameter_reruns_only_its_jobs(tiny_run):
+    done = run_snakemake("report", tiny_run, "-n", "--config", "figure_curves=with_ball")
+    assert done.returncode == 0, done.stderr[-2000:]
+    stats = (done.stdout + done.stderr).split("Job stats:")[1].split("Reasons:")[0]
+    rerun = {line.split()[0] for line in stats.splitlines()[3:] if line.strip()}
+    assert "fig4_strokes" in rerun and "delay_strokes" in rerun
+    assert "angle_map" not in rerun and "mass_length" not in rerun
+
+
+def test_chunked_maps_equal_unchunked_maps_bit_for_bit(tiny_run, tmp_path):
+    chunks = {"angle_map": 3, "mass_length": 2, "delay_map": 2, "elbow_force_map": 4}
+    work = workdir(tmp_path, {**TINY, "chunks": chunks})
+    done = run_snakemake(MAPS, work, "--cores", "2", timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    # fig9 has a single delta0 row: one chunk, whatever was asked
+    expected = dict(zip(MAPS, [3, 3, 2, 2, 2, 1, 4], strict=True))
+    for name in MAPS:
+        with xr.open_dataset(work / name) as ds:
+            assert ds.attrs["chunk_count"] == expected[name], name
+        assert_same_results(work / name, tiny_run / name, also_differ=["chunk_count"])
+
+
+def test_a_map_with_too_many_failed_strokes_stops_the_run_loudly(tmp_path):
+    work = workdir(tmp_path, {**TINY, "solver": {"t_max": 0.05}})
+    done = run_snakemake("results/torque_delay/fig9.nc", work, "--cores", "1")
+    assert done.returncode != 0
+    lines = [line for line in done.stderr.splitlines() if "tennis-stroke job failed" in line]
+    assert lines == [
+        "tennis-stroke job failed: FailureShareError: results/torque_delay/fig9.nc: 5 of 5 "
+        "strokes failed (100.00 %) (no_phi_zero 5), above max_failure_share 1 % "
+        "(traceback in logs/gather_map/torque_delay/fig9.log)"
+    ]
+    assert "Traceback" not in done.stderr
+    assert not (work / "results/torque_delay/fig9.nc").exists()
+    assert "Traceback" in (work / "logs/gather_map/torque_delay/fig9.log").read_text()
+    with xr.open_dataset(work / "results/chunks/torque_delay/fig9/0-of-1.nc") as chunk:
+        assert (chunk["status"] == 1).all()  # the failures themselves are statuses
+
+
+def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    command = snakemake_command("report", work, "--cores", "2")
+    run = subprocess.Popen(
+        command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
+    )
+    deadline = time.monotonic() + 600
+    try:
+        while len(list((work / "results").rglob("*.nc"))) < 4:
+            assert run.poll() is None, "the run ended before it could be killed"
+            assert time.monotonic() < deadline, "no results after 600 s"
+            time.sleep(0.05)
+    finally:
+        os.killpg(run.pid, signal.SIGKILL)  # the whole run at once, as a power cut would
+        run.wait()
+    assert not (work / "report" / "index.html").exists()
+    written = sorted((work / "results").rglob("*.nc"))
+    for path in written:  # whatever has a final name is complete
+        with xr.open_dataset(path) as ds:
+            ds.load()
+    # a killed Snakemake leaves its lock: the documented restart is --unlock, then rerun
+    assert run_snakemake("report", work, "--unlock").returncode == 0
+    done = run_snakemake("report", work, "--cores", "2", "--rerun-incomplete", timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert result_files(work) == result_files(tiny_run)
+    for name in result_files(work):
+        assert_same_results(work / name, tiny_run / name)
+    claims = pd.read_csv(work / "results/claims.csv")
+    pd.testing.assert_frame_equal(claims, pd.read_csv(tiny_run / "results/claims.csv"))

@@ -1,0 +1,284 @@
+"""The workflow fails safe: every value of the config reaches the jobs that use it (or
+the run is refused), bad claims are refused before any job, and a moved checkout
+reruns nothing.
+
+Dry runs (``snakemake -n``) on a copy of the checkout and of the tiny run's directory,
+moved together to another folder: the copied sources are older than every result, so
+edits of the checkout while the tests run do not plan jobs (Snakemake reruns a job whose
+input is newer than its output whatever ``--rerun-triggers`` says)."""
+
+import json
+import os
+import re
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+import yaml
+from conftest import ROOT, run_snakemake, snakemake_command, workdir
+from tiny import TINY, TINY_READINGS
+
+#: The rules that must plan a job when a config key changes, by the key's path (the
+#: longest prefix applies): each key belongs to an experiment or a solver study, not only
+#: to the inference that reruns them all.  An empty set: a key that changes no result (a
+#: resource limit), not run.
+RULES_OF_KEY = {
+    "chunks.angle_map": {"angle_map"},
+    "chunks.mass_length": {"mass_length"},
+    "chunks.delay_map": {"delay_map"},
+    "chunks.elbow_force_map": {"elbow_force_map"},
+    "max_memory": set(),
+    "max_failure_share": {"gather_map"},
+    "solver": {"fig4_strokes"},
+    "figure_curves": {"fig4_strokes"},
+    "angle_maps": {"angle_map"},
+    "fig4": {"fig4_strokes"},
+    "k_sensitivity": {"k_sensitivity"},
+    "mass_length": {"mass_length"},
+    "torque_delay": {"delay_map"},
+    "torque_delay.strokes": {"delay_strokes"},
+    "elbow_force": {"elbow_force_map"},
+    "elbow_force.table1_psi": {"elbow_force_strokes"},
+    "elbow_force.table1_tau_F": {"elbow_force_strokes"},
+    "solver_study": {"work_precision"},
+    "solver_study.stability": {"stability"},
+    "solver_study.optimum": {"model_ladder"},
+}
+SCHEMA = yaml.safe_load((ROOT / "workflow" / "schemas" / "config.schema.yaml").read_text())
+
+
+def leaves(node, parts=()):
+    """The values of a config a user sets, by path: scalars, lists and ranges
+    (``{start, stop, ...}``); other mappings are walked."""
+    if isinstance(node, dict) and not {"start", "stop"} <= set(node):
+        for key, value in node.items():
+            yield from leaves(value, (*parts, key))
+    else:
+        yield parts, node
+
+
+def choices(parts) -> list:
+    """The values the schema allows at ``parts`` (its ``enum``; empty: any)."""
+    node = SCHEMA
+    for part in parts:
+        node = node.get("properties", {}).get(part, {})
+    return node.get("enum", [])
+
+
+def changed(value, parts=()):
+    """Another valid value: a range with half its step (or one point more), numbers
+    scaled by 0.9 (0 becomes 0.01, an integer grows by one), a string the next of its
+    schema's choices."""
+    if isinstance(value, dict):
+        if "step" in value:
+            return {**value, "step": value["step"] / 2}
+        return {**value, "num": value["num"] + 1}
+    if isinstance(value, list):
+        return [changed(v) for v in value]
+    if isinstance(value, bool):
+        return not value
+    if isinstance(value, int):
+        return value + 1
+    if isinstance(value, float):
+        return round(value * 0.9, 12) if value else 0.01
+    if isinstance(value, str):
+        return next((c for c in choices(parts) if c != value), value)
+    return value
+
+
+def get(config, parts):
+    for part in parts:
+        config = config[part]
+    return config
+
+
+def with_value(config, parts, value):
+    """``config`` (a copy) with ``value`` at ``parts``."""
+    out = yaml.safe_load(yaml.safe_dump(config))
+    if len(parts) == 1:
+        out[parts[0]] = value
+    else:
+        get(out, parts[:-1])[parts[-1]] = value
+    return out
+
+
+def planned_jobs(output: str) -> dict[str, int]:
+    """The job counts of a dry run's "Job stats" (empty: nothing to be done)."""
+    if "Job stats:" not in output:
+        return {}
+    stats = output.split("Job stats:")[1].split("Reasons:")[0]
+    counts = dict(re.findall(r"^(\w+)\s+(\d+)\s*$", stats, flags=re.MULTILINE))
+    counts.pop("total", None)
+    return {rule: int(n) for rule, n in counts.items()}
+
+
+def expected_rules(parts) -> set[str]:
+    key = ".".join(map(str, parts))
+    prefixes = [p for p in RULES_OF_KEY if key == p or key.startswith(p + ".")]
+    assert prefixes, f"no rule known for config key {key!r}: add it to RULES_OF_KEY"
+    return RULES_OF_KEY[max(prefixes, key=len)]
+
+
+def override(section, value) -> str:
+    """A --config item setting a whole top-level section (nothing depends on how
+    Snakemake merges nested values)."""
+    return f"{section}={yaml.safe_dump(value, default_flow_style=True).strip()}"
+
+
+def dry_runs(snakefile, work, overrides):
+    """Dry runs of the report, one per config override, in one process
+    (tests/dry_runs.py): ``[{"exit": status, "output": log}, ...]``."""
+    command = [sys.executable, str(Path(__file__).parents[1] / "dry_runs.py")]
+    done = subprocess.run(
+        [*command, str(snakefile), str(work), "report"],
+        input=json.dumps(overrides),
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    return json.loads(done.stdout)
+
+
+#: What a checkout needs to run the workflow (the package is imported from the
+#: environment; its sources are the simulations' inputs).
+CHECKOUT = ("Snakefile", "workflow", "src", "docs")
+#: A time before the tiny run (2001): the copied sources are older than every result.
+OLD = 1_000_000_000
+
+
+@pytest.fixture(scope="module")
+def moved(tiny_run, tmp_path_factory):
+    """The checkout and the tiny run's directory copied together into one folder (in
+    their relative position), brought up to date there (``--touch``: the copy's sources
+    are frozen, so edits of the checkout after the tiny run do not count), then the
+    folder renamed; a function running the moved Snakefile on the moved directory."""
+    here = tmp_path_factory.mktemp("here")
+    code = ROOT.relative_to(ROOT.anchor)
+    work = tiny_run.resolve().relative_to(tiny_run.anchor)
+    ignore = shutil.ignore_patterns("__pycache__", "*.pyc", "*.egg-info")
+    for name in CHECKOUT:
+        if (ROOT / name).is_dir():
+            shutil.copytree(ROOT / name, here / code / name, ignore=ignore)
+        else:
+            (here / code).mkdir(parents=True, exist_ok=True)
+            shutil.copy2(ROOT / name, here / code / name)
+    for path in (here / code).rglob("*"):
+        if path.is_file():
+            os.utime(path, (OLD, OLD))
+    shutil.copytree(tiny_run, here / work, symlinks=True)
+
+    def snakemake(root, *options):
+        command = snakemake_command("report", root / work, *options)
+        command[command.index("-s") + 1] = str(root / code / "Snakefile")
+        return subprocess.run(command, capture_output=True, text=True, timeout=600)
+
+    touched = snakemake(here, "--touch", "--cores", "1")
+    assert touched.returncode == 0, touched.stderr[-3000:]
+    elsewhere = here.with_name(here.name.replace("here", "elsewhere"))
+    here.rename(elsewhere)
+
+    def run(*options):
+        return snakemake(elsewhere, *options)
+
+    run.snakefile, run.work = elsewhere / code / "Snakefile", elsewhere / work
+    return run
+
+
+def test_a_moved_checkout_reruns_nothing(moved):
+    """Rule inputs are relative to the working directory: the moved checkout's dry run
+    plans no job (absolute paths plan every job: 'set of input files has changed')."""
+    done = moved("-n")
+    assert done.returncode == 0, done.stderr[-2000:]
+    output = done.stdout + done.stderr
+    assert planned_jobs(output) == {} and "Nothing to be done" in output, output[-3000:]
+
+
+def test_every_key_of_the_config_is_used_or_refused(moved):
+    """Changing any value of config/config.yaml (every grid, list and number, and every
+    string with choices) plans a job of the experiment or solver study it belongs to, or
+    the run is refused with one line naming it; never a report over results of the old
+    value."""
+    tiny = yaml.safe_load((moved.work / "config" / "config.yaml").read_text())
+    paper = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    keys = [parts for parts, _ in leaves(paper) if expected_rules(parts)]
+    assert len(keys) >= 50 and ("angle_maps", "L1") in keys
+    overrides = []
+    for parts in keys:
+        # the tiny run's value, or the paper's for a section the tiny config leaves out
+        base = tiny if parts[0] in tiny else paper
+        value = changed(get(base, parts), parts)
+        assert value != get(base, parts), parts
+        overrides.append({parts[0]: with_value(base, parts, value)[parts[0]]})
+    unchanged, *runs = dry_runs(moved.snakefile, moved.work, [{}, *overrides])
+    # else every key would seem to plan its jobs
+    assert unchanged["exit"] == 0 and planned_jobs(unchanged["output"]) == {}, unchanged
+    problems = []
+    for parts, done in zip(keys, runs, strict=True):
+        key = ".".join(map(str, parts))
+        if done["exit"]:
+            lines = [line for line in done["output"].splitlines() if "tennis-stroke" in line]
+            if len(lines) != 1 or f"'{key}" not in lines[0]:
+                problems.append(f"{key}: refused without one line naming it: {lines}")
+            continue
+        planned = planned_jobs(done["output"])
+        if not expected_rules(parts) & set(planned):
+            problems.append(f"{key}: plans {sorted(planned)}, none of {expected_rules(parts)}")
+    assert not problems, "\n".join(problems)
+
+
+def test_the_angle_maps_follow_their_L1(moved):
+    """Figs. 2 and 3 are the maps at angle_maps.L1 (in that order): changing Fig. 2's
+    length reruns its map, its figure and the claims, and leaves Fig. 3's map; one length
+    alone is refused."""
+    section = {**TINY["angle_maps"], "L1": [0.35, 0.4]}
+    done = moved("-n", "--config", override("angle_maps", section))
+    assert done.returncode == 0, done.stderr[-2000:]
+    text = done.stdout + done.stderr
+    assert planned_jobs(text)["angle_map"] == 1
+    assert "wildcards: fig=fig2, chunk=0, chunks=1" in text
+    assert "output: results/figures/fig02_angle_map.png" in text
+    assert "output: results/figures/fig03_angle_map.png" not in text
+    assert {"claims", "report"} <= set(planned_jobs(text))
+    section["L1"] = [0.35]
+    done = moved("-n", "--config", override("angle_maps", section))
+    assert done.returncode == 1
+    assert done.stderr.strip().splitlines() == [
+        "tennis-stroke config error: config key 'angle_maps.L1': [0.35] is too short "
+        "(rule: minItems)"
+    ]
+
+
+def test_a_bad_claim_is_refused_before_any_job(tmp_path):
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    path = work / "config" / "claims.yaml"
+    raw = yaml.safe_load(path.read_text())
+    claim = next(c for c in raw["claims"] if c["id"] == "fig2_best_delta0_at_120")
+    claim["measure"]["file"] = "fig44"
+    path.write_text(yaml.safe_dump(raw, sort_keys=False))
+    done = run_snakemake("report", work, "-n")
+    assert done.returncode == 1
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1, lines
+    assert lines[0].startswith(
+        "tennis-stroke claims error: config/claims.yaml: claim 'fig2_best_delta0_at_120': "
+        "unknown result file 'fig44' (known: delay, elbow, elbow_map, fig2, fig3, fig4,"
+    )
+    assert not (work / "results").exists() and not (work / "logs").exists()
+
+
+def test_a_yaml_syntax_error_in_the_config_names_file_and_line(tmp_path):
+    """Snakemake's own message names neither; the workflow reads the file first."""
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    path = work / "config" / "config.yaml"
+    lines = path.read_text().splitlines()
+    lines.insert(2, "  broken: a: b")
+    path.write_text("\n".join(lines) + "\n")
+    done = run_snakemake("report", work, "-n")
+    assert done.returncode == 1
+    out = done.stderr.strip().splitlines()
+    assert len(out) == 1, out
+    assert out[0].startswith("tennis-stroke config error: config/config.yaml, line 3, column")
+    assert "YAML syntax error" in out[0]
