@@ -12,12 +12,13 @@ import pytest
 PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tennis_stroke"
 
 #: Rank of each layer: a module may import from its own rank or below.  Folders are
-#: layers; of the top-level modules, ``_version`` and ``_cache`` (the compiled code's
-#: cache location) import nothing of the package, and the CLI and the package's start-up
-#: are entry points.
+#: layers; of the top-level modules, ``_version``, ``_imports`` (the import graph) and
+#: ``_cache`` (the compiled code's cache location) import nothing of the package above
+#: them, and the CLI and the package's start-up are entry points.
 LAYERS = {
     "_version": 0,
     "_cache": 0,
+    "_imports": 0,
     "model": 0,
     "solver": 1,
     "io": 2,

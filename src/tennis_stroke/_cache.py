@@ -2,34 +2,35 @@
 
 numba's on-disk cache checks only the source file of each compiled function, not the
 modules it calls, so a change in ``model/dynamics.py`` would not recompile
-``solver/stroke.py``.  The cache directory is therefore keyed by a hash of the layers with
-compiled code, ``model/`` and ``solver/``: a change in any of their modules starts a fresh
-cache, and an unchanged package reloads in a new process without compiling.
+``solver/stroke.py``.  The cache directory is therefore keyed by a hash of the modules
+that hold compiled functions (those importing numba) and every package module they
+import, read from the import graph (:mod:`tennis_stroke._imports`): a change in any of
+them starts a fresh cache, an edit anywhere else (a long name in
+:mod:`tennis_stroke.io.units`, the inference, the docs) compiles nothing, and an
+unchanged package reloads in a new process without compiling.
 """
 
 from __future__ import annotations
 
 import hashlib
 import os
+from functools import cache
 from pathlib import Path
 
-#: The layers that hold compiled (numba) code; a change in any of their modules
-#: recompiles all.
-COMPILED_LAYERS = ("model", "solver")
+from ._imports import PACKAGE, closure, compiled_modules
 
 
-def compiled_sources() -> list[Path]:
-    """The source files of :data:`COMPILED_LAYERS`, in a fixed order."""
-    package = Path(__file__).parent
-    return sorted(p for layer in COMPILED_LAYERS for p in (package / layer).glob("*.py"))
+@cache
+def compiled_sources() -> tuple[Path, ...]:
+    """The modules with compiled functions and everything they import, in a fixed order."""
+    return tuple(closure(modules=compiled_modules()))
 
 
 def source_hash() -> str:
-    """SHA-256 (first 16 hex digits) of the modules of the compiled layers."""
-    package = Path(__file__).parent
+    """SHA-256 (first 16 hex digits) of :func:`compiled_sources`, names and contents."""
     digest = hashlib.sha256()
     for path in compiled_sources():
-        digest.update(str(path.relative_to(package)).encode())
+        digest.update(str(path.relative_to(PACKAGE)).encode())
         digest.update(path.read_bytes())
     return digest.hexdigest()[:16]
 

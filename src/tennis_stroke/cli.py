@@ -205,13 +205,15 @@ def _strike(args: argparse.Namespace) -> int:
         }
         print(json.dumps(payload, indent=2))
         return 0
-    from .solver.results import COUNT_FIELDS, RESULT_FIELDS
+    from .io.units import VARIABLES
+    from .solver.results import COUNT_FIELDS, FILE_NAMES, RESULT_FIELDS
 
     print(
         f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
         f"{result['status_name']}"
     )
-    for name, (_, units, long_name) in RESULT_FIELDS.items():
+    for name in RESULT_FIELDS:
+        units, long_name = VARIABLES[FILE_NAMES.get(name, name)]
         if name in COUNT_FIELDS and name != "status":
             print(f"  {name:18s} {int(result[name]):14d} {units:7s} {long_name}")
         elif name != "status":

@@ -11,8 +11,9 @@ from conftest import result_files
 
 from tennis_stroke.io.compare import result_differences
 from tennis_stroke.io.netcdf import provenance, result_dataset, write_netcdf
+from tennis_stroke.io.units import cf_attrs
 from tennis_stroke.model.params import resolve_params
-from tennis_stroke.solver.results import COUNT_FIELDS, RESULT_FIELDS, cf_attrs
+from tennis_stroke.solver.results import COUNT_FIELDS, RESULT_FIELDS
 from tennis_stroke.solver.settings import SolverSettings
 
 CF = "cf:1.10"

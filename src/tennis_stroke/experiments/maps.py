@@ -16,8 +16,8 @@ import numpy as np
 import xarray as xr
 
 from ..io.netcdf import result_dataset
+from ..io.units import cf_attrs
 from ..model.params import resolve_params
-from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 from .grids import axis, grid, ok_speeds, refine_peak, select_rows

@@ -9,10 +9,10 @@ import numpy as np
 import xarray as xr
 
 from ..io.netcdf import result_dataset
+from ..io.units import cf_attrs
 from ..model.dynamics import coefficients, elbow_position
 from ..model.params import resolve_params
 from ..solver.reference import free_swing, solve_stroke
-from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike
 

@@ -2,7 +2,7 @@
 atomically) and the YAML files the package reads (:func:`load_yaml`).
 
 Every variable and coordinate gets ``units`` and ``long_name`` from one table
-(:data:`tennis_stroke.solver.results.VARIABLES`).  Global attributes record the resolved
+(:data:`tennis_stroke.io.units.VARIABLES`).  Global attributes record the resolved
 parameters, the readings, the solver settings, the package version and the git commit.
 Files are written under a temporary name and renamed, so a final name never holds a
 truncated file.
@@ -24,8 +24,9 @@ import xarray as xr
 
 from .._version import __version__
 from ..model.params import PARAMETERS, READINGS, scalar_params
-from ..solver.results import FILE_NAMES, STATUS_NAMES, cf_attrs
+from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
+from .units import cf_attrs
 
 #: Global attributes that differ between two runs of the same job, and only those: when
 #: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
@@ -109,7 +110,7 @@ def result_dataset(
     results : mapping of str to ndarray
         Result fields (:data:`RESULT_FIELDS`) shaped like the grid.
     coords : mapping of str to 1-D ndarray
-        Grid axes in order, each named in :data:`tennis_stroke.solver.results.VARIABLES`.
+        Grid axes in order, each named in :data:`tennis_stroke.io.units.VARIABLES`.
     params : mapping
         Resolved parameters (scalars become attributes).
     settings : SolverSettings

@@ -31,14 +31,14 @@ import numpy as np
 
 from ..model.dynamics import N_CF
 from ..solver.integrate import HISTORY_COLS
-from ..solver.results import COUNT_FIELDS, N_OUT, RESULT_FIELDS
+from ..solver.results import COUNT_FIELDS, DEGREE_FIELDS, N_OUT, RESULT_FIELDS
 
 #: Bytes of one float64 or int64 value.
 WORD = np.dtype(np.float64).itemsize
 #: Result fields that :func:`tennis_stroke.solver.results.results_from_output` copies
 #: out of the compiled output: the counts (to int64) and the angles (to degrees); the
 #: others are views of it.
-_COPIED_FIELDS = len(COUNT_FIELDS) + sum(unit == "degree" for _, unit, _ in RESULT_FIELDS.values())
+_COPIED_FIELDS = len(COUNT_FIELDS) + len(DEGREE_FIELDS)
 #: Peak bytes per stroke of one :func:`tennis_stroke.solver.stroke.strike_batch` call,
 #: from the arrays it holds at once: the initial angles broadcast to every stroke
 #: (theta0, delta0), the coefficient rows (``N_CF`` float64), the compiled output

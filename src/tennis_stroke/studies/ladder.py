@@ -9,10 +9,10 @@ import numpy as np
 import xarray as xr
 
 from ..io.netcdf import provenance
+from ..io.units import cf_attrs
 from ..model.dynamics import coefficients
 from ..model.impact import impact_rebound_kmh
 from ..model.params import resolve_params
-from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 from .sampling import REFERENCE, stroke_params

@@ -10,8 +10,8 @@ import xarray as xr
 
 from ..experiments.maps import mass_length_map
 from ..io.netcdf import provenance
+from ..io.units import cf_attrs
 from ..model.params import resolve_params
-from ..solver.results import cf_attrs
 from ..solver.settings import SolverSettings
 from .sampling import REFERENCE
 from .timing import TIMING, median_time

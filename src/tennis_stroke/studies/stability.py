@@ -17,6 +17,7 @@ import xarray as xr
 from scipy.integrate import solve_ivp
 
 from ..io.netcdf import provenance
+from ..io.units import cf_attrs
 from ..model.dynamics import (
     A_BALL_W,
     CF_MB,
@@ -29,7 +30,6 @@ from ..model.dynamics import (
     mechanical_energy,
 )
 from ..model.params import resolve_params
-from ..solver.results import cf_attrs
 from ..solver.rk4 import contact_missed, fixed_phase
 from ..solver.settings import SolverSettings
 from ..solver.stroke import solve_contact

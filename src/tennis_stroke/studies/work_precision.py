@@ -16,9 +16,9 @@ import numpy as np
 import xarray as xr
 
 from ..io.netcdf import provenance
+from ..io.units import cf_attrs
 from ..model.params import resolve_params
 from ..solver.reference import solve_stroke
-from ..solver.results import cf_attrs
 from ..solver.rk4 import fixed_step_stroke
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch

@@ -1,0 +1,97 @@
+"""The one table of units and long names of every variable and coordinate written to a
+result file (CF ``units`` and ``long_name``), and :func:`cf_attrs`, which every writer
+(:mod:`tennis_stroke.io.netcdf`, the experiments, the studies, the inference) uses.
+
+Metadata only: no compiled module imports it, so editing a long name recompiles nothing.
+"""
+
+from __future__ import annotations
+
+_SPEED = "km/h"
+#: The stroke result fields (:data:`tennis_stroke.solver.results.RESULT_FIELDS`) under
+#: their file names: name -> (unit, long name).
+RESULT_VARIABLES: dict[str, tuple[str, str]] = {
+    "status": ("1", "stroke status code (see attribute flag_meanings)"),
+    "v_out": (_SPEED, "rebound speed of the ball towards -x"),
+    "t_phi0": ("s", "time at which phi reaches 0 in the free swing (t0)"),
+    "t_contact_start": ("s", "time at which ball contact starts (t_c)"),
+    "t_separation": ("s", "time at which the ball leaves the strings"),
+    "theta_deg_at_phi0": ("degree", "rod-1 angle theta at phi = 0"),
+    "omega1_phi0": ("rad/s", "rod-1 angular velocity at phi = 0"),
+    "omega2_phi0": ("rad/s", "rod-2 angular velocity at phi = 0"),
+    "theta_deg_contact": ("degree", "rod-1 angle theta at contact start"),
+    "omega1_contact": ("rad/s", "rod-1 angular velocity at contact start"),
+    "omega2_contact": ("rad/s", "rod-2 angular velocity at contact start"),
+    "omega2_max": ("rad/s", "maximum rod-2 angular velocity over the stroke"),
+    "rhs_evals": ("1", "right-hand-side evaluations of the stroke"),
+    "steps": ("1", "accepted integration steps of the stroke"),
+}
+#: Every other variable and coordinate written to a result file: name -> (unit, long
+#: name).
+OTHER_VARIABLES: dict[str, tuple[str, str]] = {
+    # grid axes and stroke coordinates
+    "theta0": ("degree", "initial rod-1 angle theta(0) from -y"),
+    "delta0": ("degree", "initial angle delta(0) = phi(0) - theta(0) between the rods"),
+    "M2": ("kg", "mass of rod 2 (hand+racket)"),
+    "L1": ("m", "length of rod 1 (elbow to hand, projected)"),
+    "C2": ("N m", "wrist torque C2"),
+    "tau": ("s", "delay of the wrist torque C2"),
+    "psi_F": ("degree", "direction of the elbow force from +x"),
+    "tau_F": ("s", "delay of the force pulse after tau_H"),
+    "F0": ("N", "amplitude of the elbow force (Eq. 14)"),
+    "stroke": ("1", "stroke index"),
+    "label": ("1", "stroke label"),
+    # The time axis of the sampled strokes is named "t", not "time": it is the time since
+    # the stroke starts, without an epoch, for which CF defines no standard name (standard
+    # name "time" needs units "<unit> since <epoch>", CF 4.4, which xarray would decode as
+    # dates), and the CF checker asks standard name "time" of any axis named "time" (5.1).
+    "t": ("s", "time since the stroke starts"),
+    # optima of the maps
+    "best_delta0": ("degree", "delta0 of the fastest rebound"),
+    "best_tau": ("s", "delay of the fastest rebound"),
+    "best_v_out": (_SPEED, "fastest rebound speed"),
+    "v_out_tau0": (_SPEED, "rebound speed at tau = 0"),
+    "v_out_best": (_SPEED, "fastest rebound speed over the initial angles"),
+    "theta0_best": ("degree", "theta0 of the fastest rebound"),
+    "delta0_best": ("degree", "delta0 of the fastest rebound"),
+    "theta_c": ("degree", "|theta| at phi = 0 of the fastest rebound"),
+    "failed_strokes": ("1", "failed strokes of the optimum search at this point"),
+    # curves of single strokes
+    "omega1": ("rad/s", "rod-1 angular velocity (clockwise)"),
+    "omega2": ("rad/s", "rod-2 angular velocity (clockwise)"),
+    "theta": ("degree", "rod-1 angle from -y"),
+    "phi": ("degree", "rod-2 angle from -y"),
+    "x_elbow": ("m", "elbow x position"),
+    "y_elbow": ("m", "elbow y position"),
+    # speed-against-accuracy studies
+    "method": ("1", "integrator"),
+    "setting": ("1", "tolerance rtol = atol, or RK4 step (s)"),
+    "error_kmh": (_SPEED, "largest |v_out error|"),
+    "us_per_stroke": ("us", "cost per stroke, one thread"),
+    "rhs_evals_per_stroke": ("1", "right-hand-side evaluations per stroke (mean)"),
+    "failed": ("1", "strokes without status ok"),
+    "case": ("1", "method @ setting"),
+    "k_contact": ("N/m", "spring constant"),
+    "outcome": ("1", "outcome code (see flag_meanings)"),
+    "v_exit": ("m/s", "ball velocity after separation (lab frame, along x)"),
+    "duration": ("s", "contact duration"),
+    "energy_change": ("1", "relative change of the mechanical energy"),
+    "expected_duration": ("s", "two-body contact duration pi sqrt(mu/k)"),
+    "v_out_spring": (_SPEED, "v_out, spring contact (paper)"),
+    "v_out_impact": (_SPEED, "v_out, instantaneous impact at phi=0"),
+    "search": ("1", "steps"),
+    "v_err": (_SPEED, "largest error of the best v_out"),
+    "theta0_err": ("degree", "largest error of the best theta0"),
+    "delta0_err": ("degree", "largest error of the best delta0"),
+    "seconds": ("s", "wall time of the search over all points (all threads)"),
+}
+#: The one table of CF metadata: every variable and coordinate of a result file, by its
+#: name in the file -> (unit, long name).  :func:`cf_attrs` reads it.
+VARIABLES: dict[str, tuple[str, str]] = {**RESULT_VARIABLES, **OTHER_VARIABLES}
+
+
+def cf_attrs(name: str, **extra) -> dict[str, object]:
+    """``units`` and ``long_name`` of the file variable ``name`` (:data:`VARIABLES`), with
+    ``extra`` attributes."""
+    units, long_name = VARIABLES[name]
+    return {"units": units, "long_name": long_name, **extra}
