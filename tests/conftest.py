@@ -19,6 +19,18 @@ FIG4_A = (120.0, 81.5)
 FIG4_B = (75.0, 39.0)
 
 
+#: Fixtures that run the workflow: a test using one is slow.
+WORKFLOW_FIXTURES = ("tiny_run", "moved")
+
+
+def pytest_collection_modifyitems(items):
+    """Tests on a workflow run are marked slow: ``pytest -m "not slow"`` is the quick loop
+    while editing (``make test`` runs everything)."""
+    for item in items:
+        if set(WORKFLOW_FIXTURES) & set(getattr(item, "fixturenames", ())):
+            item.add_marker(pytest.mark.slow)
+
+
 @pytest.fixture(autouse=True)
 def _raise_on_float_errors():
     """Floating-point warnings are errors in tests."""

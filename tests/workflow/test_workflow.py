@@ -1,6 +1,7 @@
 """A tiny end-to-end run of the Snakemake workflow: every rule, small grids; chunked maps,
 a map with too many failed strokes, and a run killed midway and restarted."""
 
+import json
 import os
 import signal
 import subprocess
@@ -20,11 +21,14 @@ from conftest import (
 )
 from tiny import MAPS, ROBUSTNESS_CHUNKS, TINY, TINY_READINGS
 
-from tennis_stroke.experiments.specs import RESULT_FILES
+from tennis_stroke.experiments.specs import EXPERIMENTS, RESULT_FILES
 from tennis_stroke.replication.claims import COLUMNS
 from tennis_stroke.replication.registry import FIGURES
 from tennis_stroke.replication.robustness import COLUMNS as ROBUSTNESS_COLUMNS
 from tennis_stroke.replication.robustness import ROBUSTNESS
+
+#: The workflow end to end: slow (pytest -m 'not slow' leaves it out).
+pytestmark = pytest.mark.slow
 
 
 def test_report_and_claims_are_built(tiny_run):
@@ -105,8 +109,8 @@ def test_changing_one_parameter_reruns_only_its_jobs(tiny_run):
     assert done.returncode == 0, done.stderr[-2000:]
     stats = (done.stdout + done.stderr).split("Job stats:")[1].split("Reasons:")[0]
     rerun = {line.split()[0] for line in stats.splitlines()[3:] if line.strip()}
-    assert "fig4_strokes" in rerun and "delay_strokes" in rerun
-    assert "angle_map" not in rerun and "mass_length" not in rerun
+    assert "fig4" in rerun and "delay_strokes" in rerun
+    assert "fig2" not in rerun and "mass_length" not in rerun
 
 
 def test_chunked_maps_equal_unchunked_maps_bit_for_bit(tiny_run, tmp_path):
@@ -168,3 +172,22 @@ def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
         assert_same_results(work / name, tiny_run / name)
     claims = pd.read_csv(work / "results/claims.csv")
     pd.testing.assert_frame_equal(claims, pd.read_csv(tiny_run / "results/claims.csv"))
+
+
+@pytest.mark.parametrize("key", sorted(EXPERIMENTS))
+def test_every_row_of_the_table_is_wired_end_to_end(tiny_run, key):
+    """Every row of the table of experiments has its rule, its job's log and benchmark,
+    and its file, with exactly the variables the row declares, computed by the row's
+    function from the row's config keys."""
+    e = EXPERIMENTS[key]
+    with xr.open_dataset(tiny_run / e.path) as ds:
+        assert set(ds.data_vars) == set(e.variables), key
+        job = json.loads(ds.attrs["config"])
+    assert job["experiment"]["key"] == key and job["experiment"]["function"] == e.function
+    assert set(job["args"]) == set(e.args)
+    assert ("common" in job) == e.model
+    logs = list((tiny_run / "logs").glob(f"{e.rule}*")) + list(
+        (tiny_run / "logs" / e.rule).glob("*.log")
+    )
+    assert logs, f"no log of rule {e.rule}"
+    assert list((tiny_run / "benchmarks" / "workflow").glob(f"{e.rule}*.tsv")), e.rule

@@ -2,19 +2,23 @@
 from pathlib import Path
 
 import os
+import re
 import sys
 
 from snakemake.utils import validate
 
-from tennis_stroke.experiments.grids import chunk_count, grid
+from tennis_stroke._imports import PACKAGE as INSTALLED
+from tennis_stroke._imports import closure
+from tennis_stroke.experiments.grids import chunk_count
 from tennis_stroke.experiments.specs import (
-    ANGLE_MAP_FIGURES,
     IDENTIFICATION_FILES,
     INFERENCE_RESULTS,
     PAPER_RESULTS,
     RESULT_FILES,
+    EXPERIMENTS,
+    value_at,
 )
-from tennis_stroke.experiments.strokes import sec5_stroke
+from tennis_stroke.inference.multiverse import MULTIVERSE_SETS
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
 from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
@@ -46,10 +50,24 @@ except ReadingSpaceError as _exc:
     sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
     sys.exit(1)
 
-#: The package, by layer (folders) and module; rules declare the sources they run as
-#: inputs, so an edit reruns exactly the jobs that read it (Snakemake does not see code
-#: changes in an imported package).
+#: The workflow's scripts: each rule's code inputs are the package modules its job
+#: imports (tennis_stroke._imports), so an edit reruns exactly the jobs that run it
+#: (Snakemake does not see code changes in an imported package).
+SCRIPTS = Path(workflow.basedir) / "workflow" / "scripts"
 PACKAGE_DIR = Path(workflow.basedir) / "src" / "tennis_stroke"
+#: The table of experiments: a simulation job gets its row as params (function, flags,
+#: config values), so editing another row reruns nothing of it.
+TABLE = PACKAGE_DIR / "experiments" / "specs.py"
+#: The one table of units and long names: a code input only of the jobs that write its
+#: labels into their files, the table's unchunked rows and gather_map (the chunks of a
+#: map leave the labels to it: tennis_stroke.io.netcdf.relabelled), so editing a long
+#: name reruns no chunk of a map and no inference job (their files carry none of its
+#: labels: tests/inference/test_labels.py).
+UNITS = PACKAGE_DIR / "io" / "units.py"
+#: The modules of the paper experiments' functions (the robustness analysis runs them).
+PAPER_MODULES = sorted(
+    {e.function.split(":")[0] for e in EXPERIMENTS.values() if e.family == "paper"}
+)
 
 
 def checkout_path(path):
@@ -60,33 +78,45 @@ def checkout_path(path):
     return os.path.relpath(path, os.getcwd())
 
 
-#: Top-level modules every simulation job runs: package start-up, files, chunks.
-JOB_MODULES = ("__init__.py", "_cache.py", "io", "pipeline")
+def code_inputs(script, *modules, labels=False, leave_out=()):
+    """The package modules a job of ``script`` (in workflow/scripts) runs: those the
+    script imports and ``modules`` (dotted, below the package) import, directly or
+    through others, as sorted paths relative to the working directory; less
+    ``leave_out`` (paths), and less the units table unless the job writes its
+    ``labels``."""
+    paths = closure(files=[SCRIPTS / script], modules=modules)
+    # the same modules in this checkout (a moved or copied checkout reruns nothing)
+    paths = {PACKAGE_DIR / p.relative_to(INSTALLED) for p in paths}
+    paths -= {*leave_out, *([] if labels else [UNITS])}
+    return sorted(checkout_path(p) for p in paths)
 
 
-def sources(*parts):
-    """Source files of the package's ``parts``: a layer folder (every module in it) or a
-    module path, as sorted paths relative to the working directory (checkout_path)."""
-    out = set()
-    for part in parts:
-        path = PACKAGE_DIR / part
-        out.update(
-            checkout_path(p) for p in (path.glob("*.py") if path.is_dir() else [path])
-        )
-    return sorted(out)
+def simulation_code(experiment):
+    """The code inputs of an experiment's jobs: the generic script and the module of the
+    row's function, less the table (the row is in the params) and, for a chunk of a map,
+    the units table (gather_map labels the map)."""
+    name = experiment.function.split(":")[0]
+    return code_inputs(
+        "simulate.py", name, labels=not experiment.chunks, leave_out=[TABLE]
+    )
 
 
-#: What a simulation runs: the model, the solver and the experiments.
-SIMULATION_SOURCES = sources("model", "solver", "experiments", *JOB_MODULES)
-#: What an inference job runs: the same and the inference.
-INFERENCE_SOURCES = sources("model", "solver", "experiments", "inference", *JOB_MODULES)
-#: What a solver study runs: the same and the studies.
-STUDY_SOURCES = sources("model", "solver", "experiments", "studies", *JOB_MODULES)
-
-
-def grid_spec(spec):
-    """A range of the config as a plain list [start, stop, step] (a params value)."""
-    return [float(spec["start"]), float(spec["stop"]), float(spec["step"])]
+def simulation_params(experiment):
+    """A row's params: what the job runs (its row: function and flags), the config values
+    it reads and, for a model row, the model overrides and solver settings."""
+    out = {
+        "experiment": {
+            "key": experiment.key,
+            "function": experiment.function,
+            "model": experiment.model,
+            "chunks": bool(experiment.chunks),
+            "threaded": experiment.threaded,
+        },
+        "args": experiment.arguments(config),
+    }
+    if experiment.model:
+        out["common"] = common_params()
+    return out
 
 
 wildcard_constraints:
@@ -95,48 +125,27 @@ wildcard_constraints:
 
 
 #: Maps computed in chunks (paths under results/, without .nc) and gathered by rule
-#: gather_map.
-CHUNKED_MAPS = (
-    r"angle_maps/fig[23]|mass_length/map|torque_delay/fig[789]|elbow_force/map"
-    r"|robustness/claims"
-)
+#: gather_map: the table's chunked rows and the robustness analysis.
+CHUNKED = {e.stem: e for e in EXPERIMENTS.values() if e.chunks}
+CHUNKED_MAPS = "|".join(re.escape(stem) for stem in [*CHUNKED, "robustness/claims"])
 
 
 def map_rows(name):
     """Requested chunks and number of rows of the first axis of map ``name``
     (CHUNKED_MAPS); the robustness analysis' from config/readings.yaml (its rows: at
     most the declared number of readings)."""
-    section, item = name.split("/")
-    chunks = config["chunks"]
-    if section == "robustness":
+    if name == "robustness/claims":
         spec = READING_SPACE.raw["multiverse"]
         return spec["chunks"], spec["readings"]
-    if section == "angle_maps":
-        return (
-            chunks["angle_map"],
-            grid(*grid_spec(config["angle_maps"]["theta0"])).size,
-        )
-    if section == "mass_length":
-        return chunks["mass_length"], grid(*grid_spec(config["mass_length"]["M2"])).size
-    if section == "elbow_force":
-        rows = grid(*grid_spec(config["elbow_force"]["psi_F"])).size
-        return chunks["elbow_force_map"], rows
-    first = config["torque_delay"][item]["C2" if item == "fig7" else "delta0"]
-    rows = grid(*grid_spec(first)).size if isinstance(first, dict) else 1
-    return chunks["delay_map"], rows
+    experiment = CHUNKED[name]
+    requested = value_at(config, experiment.chunks)
+    return requested, experiment.row_count(experiment.arguments(config))
 
 
 def chunk_files(wildcards):
     """The chunk files of a map: the requested chunk count, at most one per row."""
     n = chunk_count(*map_rows(wildcards.map))
     return [f"results/chunks/{wildcards.map}/{i}-of-{n}.nc" for i in range(n)]
-
-
-def angle_map_L1(wildcards):
-    """The rod-1 length (m) of the angle map of a paper figure: ``angle_maps.L1`` lists
-    them in the order of ANGLE_MAP_FIGURES (Fig. 2, Fig. 3)."""
-    lengths = dict(zip(ANGLE_MAP_FIGURES, config["angle_maps"]["L1"], strict=True))
-    return float(lengths[wildcards.fig])
 
 
 def model():
@@ -149,51 +158,41 @@ def solver():
     return dict(sorted(config["solver"].items()))
 
 
-def delay_stroke():
-    """The Sec. V-VI base stroke (plain dict): only what the stroke rules need, so that
-    changing a map's grid does not rerun them."""
-    return sec5_stroke(config)
+def common_params():
+    """Params every model simulation needs."""
+    return {"model": model(), "solver": solver()}
 
 
-def work_precision_study():
-    """The work-precision settings of the solver study (plain dict): only what the rule
-    reads, so that changing the stability or optimum study does not rerun it."""
-    keys = (
-        "strokes",
-        "seed",
-        "compiled_tolerances",
-        "scipy_tolerances",
-        "rk4_steps",
-        "repeats",
-    )
-    return {k: config["solver_study"][k] for k in keys}
-
-
-def delay_section(wildcards):
-    """The config of one Sec. V map (fig7, fig8 or fig9) with the shared L1 and theta0."""
-    d = config["torque_delay"]
-    return {**d[wildcards.fig], "L1": d["L1"], "theta0": d["theta0"]}
+def fit_set_experiments():
+    """What the fit sets simulate (config/readings.yaml): Fig. 4's strokes and Table I's
+    force on the Sec. V-VI stroke, from the rows that compute them (only those keys, so
+    that changing a map's grid does not rerun the identification)."""
+    elbow = EXPERIMENTS["elbow"].arguments(config)
+    return {
+        "fig4_strokes": EXPERIMENTS["fig4"].arguments(config)["strokes"],
+        "force": elbow["force"],
+        "stroke": elbow["stroke"],
+    }
 
 
 def paper_experiments():
-    """The config sections of the paper's experiments (the robustness analysis reruns
-    them under each reading)."""
-    keys = (
-        "angle_maps",
-        "fig4",
-        "k_sensitivity",
-        "mass_length",
-        "torque_delay",
-        "elbow_force",
-    )
-    return {k: config[k] for k in keys}
-
-
-def common_params():
-    """Params every simulation script needs."""
-    return {"model": model(), "solver": solver()}
+    """The config sections the paper's experiments read (the robustness analysis reruns
+    them under each reading), less those the multiverse sets itself."""
+    sections = {
+        key.split(".")[0]
+        for e in EXPERIMENTS.values()
+        if e.family == "paper"
+        for key in e.keys()
+    }
+    return {k: config[k] for k in sorted(sections - set(MULTIVERSE_SETS))}
 
 
 def figure_inputs(wildcards):
     """The result files a figure is drawn from (the registry)."""
     return FIGURES[wildcards.name].inputs
+
+
+def relabel_map(wildcards):
+    """A map of the table gets its labels from the units table when gathered (plain
+    bool: a params value)."""
+    return wildcards.map in CHUNKED

@@ -4,12 +4,7 @@
 rule figure:
     input:
         figure_inputs,
-        sources(
-            "replication/figures.py",
-            "inference/measures.py",
-            "replication/registry.py",
-            "experiments/specs.py",
-        ),
+        code_inputs("figure.py"),
     output:
         report(
             "results/figures/{name}.png",

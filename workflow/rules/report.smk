@@ -7,12 +7,7 @@ rule claims:
         claims="config/claims.yaml",
         readings="config/readings.yaml",
         robustness=RESULT_FILES["robustness"],
-        code=sources(
-            "replication/claims.py",
-            "replication/robustness.py",
-            "inference",
-            "experiments/specs.py",
-        ),
+        code=code_inputs("claims.py"),
     output:
         report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
     log:
@@ -30,9 +25,7 @@ rule report:
         statements="config/claims.yaml",
         inference=list(INFERENCE_RESULTS.values()),
         results=list(PAPER_RESULTS.values()),
-        code=sources(
-            "replication/report.py", "replication/registry.py", "experiments/specs.py"
-        ),
+        code=code_inputs("report.py"),
         assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
         studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],
     output:

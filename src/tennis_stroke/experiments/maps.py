@@ -182,43 +182,40 @@ def elbow_force_map(
     )
 
 
-def torque_delay_map(
-    section: Mapping[str, object],
+def torque_delay_section(
+    L1: float,
+    theta0: float,
+    C2,
+    delta0,
+    tau,
     params: Mapping[str, object],
     settings: SolverSettings,
     rows: tuple[int, int] | None = None,
     threads: int | None = None,
 ) -> xr.Dataset:
-    """Figs. 7-9 from their config section: ``L1``, ``theta0``, ``tau`` (a range) and
-    ``C2``, ``delta0``, one of them a range (the map's first axis: ``C2`` for Fig. 7,
-    ``delta0`` for Figs. 8-9) and the other a number (a number ``delta0`` with a number
-    ``C2`` gives a one-row map, Fig. 9).
+    """Figs. 7-9 from their config: ``L1`` (m), ``theta0`` (degrees), ``tau`` (a range, s)
+    and ``C2`` (N m), ``delta0`` (degrees), one of them a range (the map's first axis:
+    ``C2`` for Fig. 7, ``delta0`` for Figs. 8-9) and the other a number (a number
+    ``delta0`` with a number ``C2`` gives a one-row map, Fig. 9).
 
     ``rows``: ``(index, count)``, only that chunk of the first axis
-    (:func:`tennis_stroke.pipeline.chunks.chunk_rows`).
+    (:func:`tennis_stroke.experiments.grids.chunk_rows`).
     """
-    model = {**params, "L1": section["L1"]}
-    tau = axis(section["tau"])
-    if isinstance(section["C2"], Mapping):  # Fig. 7: (C2, tau) at fixed delta0
+    model = {**params, "L1": L1}
+    tau = axis(tau)
+    if isinstance(C2, Mapping):  # Fig. 7: (C2, tau) at fixed delta0
         return delay_map(
-            "C2",
-            select_rows(axis(section["C2"]), rows),
-            tau,
-            section["theta0"],
-            section["delta0"],
-            model,
-            settings,
-            threads,
+            "C2", select_rows(axis(C2), rows), tau, theta0, delta0, model, settings, threads
         )
-    delta0 = section["delta0"]  # Figs. 8-9: (delta0, tau) at fixed C2
+    # Figs. 8-9: (delta0, tau) at fixed C2
     delta0 = axis(delta0) if isinstance(delta0, Mapping) else np.array([float(delta0)])
     return delay_map(
         "delta0",
         select_rows(delta0, rows),
         tau,
-        section["theta0"],
+        theta0,
         None,
-        {**model, "C2": section["C2"]},
+        {**model, "C2": C2},
         settings,
         threads,
     )
@@ -292,3 +289,46 @@ def k_sensitivity_map(
         delta0=("stroke", strokes[:, 1], cf_attrs("delta0")),
     )
     return ds
+
+
+def angle_map_section(
+    theta0,
+    delta0,
+    L1: float,
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    rows: tuple[int, int] | None = None,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Figs. 2-3 from their config: the ranges ``theta0`` and ``delta0`` (degrees) at the
+    figure's rod-1 length ``L1`` (m); ``rows``: only that chunk of the ``theta0`` rows."""
+    theta = select_rows(axis(theta0), rows)
+    return angle_map(theta, axis(delta0), {**params, "L1": float(L1)}, settings, threads)
+
+
+def mass_length_section(
+    M2,
+    L1,
+    theta0_range,
+    delta0_range,
+    coarse_step: float,
+    fine_step: float,
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    rows: tuple[int, int] | None = None,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Figs. 5-6 from their config: the ranges ``M2`` (kg) and ``L1`` (m), the search
+    ranges and steps (degrees) of :func:`mass_length_map`; ``rows``: only that chunk of
+    the ``M2`` rows."""
+    return mass_length_map(
+        select_rows(axis(M2), rows),
+        axis(L1),
+        coarse_step,
+        fine_step,
+        tuple(theta0_range),
+        tuple(delta0_range),
+        params,
+        settings,
+        threads,
+    )

@@ -1,40 +1,421 @@
-"""The one table of result files, by the key that claims (``config/claims.yaml``),
-figures and the workflow use.  Pure data: the Snakefile imports it.
+"""The one table of experiments: for each result file, what computes it from which keys
+of the workflow config.
+
+Each :class:`Experiment` row names its result file, the function that computes it (by
+import path, so this table stays light: the Snakefile imports it without numba), the
+config keys each argument of the function reads, how the map splits into chunks, how
+many strokes it runs at once (the memory estimate before any job) and the variables of
+its file.  Everything that wires an experiment reads this table: the workflow generates
+one rule per row (``workflow/rules/experiments.smk``), the generic script runs the row
+(:func:`compute`), the config check estimates the memory of every row's largest job,
+the robustness analysis reruns the paper's rows under each reading
+(:func:`tennis_stroke.inference.multiverse.paper_results`), and the tests check every row
+end to end.  Adding an experiment takes a function, a row, its config section (with its
+schema) and its claims.
+
+A config key is a dotted path into the workflow config (``angle_maps.theta0``); a number
+in it indexes a list (``angle_maps.L1.0``, Fig. 2's length).  An argument is a key, or a
+mapping of names to keys (the function gets a dict).  A row with ``model=True`` also gets
+the model overrides (``params``) and the solver settings (``settings``); a row with
+``chunks`` gets ``rows = (index, count)``, the chunk of its first axis (the argument
+``rows``); a ``threaded`` row gets ``threads``.
 """
 
 from __future__ import annotations
 
-#: The paper's figures of the angle maps, in the order of the config's ``angle_maps.L1``
-#: (the rod-1 length of each): Fig. 2 first, Fig. 3 second.
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from importlib import import_module
+
+from ..solver.results import FILE_NAMES, RESULT_FIELDS
+from .grids import axis_size, grid_size
+
+#: Variables of every file of strokes (one per stroke result field).
+STROKE_VARIABLES = tuple(FILE_NAMES.get(k, k) for k in RESULT_FIELDS)
+#: Variables of the sampled curves of single strokes.
+CURVE_VARIABLES = ("omega1", "omega2", "theta", "phi", "x_elbow", "y_elbow")
+#: The sections that hold the Sec. V-VI base stroke (``sec5_stroke``).
+SEC5_STROKE = {
+    "L1": "torque_delay.L1",
+    "theta0": "torque_delay.theta0",
+    "C2": "torque_delay.fig9.C2",
+    "delta0": "torque_delay.fig9.delta0",
+    "tau_L": "torque_delay.strokes.tau_L",
+    "tau_H": "torque_delay.strokes.tau_H",
+    "t_end": "torque_delay.strokes.t_end",
+    "samples": "torque_delay.strokes.samples",
+}
+
+
+class ConfigKeyError(KeyError):
+    """A row reads a config key the config does not have (one line)."""
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+def _points(value) -> int:
+    """Points of an axis: a range's grid size, a list's length, else 1."""
+    if isinstance(value, Mapping) and "step" in value:
+        return axis_size(value)
+    if isinstance(value, list | tuple):
+        return len(value)
+    return 1
+
+
+@dataclass(frozen=True)
+class Experiment:
+    """One result file and what computes it.
+
+    ``key``: the name claims and figures use; ``path``: the file, relative to the working
+    directory; ``function``: ``module:function`` below ``tennis_stroke``; ``args``:
+    argument -> config key (or a mapping of names to keys); ``family``: ``paper`` (the
+    paper's experiments: rerun by the robustness analysis) or ``study``; ``chunks``: the
+    config key of the chunk count (None: one job), ``rows`` the argument whose axis is
+    split; ``strokes``: the strokes of the unchunked job's batches run at once, from its
+    arguments (None: no estimate); ``gathered``: the gathered map holds one result per
+    stroke of the first batch (its memory is estimated); ``variables``: the file's data
+    variables; ``label``: what a message calls it, ``section`` the config key it names;
+    ``rule``: the name of its workflow rule (default: the key).
+    """
+
+    key: str
+    path: str
+    function: str
+    args: Mapping[str, str | Mapping[str, str]]
+    variables: tuple[str, ...]
+    label: str
+    family: str = "paper"
+    model: bool = True
+    threaded: bool = False
+    chunks: str | None = None
+    rows: str | None = None
+    strokes: Callable[[Mapping], tuple[int, ...]] | None = None
+    gathered: bool = False
+    section: str = ""
+    rule: str = ""
+
+    @property
+    def stem(self) -> str:
+        """The file's path without ``results/`` and ``.nc`` (a rule's wildcard value)."""
+        return self.path.removeprefix("results/").removesuffix(".nc")
+
+    def __post_init__(self) -> None:
+        if not self.rule:
+            object.__setattr__(self, "rule", self.key)
+
+    def keys(self) -> list[str]:
+        """Every config key the row reads (its arguments'), in order."""
+        out = []
+        for value in self.args.values():
+            out.extend(value.values() if isinstance(value, Mapping) else [value])
+        return out
+
+    def arguments(self, config: Mapping) -> dict[str, object]:
+        """Its arguments from the workflow ``config`` (plain values, mappings with sorted
+        keys: a rule's params, which Snakemake compares by ``repr``)."""
+        return {
+            name: (
+                {k: plain(value_at(config, v)) for k, v in sorted(key.items())}
+                if isinstance(key, Mapping)
+                else plain(value_at(config, key))
+            )
+            for name, key in self.args.items()
+        }
+
+    def row_count(self, arguments: Mapping) -> int:
+        """Points of the axis it is chunked along (1 for an unchunked row)."""
+        return _points(arguments[self.rows]) if self.rows else 1
+
+    def callable(self) -> Callable:
+        module, name = self.function.split(":")
+        return getattr(import_module(f"tennis_stroke.{module}"), name)
+
+
+def value_at(config: Mapping, key: str):
+    """The value of dotted config ``key`` (a number indexes a list)."""
+    node = config
+    for part in key.split("."):
+        try:
+            node = node[int(part)] if isinstance(node, list) else node[part]
+        except (KeyError, IndexError, ValueError, TypeError):
+            raise ConfigKeyError(f"config key {key!r} is missing") from None
+    return node
+
+
+def plain(value):
+    """``value`` as plain data: mappings as dicts with sorted keys, sequences as lists."""
+    if isinstance(value, Mapping):
+        return {str(k): plain(value[k]) for k in sorted(value)}
+    if isinstance(value, list | tuple):
+        return [plain(v) for v in value]
+    return value
+
+
+def compute(
+    experiment: Experiment,
+    arguments: Mapping[str, object],
+    model: Mapping[str, object] | None = None,
+    settings=None,
+    rows: tuple[int, int] | None = None,
+    threads: int | None = None,
+):
+    """Run one row: its function on ``arguments`` (:meth:`Experiment.arguments`), with the
+    model overrides and solver settings of a model row, the chunk ``rows = (index,
+    count)`` of a chunked row and ``threads`` of a threaded one.  Returns its dataset."""
+    kwargs = dict(arguments)
+    if experiment.model:
+        kwargs.update(params=dict(model or {}), settings=settings)
+    if experiment.chunks:
+        kwargs["rows"] = rows
+    if experiment.threaded:
+        kwargs["threads"] = threads
+    return experiment.callable()(**kwargs)
+
+
+def _grid(a, key) -> int:
+    return _points(a[key])
+
+
+def _mass_length_strokes(a) -> tuple[int, ...]:
+    points = _grid(a, "M2") * _grid(a, "L1")
+    coarse = grid_size(*a["theta0_range"], a["coarse_step"]) * grid_size(
+        *a["delta0_range"], a["coarse_step"]
+    )
+    fine = grid_size(-a["coarse_step"], a["coarse_step"], a["fine_step"]) ** 2
+    return (points * coarse, points * fine)
+
+
+def _delay_strokes(first: str) -> Callable[[Mapping], tuple[int, ...]]:
+    return lambda a: (_grid(a, first) * _grid(a, "tau"),)
+
+
+def _angle_map(fig: str, index: int) -> Experiment:
+    return Experiment(
+        fig,
+        f"results/angle_maps/{fig}.nc",
+        "experiments.maps:angle_map_section",
+        {
+            "theta0": "angle_maps.theta0",
+            "delta0": "angle_maps.delta0",
+            "L1": f"angle_maps.L1.{index}",
+        },
+        (*STROKE_VARIABLES, "best_delta0", "best_v_out"),
+        "Figs. 2-3 map",
+        section="angle_maps",
+        threaded=True,
+        chunks="chunks.angle_map",
+        rows="theta0",
+        strokes=lambda a: (_grid(a, "theta0") * _grid(a, "delta0"),),
+        gathered=True,
+    )
+
+
+def _delay_map(fig: str, first: str, other: str) -> Experiment:
+    return Experiment(
+        fig,
+        f"results/torque_delay/{fig}.nc",
+        "experiments.maps:torque_delay_section",
+        {
+            "L1": "torque_delay.L1",
+            "theta0": "torque_delay.theta0",
+            first: f"torque_delay.{fig}.{first}",
+            other: f"torque_delay.{fig}.{other}",
+            "tau": f"torque_delay.{fig}.tau",
+        },
+        (*STROKE_VARIABLES, "best_tau", "best_v_out", "v_out_tau0"),
+        f"Fig. {fig[3:]} map",
+        section=f"torque_delay.{fig}",
+        threaded=True,
+        chunks="chunks.delay_map",
+        rows=first,
+        strokes=_delay_strokes(first),
+        gathered=True,
+    )
+
+
+#: The paper's angle maps in the order of the config's ``angle_maps.L1`` (the rod-1
+#: length of each): Fig. 2 first, Fig. 3 second.
 ANGLE_MAP_FIGURES = ("fig2", "fig3")
 
+#: The table: every result file computed from the config alone, by key.
+EXPERIMENTS: dict[str, Experiment] = {
+    e.key: e
+    for e in [
+        *(_angle_map(fig, i) for i, fig in enumerate(ANGLE_MAP_FIGURES)),
+        Experiment(
+            "fig4",
+            "results/strokes/fig4.nc",
+            "experiments.strokes:fig4_strokes",
+            {
+                "strokes": "fig4.strokes",
+                "t_end": "fig4.t_end",
+                "samples": "fig4.samples",
+                "curves": "figure_curves",
+            },
+            (*STROKE_VARIABLES, *CURVE_VARIABLES),
+            "Fig. 4 strokes",
+            section="fig4",
+        ),
+        Experiment(
+            "k_sensitivity",
+            "results/strokes/k_sensitivity.nc",
+            "experiments.maps:k_sensitivity_map",
+            {
+                "strokes": "fig4.strokes",
+                "k_range": "k_sensitivity.k_contact",
+                "points": "k_sensitivity.points",
+            },
+            STROKE_VARIABLES,
+            "k sensitivity",
+            section="k_sensitivity",
+            threaded=True,
+            strokes=lambda a: (len(a["strokes"]) * int(a["points"]),),
+        ),
+        Experiment(
+            "ml",
+            "results/mass_length/map.nc",
+            "experiments.maps:mass_length_section",
+            {
+                "M2": "mass_length.M2",
+                "L1": "mass_length.L1",
+                "theta0_range": "mass_length.theta0_range",
+                "delta0_range": "mass_length.delta0_range",
+                "coarse_step": "mass_length.coarse_step",
+                "fine_step": "mass_length.fine_step",
+            },
+            ("v_out_best", "theta0_best", "delta0_best", "theta_c", "failed_strokes"),
+            "Figs. 5-6",
+            section="mass_length",
+            rule="mass_length",
+            threaded=True,
+            chunks="chunks.mass_length",
+            rows="M2",
+            strokes=_mass_length_strokes,
+        ),
+        _delay_map("fig7", "C2", "delta0"),
+        _delay_map("fig8", "delta0", "C2"),
+        _delay_map("fig9", "delta0", "C2"),
+        Experiment(
+            "delay",
+            "results/strokes/delay.nc",
+            "experiments.strokes:delay_strokes",
+            {"stroke": SEC5_STROKE, "curves": "figure_curves"},
+            (*STROKE_VARIABLES, *CURVE_VARIABLES, "tau"),
+            "Figs. 10-12 strokes",
+            section="torque_delay.strokes",
+            rule="delay_strokes",
+        ),
+        Experiment(
+            "elbow_map",
+            "results/elbow_force/map.nc",
+            "experiments.maps:elbow_force_section_map",
+            {
+                "force": {"F0": "elbow_force.F0", "t_d": "elbow_force.t_d"},
+                "psi_f": "elbow_force.psi_F",
+                "tau_f": "elbow_force.tau_F",
+                "stroke": SEC5_STROKE,
+            },
+            STROKE_VARIABLES,
+            "Fig. 13 map",
+            section="elbow_force",
+            rule="elbow_force_map",
+            threaded=True,
+            chunks="chunks.elbow_force_map",
+            rows="psi_f",
+            strokes=lambda a: (_grid(a, "psi_f") * _grid(a, "tau_f"),),
+            gathered=True,
+        ),
+        Experiment(
+            "elbow",
+            "results/strokes/elbow_force.nc",
+            "experiments.strokes:elbow_force_strokes",
+            {
+                "force": {
+                    "F0": "elbow_force.F0",
+                    "t_d": "elbow_force.t_d",
+                    "table1_psi": "elbow_force.table1_psi",
+                    "table1_tau_F": "elbow_force.table1_tau_F",
+                },
+                "stroke": SEC5_STROKE,
+                "curves": "figure_curves",
+            },
+            (*STROKE_VARIABLES, *CURVE_VARIABLES, "F0", "psi_F"),
+            "Table I and Fig. 14 strokes",
+            section="elbow_force",
+            rule="elbow_force_strokes",
+        ),
+        Experiment(
+            "work_precision",
+            "results/solver_study/work_precision.nc",
+            "studies.work_precision:work_precision_study",
+            {
+                k: f"solver_study.{k}"
+                for k in (
+                    "strokes",
+                    "seed",
+                    "compiled_tolerances",
+                    "scipy_tolerances",
+                    "rk4_steps",
+                    "repeats",
+                )
+            },
+            ("error_kmh", "us_per_stroke", "rhs_evals_per_stroke", "failed"),
+            "work-precision study",
+            section="solver_study",
+            family="study",
+            model=False,
+        ),
+        Experiment(
+            "stability",
+            "results/solver_study/stability.nc",
+            "studies.stability:stability_study",
+            {
+                "k_contact": "solver_study.stability.k_contact",
+                "cases": "solver_study.stability.cases",
+            },
+            ("outcome", "v_exit", "duration", "energy_change", "expected_duration"),
+            "stability study",
+            section="solver_study.stability",
+            family="study",
+            model=False,
+        ),
+        Experiment(
+            "ladder",
+            "results/solver_study/ladder.nc",
+            "studies.ladder:ladder_study",
+            {"strokes": "solver_study.strokes", "seed": "solver_study.seed"},
+            ("v_out_spring", "v_out_impact"),
+            "model ladder",
+            section="solver_study",
+            family="study",
+            model=False,
+        ),
+        Experiment(
+            "optimum_cost",
+            "results/solver_study/optimum_cost.nc",
+            "studies.optimum_cost:optimum_cost_study",
+            {
+                "M2": "solver_study.optimum.M2",
+                "L1": "solver_study.optimum.L1",
+                "steps": "solver_study.optimum.steps",
+                "reference_step": "solver_study.optimum.reference_step",
+            },
+            ("v_err", "theta0_err", "delta0_err", "seconds"),
+            "optimum-search study",
+            section="solver_study.optimum",
+            family="study",
+            model=False,
+        ),
+    ]
+}
 
 #: The paper's result files (the claims read these), by key.  A file is named by the
 #: paper's figure, never by a parameter value the config can change (the value is in the
 #: file's attributes and the figure's title).
-PAPER_RESULTS = {
-    **{fig: f"results/angle_maps/{fig}.nc" for fig in ANGLE_MAP_FIGURES},
-    "fig4": "results/strokes/fig4.nc",
-    "k_sensitivity": "results/strokes/k_sensitivity.nc",
-    "ml": "results/mass_length/map.nc",
-    "fig7": "results/torque_delay/fig7.nc",
-    "fig8": "results/torque_delay/fig8.nc",
-    "fig9": "results/torque_delay/fig9.nc",
-    "delay": "results/strokes/delay.nc",
-    "elbow_map": "results/elbow_force/map.nc",
-    "elbow": "results/strokes/elbow_force.nc",
-}
-
-
+PAPER_RESULTS = {k: e.path for k, e in EXPERIMENTS.items() if e.family == "paper"}
 #: The speed-against-accuracy studies' result files, by key.
-STUDY_RESULTS = {
-    "work_precision": "results/solver_study/work_precision.nc",
-    "stability": "results/solver_study/stability.nc",
-    "ladder": "results/solver_study/ladder.nc",
-    "optimum_cost": "results/solver_study/optimum_cost.nc",
-}
-
-
+STUDY_RESULTS = {k: e.path for k, e in EXPERIMENTS.items() if e.family == "study"}
 #: The identification's files (config/readings.yaml), by ``{fit set}_{kind}``.
 IDENTIFICATION_FILES = {
     f"{fit}_{kind}": f"results/identification/{fit}_{kind}.nc"

@@ -13,8 +13,9 @@ Three steps, each a workflow job:
 2. :func:`select` keeps up to ``readings`` consistent readings, in Sobol order,
    round-robin over the consistent discrete combinations (so each is represented).
 3. :func:`paper_results` runs every paper experiment of one reading (the grids of
-   ``multiverse.resolution`` merged over the workflow config); the replication layer
-   evaluates every claim on them (:mod:`tennis_stroke.replication.robustness`).
+   ``multiverse.resolution`` merged over the workflow config), a loop over the table of
+   experiments; :mod:`tennis_stroke.inference.robustness` evaluates every claim on them
+   and :mod:`tennis_stroke.replication.robustness` classifies the result.
 """
 
 from __future__ import annotations
@@ -28,15 +29,7 @@ import numpy as np
 import xarray as xr
 from scipy.stats import qmc
 
-from ..experiments.grids import axis
-from ..experiments.maps import (
-    angle_map,
-    elbow_force_section_map,
-    k_sensitivity_map,
-    mass_length_map,
-    torque_delay_map,
-)
-from ..experiments.strokes import delay_strokes, elbow_force_strokes, fig4_strokes, sec5_stroke
+from ..experiments.specs import EXPERIMENTS, compute
 from ..io.netcdf import labelled, provenance
 from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
@@ -47,6 +40,9 @@ from .reading_space import ReadingSpace
 CLAIM_LEVEL = ("fig11_theta", "table1_omega", "figure_curves")
 #: Result files whose curves depend on ``figure_curves``.
 CURVE_FILES = ("fig4", "delay")
+#: Config keys the robustness analysis sets itself for every reading (the workflow does
+#: not pass them: changing them reruns none of its jobs).
+MULTIVERSE_SETS = ("figure_curves",)
 
 
 class MultiverseError(ValueError):
@@ -301,50 +297,25 @@ def paper_results(
     curves: Sequence[str] = ("free_swing",),
     threads: int | None = 1,
 ) -> dict[str, xr.Dataset]:
-    """Every paper experiment from the workflow ``config`` with ``model`` overrides, by
-    result key (``fig2`` ... ``elbow``; the keys of
-    :data:`tennis_stroke.replication.registry.PAPER_RESULTS`).  The curve files
-    (:data:`CURVE_FILES`) are computed once per entry of ``curves``, keyed
-    ``"{key}/{curves}"``, the others once."""
-    a, ml, td, ef = (
-        config[k] for k in ("angle_maps", "mass_length", "torque_delay", "elbow_force")
-    )
-    sec5 = sec5_stroke(config)
+    """Every paper experiment of the table (:data:`tennis_stroke.experiments.specs.EXPERIMENTS`,
+    family ``paper``) from the workflow ``config`` with ``model`` overrides, by result key
+    (``fig2`` ... ``elbow``).  The curve files (:data:`CURVE_FILES`) are computed once per
+    entry of ``curves``, keyed ``"{key}/{curves}"``; another row that reads the curves
+    setting gets the first; the others are computed once."""
+    config = {**config, "figure_curves": curves[0]}
     out: dict[str, xr.Dataset] = {}
-    for key, l1 in zip(("fig2", "fig3"), a["L1"], strict=False):
-        out[key] = angle_map(
-            axis(a["theta0"]), axis(a["delta0"]), {**model, "L1": float(l1)}, settings, threads
-        )
-    f4 = config["fig4"]
-    for c in curves:
-        out[f"fig4/{c}"] = fig4_strokes(
-            f4["strokes"], f4["t_end"], f4["samples"], model, settings, c
-        )
-        out[f"delay/{c}"] = delay_strokes(sec5, model, settings, c)
-    k = config["k_sensitivity"]
-    out["k_sensitivity"] = k_sensitivity_map(
-        f4["strokes"], k["k_contact"], k["points"], model, settings, threads
-    )
-    out["ml"] = mass_length_map(
-        axis(ml["M2"]),
-        axis(ml["L1"]),
-        ml["coarse_step"],
-        ml["fine_step"],
-        tuple(ml["theta0_range"]),
-        tuple(ml["delta0_range"]),
-        model,
-        settings,
-        threads,
-    )
-    for fig in ("fig7", "fig8", "fig9"):
-        section = {**td[fig], "L1": td["L1"], "theta0": td["theta0"]}
-        out[fig] = torque_delay_map(section, model, settings, None, threads)
-    force = {k: ef[k] for k in ("F0", "t_d")}
-    out["elbow_map"] = elbow_force_section_map(
-        force, ef["psi_F"], ef["tau_F"], sec5, model, settings, None, threads
-    )
-    table1 = {k: ef[k] for k in ("F0", "t_d", "table1_psi", "table1_tau_F")}
-    out["elbow"] = elbow_force_strokes(table1, sec5, model, settings, curves[0])
+    for key, experiment in EXPERIMENTS.items():
+        if experiment.family != "paper":
+            continue
+        args = experiment.arguments(config)
+        if "curves" in args and key in CURVE_FILES:
+            for c in curves:
+                run = {**args, "curves": c}
+                out[f"{key}/{c}"] = compute(experiment, run, model, settings, None, threads)
+            continue
+        if "curves" in args:
+            args["curves"] = curves[0]
+        out[key] = compute(experiment, args, model, settings, None, threads)
     return out
 
 

@@ -1,5 +1,5 @@
-"""Files: result files (xarray datasets with CF attributes and provenance, written
-atomically) and the YAML files the package reads (:func:`load_yaml`).
+"""Result files: xarray datasets with CF attributes and provenance, written atomically
+(the YAML files are read by :mod:`tennis_stroke.io.config_files`).
 
 Every variable and coordinate gets ``units`` and ``long_name`` from one table
 (:data:`tennis_stroke.io.units.VARIABLES`).  Global attributes record the resolved
@@ -26,7 +26,7 @@ from .._version import __version__
 from ..model.params import PARAMETERS, READINGS, scalar_params
 from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
-from .units import cf_attrs
+from .units import VARIABLES, cf_attrs
 
 #: Global attributes that differ between two runs of the same job, and only those: when
 #: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
@@ -131,6 +131,18 @@ def result_dataset(
     ds = xr.Dataset(data_vars, coords=coord_vars)
     ds.attrs.update(provenance(params, settings))
     ds.attrs.update(extra_attrs or {})
+    return ds
+
+
+def relabelled(ds: xr.Dataset) -> xr.Dataset:
+    """``ds`` with ``units`` and ``long_name`` of every variable and coordinate named in
+    the table (:data:`tennis_stroke.io.units.VARIABLES`) written again from it (the other
+    attributes kept): a map gathered from its chunks carries today's labels, so a new
+    long name reruns no chunk."""
+    for name in [*ds.data_vars, *ds.coords]:
+        if name in VARIABLES:
+            units, long_name = VARIABLES[name]
+            ds[name].attrs.update(units=units, long_name=long_name)
     return ds
 
 

@@ -24,7 +24,8 @@ from pathlib import Path
 import jsonschema
 import yaml
 
-from ..experiments.grids import axis_size, chunk_count, grid_size
+from ..experiments.grids import chunk_count, grid_size
+from ..experiments.specs import EXPERIMENTS, ConfigKeyError, value_at
 from ..model.params import ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
 from .memory import WORD, MemoryLimitError, batch_bytes, check_memory, memory_limit, result_bytes
@@ -122,57 +123,41 @@ def _rows_per_job(rows: int, requested: int) -> int:
     return -(-rows // chunk_count(requested, rows))
 
 
+def _requested_chunks(config: Mapping, key: str) -> int:
+    """The chunk count at config ``key``; 1 where not given (the schema's default)."""
+    try:
+        return int(value_at(config, key))
+    except ConfigKeyError:
+        return 1
+
+
 def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
     """``(config key, what, peak bytes)`` of the workflow's largest jobs, from the grid
-    sizes alone (nothing is allocated): each map's largest chunk job, and the gathering
-    of each chunked map (the chunks and the whole map in memory at once)."""
+    sizes alone (nothing is allocated): the largest chunk job of every row of the table
+    of experiments that runs a batch of strokes, the gathering of each chunked map (the
+    chunks and the whole map in memory at once), and the solver studies' searches."""
     threads = os.cpu_count() or 1
     history = SolverSettings().history
-    chunks = config.get("chunks") or {}
+    for e in EXPERIMENTS.values():
+        if e.strokes is None:
+            continue
+        args = e.arguments(config)
+        batches = e.strokes(args)
+        rows = e.row_count(args)
+        per_job = _rows_per_job(rows, _requested_chunks(config, e.chunks)) if e.chunks else rows
+        sizes = [b // rows * per_job for b in batches]
+        if len(sizes) == 1:
+            what = f"a {e.label} job ({_n(per_job)} x {_n(sizes[0] // per_job)} strokes)"
+        else:
+            shown = " + ".join(_n(s) for s in sizes)
+            what = f"a {e.label} job ({_n(per_job)} rows, {shown} strokes)"
+        yield e.section, what, sum(batch_bytes(s, threads, history) for s in sizes)
+        if e.gathered:
+            n = batches[0]
+            yield e.section, f"gathering the {e.label} ({_n(n)} strokes)", 2 * result_bytes(n)
 
     def job(n_strokes: int) -> int:
         return batch_bytes(n_strokes, threads, history)
-
-    def gather(n_strokes: int) -> int:
-        return 2 * result_bytes(n_strokes)
-
-    am = config["angle_maps"]
-    nt, nd = axis_size(am["theta0"]), axis_size(am["delta0"])
-    rows = _rows_per_job(nt, chunks.get("angle_map", 1))
-    yield "angle_maps", f"a Figs. 2-3 map job ({_n(rows)} x {_n(nd)} strokes)", job(rows * nd)
-    yield "angle_maps", f"gathering a Figs. 2-3 map ({_n(nt)} x {_n(nd)} strokes)", gather(nt * nd)
-
-    ml = config["mass_length"]
-    n_m2, n_l1 = axis_size(ml["M2"]), axis_size(ml["L1"])
-    coarse = grid_size(*ml["theta0_range"], ml["coarse_step"]) * grid_size(
-        *ml["delta0_range"], ml["coarse_step"]
-    )
-    fine = grid_size(-ml["coarse_step"], ml["coarse_step"], ml["fine_step"]) ** 2
-    rows = _rows_per_job(n_m2, chunks.get("mass_length", 1))
-    yield (
-        "mass_length",
-        f"a Figs. 5-6 job ({_n(rows)} x {_n(n_l1)} points, {_n(coarse)} + {_n(fine)} strokes each)",
-        job(rows * n_l1 * coarse) + job(rows * n_l1 * fine),
-    )
-
-    td = config["torque_delay"]
-    for fig, first in (("fig7", "C2"), ("fig8", "delta0"), ("fig9", "delta0")):
-        section = td[fig]
-        n_tau = axis_size(section["tau"])
-        n_first = axis_size(section[first]) if isinstance(section[first], Mapping) else 1
-        rows = _rows_per_job(n_first, chunks.get("delay_map", 1))
-        key = f"torque_delay.{fig}"
-        yield key, f"a Fig. {fig[3:]} map job ({_n(rows)} x {_n(n_tau)} strokes)", job(rows * n_tau)
-        yield key, f"gathering the Fig. {fig[3:]} map", gather(n_first * n_tau)
-
-    ef = config["elbow_force"]
-    n_psi, n_tau = axis_size(ef["psi_F"]), axis_size(ef["tau_F"])
-    rows = _rows_per_job(n_psi, chunks.get("elbow_force_map", 1))
-    yield "elbow_force", f"a Fig. 13 map job ({_n(rows)} x {_n(n_tau)} strokes)", job(rows * n_tau)
-    yield "elbow_force", "gathering the Fig. 13 map", gather(n_psi * n_tau)
-
-    n = len(config["fig4"]["strokes"]) * int(config["k_sensitivity"]["points"])
-    yield "k_sensitivity", f"the k sensitivity job ({_n(n)} strokes)", job(n)
 
     study = config["solver_study"]
     opt = study["optimum"]

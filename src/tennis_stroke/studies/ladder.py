@@ -15,7 +15,7 @@ from ..model.impact import impact_rebound_kmh
 from ..model.params import resolve_params
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
-from .sampling import REFERENCE, stroke_params
+from .sampling import REFERENCE, sample_strokes, stroke_params
 from .timing import compiled_cost, median_time
 
 
@@ -69,3 +69,9 @@ def ladder(strokes: Mapping[str, np.ndarray], repeats: int = 3) -> xr.Dataset:
     )
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
     return ds
+
+
+def ladder_study(strokes: int, seed: int) -> xr.Dataset:
+    """The model ladder from the config (``solver_study``): ``strokes`` seeded random
+    strokes (:func:`tennis_stroke.studies.sampling.sample_strokes`)."""
+    return ladder(sample_strokes(strokes, seed))

@@ -62,3 +62,13 @@ def optimum_cost(
     )
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
     return ds
+
+
+def optimum_cost_study(
+    M2: Sequence[float],
+    L1: Sequence[float],
+    steps: Sequence[Sequence[float]],
+    reference_step: float,
+) -> xr.Dataset:
+    """The optimum-search cost from the config (``solver_study.optimum``)."""
+    return optimum_cost(M2, L1, [tuple(s) for s in steps], reference_step)

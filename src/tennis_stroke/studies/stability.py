@@ -10,7 +10,7 @@ Each (method, setting) case is run for every ``k``; the outcome is one of
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
@@ -194,3 +194,10 @@ def stability_map(cases: Sequence[tuple[str, float]], k_values: np.ndarray) -> x
     ds["outcome"].attrs["flag_meanings"] = " ".join(OUTCOMES)
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
     return ds
+
+
+def stability_study(k_contact: Mapping[str, float], cases: Sequence[Sequence]) -> xr.Dataset:
+    """The stability map from the config (``solver_study.stability``): ``k_contact`` as
+    ``{start, stop, num}`` of log10 k (N/m), ``cases`` as ``[method, setting]`` pairs."""
+    k = np.logspace(k_contact["start"], k_contact["stop"], k_contact["num"])
+    return stability_map([(str(m), float(v)) for m, v in cases], k)

@@ -23,7 +23,7 @@ from ..solver.rk4 import fixed_step_stroke
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 from .methods import parse_method
-from .sampling import REFERENCE, stroke_params
+from .sampling import REFERENCE, sample_strokes, stroke_params
 from .timing import TIMING, compiled_cost
 
 
@@ -107,3 +107,22 @@ def work_precision(
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
     ds.attrs["solver_settings_of"] = "the reference; each method's settings are the setting axis"
     return ds
+
+
+def work_precision_study(
+    strokes: int,
+    seed: int,
+    compiled_tolerances: Sequence[float],
+    scipy_tolerances: Sequence[float],
+    rk4_steps: Sequence[float],
+    repeats: int,
+) -> xr.Dataset:
+    """The work-precision table from the config (``solver_study``): ``strokes`` seeded
+    random strokes (:func:`tennis_stroke.studies.sampling.sample_strokes`)."""
+    return work_precision(
+        sample_strokes(strokes, seed),
+        compiled_tolerances,
+        scipy_tolerances,
+        rk4_steps,
+        repeats=repeats,
+    )

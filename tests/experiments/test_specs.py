@@ -1,0 +1,79 @@
+"""The table of experiments (tennis_stroke.experiments.specs): every row names a function
+that takes what the row gives it, reads keys the shipped config has, and splits along
+one of its arguments; the registry of result files is the table's."""
+
+import inspect
+from pathlib import Path
+
+import pytest
+import yaml
+
+from tennis_stroke.experiments.specs import (
+    EXPERIMENTS,
+    PAPER_RESULTS,
+    RESULT_FILES,
+    STUDY_RESULTS,
+    ConfigKeyError,
+    plain,
+    value_at,
+)
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+SCHEMA = yaml.safe_load((ROOT / "workflow" / "schemas" / "config.schema.yaml").read_text())
+
+
+@pytest.mark.parametrize("key", sorted(EXPERIMENTS))
+def test_every_row_calls_a_function_that_takes_what_it_gives(key):
+    e = EXPERIMENTS[key]
+    kwargs = dict.fromkeys(e.args)
+    if e.model:
+        kwargs.update(params={}, settings=None)
+    if e.chunks:
+        kwargs["rows"] = None
+    if e.threaded:
+        kwargs["threads"] = 1
+    inspect.signature(e.callable()).bind(**kwargs)  # raises TypeError if not
+
+
+@pytest.mark.parametrize("key", sorted(EXPERIMENTS))
+def test_every_row_reads_keys_of_the_shipped_config(key):
+    e = EXPERIMENTS[key]
+    args = e.arguments(CONFIG)
+    assert set(args) == set(e.args)
+    if e.chunks:
+        assert e.rows in e.args and e.row_count(args) >= 1
+        assert e.chunks.split(".")[1] in SCHEMA["properties"]["chunks"]["properties"]
+    value_at(CONFIG, e.section)  # the key its messages name exists
+    assert e.path == RESULT_FILES[key] and e.path.startswith("results/")
+
+
+def test_the_registry_of_result_files_is_the_table():
+    assert set(PAPER_RESULTS) | set(STUDY_RESULTS) == set(EXPERIMENTS)
+    assert len({e.path for e in EXPERIMENTS.values()}) == len(EXPERIMENTS)
+    assert len({e.rule for e in EXPERIMENTS.values()}) == len(EXPERIMENTS)
+
+
+def test_keys_are_dotted_paths_with_list_indices():
+    assert value_at(CONFIG, "angle_maps.L1.1") == CONFIG["angle_maps"]["L1"][1]
+    assert value_at(CONFIG, "torque_delay.fig9.tau.step") == 0.0005
+    for bad in ("angle_maps.L1.7", "angle_maps.nothing", "fig4.t_end.x"):
+        with pytest.raises(ConfigKeyError, match=f"config key '{bad}' is missing"):
+            value_at(CONFIG, bad)
+
+
+def test_arguments_are_plain_data_in_a_fixed_order():
+    """Snakemake compares params by repr: the same config gives the same text."""
+    a = plain({"b": (1, 2), "a": {"y": 1, "x": [3]}})
+    assert a == {"a": {"x": [3], "y": 1}, "b": [1, 2]} and list(a) == ["a", "b"]
+    reordered = {k: CONFIG[k] for k in reversed(list(CONFIG))}
+    for e in EXPERIMENTS.values():
+        assert repr(e.arguments(reordered)) == repr(e.arguments(CONFIG))
+
+
+def test_memory_batches_follow_the_grids():
+    a = EXPERIMENTS["fig2"].arguments(CONFIG)
+    assert EXPERIMENTS["fig2"].strokes(a) == (241 * 401,)
+    ml = EXPERIMENTS["ml"]
+    points, fine = 13 * 13, 41**2
+    assert ml.strokes(ml.arguments(CONFIG))[1] == points * fine
