@@ -16,10 +16,12 @@ $(STAMP): pyproject.toml
 	touch $(STAMP)
 
 ## The replication: every experiment, figure and claim, then report/index.html; fails
-## when a claim marked `reproduce` in config/claims.yaml fails.
+## when a claim marked `reproduce` in config/claims.yaml fails, or when README.md's
+## results at a glance are stale (python tools/readme_results.py writes them).
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(JOBS) report
 	$(BIN)/tennis-stroke claims results/claims.csv
+	$(BIN)/python tools/readme_results.py --check
 
 ## The test suite (includes a tiny end-to-end workflow run).
 test: $(STAMP)

@@ -1,6 +1,6 @@
 """The ``tennis-stroke`` command: one stroke (``strike``), a grid of strokes (``sweep``),
-the check of the claims table (``claims``), the readings scored against Fig. 4
-(``identify``).
+the check of the claims table (``claims``), the readings fitted to both fit sets of
+``config/readings.yaml`` (``identify``).
 
 Bad input ends with one line ``tennis-stroke: error: ...`` on stderr and exit status 2,
 before any output file is created; Ctrl-C ends with one line and exit status 130.
@@ -25,8 +25,8 @@ EXIT_USAGE = 2
 EXIT_INTERRUPTED = 130
 #: Strokes per thread in one call of the compiled solver during a sweep: a sweep runs in
 #: blocks so that Ctrl-C (handled between blocks) stops it within a fraction of a second
-#: (4096 strokes at the 16 us per stroke and thread of README's "Speed and accuracy":
-#: about 0.07 s).  Blocks never change a number: every stroke is computed on its own.
+#: (4096 strokes at about 16 us per stroke and thread, docs/performance.md: about
+#: 0.07 s).  Blocks never change a number: every stroke is computed on its own.
 SWEEP_BLOCK_PER_THREAD = 4096
 #: A value after an option that argparse would take for an option: a negative number
 #: (``-1``, ``-1e3``, ``-.5``, ``-inf``) or range (``-30:10:5``).

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # A single-node SLURM cluster on localhost (Debian's slurm-wlm and munge), for the
-# integration test tests/test_slurm.py and for trying profiles/slurm without a cluster.
+# integration test tests/workflow/test_slurm.py and for trying profiles/slurm without a cluster.
 #
 #   tools/slurm/localhost_slurm.sh install   # apt-get the packages (root)
 #   tools/slurm/localhost_slurm.sh start     # munged, slurmctld, slurmd; waits for the node

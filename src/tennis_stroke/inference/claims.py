@@ -1,4 +1,4 @@
-"""The paper's claims, evaluated against the result files.
+"""The paper's claims: what each one is and how its value is measured on the result files.
 
 ``config/claims.yaml`` lists every claim: ``id``, ``source``, ``quantity``, ``unit``,
 ``paper_value``, ``tolerance`` (absolute, in the claim's unit), ``expectation``
@@ -8,8 +8,9 @@ the reproduced value from the results, either a variable of a file
 (``{function, file, ...}``).  Qualitative claims are measurements returning 1 (true) or
 0 (false), with ``paper_value: 1`` and ``tolerance: 0``.
 
-:func:`evaluate` returns the table written to ``results/claims.csv`` with the columns
-``id, source, quantity, unit, paper_value, reproduced_value, tolerance, status``.
+:func:`measure` computes a claim's value from the files, :func:`within` compares it with
+the paper's; :func:`tennis_stroke.replication.claims.evaluate` makes the table written to
+``results/claims.csv``.
 
 :func:`claim_errors` checks a claims file before any job runs (the workflow calls it when
 it parses the Snakefile): a bad entry is one line naming the claim, not a failure of the
@@ -188,7 +189,7 @@ def claim_errors(path: str | Path, files: Collection[str] = tuple(PAPER_RESULTS)
     Checked without any result file: the required fields, unique ids, the expectation
     (a known deviation with its reason), finite values, tolerances (> 0; 0 only for a
     qualitative claim, unit ``"1"``), the result files (``files``: the keys a measure may
-    name, by default those of :data:`~tennis_stroke.replication.registry.PAPER_RESULTS`),
+    name, by default those of :data:`~tennis_stroke.experiments.specs.PAPER_RESULTS`),
     and the measurement: a function of :data:`MEASUREMENTS` called with its files and
     arguments as its signature says (names, count, annotated types and choices), or one
     variable of one file.

@@ -160,7 +160,7 @@ def measure_table1_minimum(ds: xr.Dataset) -> float:
 #: Named measurements: function(datasets..., **args) -> float.  The parameters annotated
 #: ``xr.Dataset`` take the claim's files in order, the others its arguments; the
 #: annotations (``float``, ``int``, ``str``, ``Literal[...]``) are checked before any job
-#: (:func:`tennis_stroke.replication.claims.claim_errors`).
+#: (:func:`tennis_stroke.inference.claims.claim_errors`).
 MEASUREMENTS: dict[str, Callable[..., float]] = {
     name.removeprefix("measure_"): fn
     for name, fn in globals().items()

@@ -156,7 +156,7 @@ def evaluate_readings(
     threads: int | None = 1,
 ) -> xr.Dataset:
     """Every claim under every kept reading (or chunk ``rows = (index, count)`` of them,
-    :func:`tennis_stroke.pipeline.chunks.chunk_rows`): the paper's experiments run at the
+    :func:`tennis_stroke.experiments.grids.chunk_rows`): the paper's experiments run at the
     multiverse's resolution over the workflow ``config``, the claims evaluated under
     every claim-level variant (:func:`readings_results`)."""
     index = select_rows(np.arange(readings.sizes["reading"]), rows)

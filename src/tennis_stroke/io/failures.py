@@ -1,7 +1,7 @@
 """Failed strokes in a map: counted by status, and a limit on their share.
 
 A stroke that fails (no ``phi = 0`` before ``t_max``, no release, a step-size failure,
-...) is a status in the map (:data:`tennis_stroke.solver.stroke.STATUS_NAMES`), never a crashed
+...) is a status in the map (:data:`tennis_stroke.solver.results.STATUS_NAMES`), never a crashed
 job.  A map whose failures exceed a configured share is not a result: the workflow's
 gather step raises :class:`FailureShareError` with one line naming the map, the share and
 the statuses, and the report lists the counts of every map.

@@ -20,7 +20,7 @@ Conventions (Youn, Sec. II)
   ``docs/equations.md``).  One-sidedness is not an ``if`` here: the contact phase starts
   at zero compression and ends at the separation event.
 
-Two state layouts share the physics of :func:`accelerations`:
+Two state layouts share the physics of :func:`rhs_trig`:
 
 * *trig layout* (the compiled path): ``sin(theta), cos(theta), sin(phi), cos(phi), omega1,
   omega2, theta, phi`` (+ ``s, w`` in contact).  Carrying sines and cosines as states
@@ -270,7 +270,7 @@ def rhs_trig(t, y, cf, c2, contact):
 
     The elbow acceleration is written out here rather than calling
     :func:`elbow_acceleration`: a numba call costs as much as this whole function
-    (``tests/test_dynamics.py`` checks the two agree).
+    (``tests/model/test_dynamics.py`` checks the two agree).
     """
     st, ct, sp, cp, w1, w2, _, _, s, w = y
     ax = cf[CF_VX1] + 2.0 * cf[CF_VX2] * t

@@ -2,11 +2,12 @@
 
 A map (Figs. 2-3, 5-9, 13) is a grid of strokes, and every stroke (or, for Figs. 5-6,
 every optimum search) is computed independently of the others.  A chunk is a contiguous
-block of rows of the map's first axis (:func:`chunk_rows`, the same blocks as
+block of rows of the map's first axis
+(:func:`tennis_stroke.experiments.grids.chunk_rows`, the same blocks as
 :func:`numpy.array_split`); the experiment function runs on those rows only, and
 :func:`gather_chunks` concatenates the chunk datasets along that axis.  Chunking
 therefore never changes a number: the gathered dataset equals the unchunked one bit for
-bit (tested in ``tests/test_chunking.py`` and ``tests/test_workflow.py``).
+bit (tested in ``tests/workflow/test_chunking.py`` and ``tests/workflow/test_workflow.py``).
 
 Each chunk file records ``chunk_dim``, ``chunk_index`` and ``chunk_count``; the gathered
 file records ``chunk_count`` and the chunks' wall times.

@@ -1,7 +1,8 @@
-"""The one registry of result files and figures, read by the workflow and the report.
+"""The registry of figures, read by the workflow and the report.
 
-:data:`RESULT_FILES` names every result file by the key that claims
-(``config/claims.yaml``) and figures use.  :data:`FIGURES` gives every figure its
+The result files are named in the table of experiments
+(:data:`tennis_stroke.experiments.specs.RESULT_FILES`, by the key that claims and figures
+use).  :data:`FIGURES` gives every figure its
 section of the paper, the files it is drawn from, the drawing function of
 :mod:`tennis_stroke.replication.figures` with its extra arguments, and its title.  What
 the paper says about a figure, with its numbers, is in ``config/claims.yaml``

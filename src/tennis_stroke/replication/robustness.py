@@ -1,7 +1,8 @@
 """Every claim across the readings consistent with the paper, and a cause for every
 deviation (``config/readings.yaml``: ``multiverse``, ``evidence``).
 
-:func:`evaluate_readings` evaluates every claim of ``config/claims.yaml`` on the paper's
+:func:`tennis_stroke.inference.robustness.evaluate_readings` evaluates every claim of
+``config/claims.yaml`` on the paper's
 experiments run under each kept reading of the multiverse
 (:mod:`tennis_stroke.inference.multiverse`), under every combination of the
 claim-level readings (the instant Fig. 11's theta and Table I's omega2 are quoted at,
