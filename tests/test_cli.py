@@ -432,11 +432,15 @@ def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,\n"
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
     header += "expectation,reason,fit_set\n"
+    declared = tmp_path / "claims.yaml"  # the one claim the table holds
+    claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
+    claim.update(tolerance=0.1, expectation="reproduce", measure={"file": "fig9", "var": "v"})
+    declared.write_text(json.dumps({"claims": [claim]}))
     table.write_text(header + row.format(value=1.5, status="fail"))
-    assert main(["claims", str(table)]) == 1
+    assert main(["claims", str(table), "--claims", str(declared)]) == 1
     assert "FAIL x" in capsys.readouterr().out
     table.write_text(header + row.format(value=1.05, status="pass"))
-    assert main(["claims", str(table)]) == 0
+    assert main(["claims", str(table), "--claims", str(declared)]) == 0
 
 
 def test_claims_command_without_a_table_is_one_line(tmp_path, capsys):

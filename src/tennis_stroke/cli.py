@@ -21,6 +21,8 @@ import numpy as np
 from ._version import __version__
 
 EXIT_USAGE = 2
+#: Exit status after SIGTERM (128 + SIGTERM, as a shell reports it).
+EXIT_TERMINATED = 143
 #: Exit status after Ctrl-C (128 + SIGINT, as a shell reports it).
 EXIT_INTERRUPTED = 130
 #: Strokes per thread in one call of the compiled solver during a sweep: a sweep runs in
@@ -101,6 +103,8 @@ def range_spec(text: str, name: str) -> tuple[float, float, int]:
         raise ValueError(f"--{name} START and STOP must be finite, got {text!r}")
     if num < 1:
         raise ValueError(f"--{name} NUM must be >= 1, got {num}")
+    if not math.isfinite(stop - start):
+        raise ValueError(f"--{name} STOP - START overflows, got {text!r}")
     return start, stop, num
 
 
@@ -153,6 +157,11 @@ def build_parser() -> argparse.ArgumentParser:
         "claims", help="check a claims table: exit 1 if a claim marked reproduce failed"
     )
     claims.add_argument("csv", nargs="?", default="results/claims.csv", metavar="CLAIMS.csv")
+    claims.add_argument(
+        "--claims",
+        default="config/claims.yaml",
+        help="the declared claims the table must hold, in order (default: config/claims.yaml)",
+    )
 
     identify = sub.add_parser(
         "identify", help="fit the paper's open readings to the declared fit sets"
@@ -299,21 +308,27 @@ def _sweep(args: argparse.Namespace) -> int:
 def _claims(args: argparse.Namespace) -> int:
     from pathlib import Path
 
+    from .inference.claims import ClaimError, load_claims
     from .replication.claims import check
 
+    try:
+        ids = [c["id"] for c in load_claims(args.claims)]
+    except ClaimError as exc:
+        raise ValueError(f"the declared claims: {exc}") from None
     if not Path(args.csv).is_file():
         raise ValueError(f"claims table {args.csv!r} does not exist (run the workflow first)")
-    return check(args.csv)
+    return check(args.csv, ids)
 
 
 def _identify(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from .experiments.strokes import sec5_stroke
+    from .experiments.specs import EXPERIMENTS, ConfigKeyError
     from .inference.claims import load_claims
     from .inference.identification import run_identification, summary
     from .inference.reading_space import load_reading_space
     from .io.config_files import load_yaml
+    from .model.params import resolve_params
 
     if args.rows < 1:
         raise ValueError(f"--rows must be >= 1, got {args.rows}")
@@ -324,33 +339,46 @@ def _identify(args: argparse.Namespace) -> int:
     config = load_yaml(args.config)
     claims = load_claims(args.claims)
     space = load_reading_space(args.readings, [c["id"] for c in claims])
-    try:
-        stroke = sec5_stroke(config)
-        strokes, force = config["fig4"]["strokes"], config["elbow_force"]
-        base = config.get("model") or {}
-    except (KeyError, TypeError) as exc:
-        raise ValueError(f"{args.config}: cannot read the fit sets' experiments: {exc}") from None
-    print(summary(run_identification(space, claims, strokes, force, stroke, base), args.rows))
+    if not isinstance(config, dict):
+        raise ValueError(f"{args.config}: not a workflow config (a mapping of sections)")
+    base = config.get("model") or {}
+    if not isinstance(base, dict):
+        raise ValueError(f"{args.config}: 'model' must be a mapping of parameters, got {base!r}")
+    resolve_params(base)  # units and bounds: one line naming the parameter
+    try:  # what the fit sets simulate, from the rows that compute it (as the workflow)
+        elbow = EXPERIMENTS["elbow"].arguments(config)
+        strokes = EXPERIMENTS["fig4"].arguments(config)["strokes"]
+    except ConfigKeyError as exc:
+        raise ValueError(f"{args.config}: {exc}") from None
+    fits = run_identification(space, claims, strokes, elbow["force"], elbow["stroke"], base)
+    print(summary(fits, args.rows))
     return 0
 
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tennis-stroke`` console script."""
+    from .io.interrupts import Terminated, terminate_raises
+
+    terminate_raises()
     try:
         args = build_parser().parse_args(argv)
         from .io.netcdf import OutputError
         from .model.params import ParameterError
+        from .solver.compiled import CompileCacheError
 
         commands = {"strike": _strike, "sweep": _sweep, "claims": _claims, "identify": _identify}
         try:
             return commands[args.command](args)
-        except (ParameterError, OutputError, ValueError) as exc:
+        except (ParameterError, OutputError, CompileCacheError, ValueError) as exc:
             _fail(str(exc))
         except MemoryError:
             _fail("out of memory (give sweep a lower --max-memory or TENNIS_STROKE_MAX_MEMORY)")
     except KeyboardInterrupt:
         sys.stderr.write("tennis-stroke: interrupted\n")
         return EXIT_INTERRUPTED
+    except Terminated:
+        sys.stderr.write("tennis-stroke: terminated\n")
+        return EXIT_TERMINATED
     except BrokenPipeError:  # the reader went away (e.g. `| head`): stop quietly
         import os
 

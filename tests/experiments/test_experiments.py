@@ -44,3 +44,25 @@ def test_nested_optimum_matches_a_brute_force_search():
     i, j = np.unravel_index(np.nanargmax(v), v.shape)
     assert float(ds["theta0_best"][0, 0]) == pytest.approx(theta0[i], abs=0.5)
     assert float(ds["delta0_best"][0, 0]) == pytest.approx(delta0[j], abs=0.5)
+
+
+@pytest.mark.parametrize(
+    "start, stop, step, last",
+    [
+        (0.0, 0.3, 0.5, 0.0),
+        (60.0, 120.0, 0.7, 119.5),
+        (0.0, 0.3, 0.0025, 0.3),
+        (-0.1, 0.1, 0.005, 0.1),
+    ],
+)
+def test_a_grid_never_leaves_its_range(start, stop, step, last):
+    """It ends on stop when the step lands there, else at the last point before it."""
+    from tennis_stroke.experiments.grids import grid_size, lands_on_stop
+
+    g = grid(start, stop, step)
+    assert (
+        g[-1] == pytest.approx(last)
+        and g[-1] <= stop + 1e-12
+        and g.size == grid_size(start, stop, step)
+    )
+    assert lands_on_stop(start, stop, step) == (g[-1] == pytest.approx(stop))

@@ -26,6 +26,19 @@ def _set(config, path, value):
 _DELETE = object()
 
 BAD = [  # (path, value, fragment of the message)
+    # a range whose step does not land on its stop (it ran past it: tau = [0, 0.5])
+    (
+        ("torque_delay", "fig9", "tau"),
+        {"start": 0.0, "stop": 0.3, "step": 0.5},
+        "'torque_delay.fig9.tau': step 0.5 does not land on stop 0.3",
+    ),
+    (("angle_maps", "theta0"), {"start": 60.0, "stop": 120.0, "step": 0.7}, "does not land"),
+    # bounds of the model parameters a row's values become, named by their config key
+    (("elbow_force", "F0"), 1.0e6, "'elbow_force.F0': parameter 'F0' must be <= 10000 N"),
+    (("mass_length", "M2"), {"start": -0.1, "stop": 0.5, "step": 0.1}, "'mass_length.M2'"),
+    (("k_sensitivity", "k_contact"), [188.0, 1.0e13], "'k_sensitivity.k_contact': parameter"),
+    (("torque_delay", "fig7", "tau"), {"start": 0.0, "stop": 20.0, "step": 0.5}, "parameter 'tau'"),
+    (("torque_delay", "L1"), 1.0e3, "'torque_delay.L1': parameter 'L1' must be"),
     (("chunks", "angle_map"), 0, "'chunks.angle_map': 0 is less than the minimum of 1"),
     (("chunks", "delay_map"), 2.5, "'chunks.delay_map': 2.5 is not of type 'integer'"),
     (("max_failure_share",), 1.5, "'max_failure_share': 1.5 is greater than the maximum"),

@@ -13,18 +13,40 @@ from fractions import Fraction
 
 import numpy as np
 
+#: Relative slack of a step count: a range whose span is within it of a whole number of
+#: steps lands on its stop (floating-point spans such as 0.3 / 0.0025).
+LANDING = 1e-9
+
+
+def _steps(start: float, stop: float, step: float):
+    count = (float(stop) - float(start)) / float(step)
+    if not math.isfinite(count):  # a step far below the span: count exactly
+        count = (Fraction(stop) - Fraction(start)) / Fraction(step)
+    return count
+
+
+def lands_on_stop(start: float, stop: float, step: float) -> bool:
+    """Whether ``start + n step`` reaches ``stop`` for a whole ``n`` (within
+    :data:`LANDING`)."""
+    count = _steps(start, stop, step)
+    return abs(count - round(count)) <= LANDING * max(1.0, abs(float(count)))
+
 
 def grid_size(start: float, stop: float, step: float) -> int:
     """Number of points of :func:`grid` ``(start, stop, step)``, computed without making it
     (to check a grid's memory before allocating it)."""
-    count = (float(stop) - float(start)) / float(step)
-    if not math.isfinite(count):  # a step far below the span: count exactly
-        count = (Fraction(stop) - Fraction(start)) / Fraction(step)
-    return int(round(count)) + 1
+    count = _steps(start, stop, step)
+    nearest = round(count)
+    if abs(count - nearest) <= LANDING * max(1.0, abs(float(count))):
+        return int(nearest) + 1
+    return int(math.floor(count)) + 1
 
 
 def grid(start: float, stop: float, step: float) -> np.ndarray:
-    """Inclusive grid ``start, start + step, ..., stop`` (rounded to the step's decimals)."""
+    """Inclusive grid ``start, start + step, ...`` up to ``stop`` (rounded to the step's
+    decimals): it ends on ``stop`` when the step lands there (:func:`lands_on_stop`),
+    else at the last point before it, never beyond.  The workflow refuses a configured
+    range whose step does not land on its stop."""
     return np.round(start + step * np.arange(grid_size(start, stop, step)), 10)
 
 

@@ -24,7 +24,7 @@ the model overrides (``params``) and the solver settings (``settings``); a row w
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from importlib import import_module
 
 from ..solver.results import FILE_NAMES, RESULT_FIELDS
@@ -45,6 +45,10 @@ SEC5_STROKE = {
     "t_end": "torque_delay.strokes.t_end",
     "samples": "torque_delay.strokes.samples",
 }
+
+
+#: The model parameters of the Sec. V-VI base stroke's values (checked before any job).
+SEC5_BOUNDS = {"stroke.L1": "L1", "stroke.C2": "C2", "stroke.tau_L": "tau", "stroke.tau_H": "tau"}
 
 
 class ConfigKeyError(KeyError):
@@ -76,7 +80,10 @@ class Experiment:
     arguments (None: no estimate); ``gathered``: the gathered map holds one result per
     stroke of the first batch (its memory is estimated); ``variables``: the file's data
     variables; ``label``: what a message calls it, ``section`` the config key it names;
-    ``rule``: the name of its workflow rule (default: the key).
+    ``rule``: the name of its workflow rule (default: the key); ``bounds``: argument
+    (``force.F0`` inside a mapping argument) -> the model parameter
+    (:data:`tennis_stroke.model.params.PARAMETERS`) whose unit and bounds its values
+    have, checked before any job.
     """
 
     key: str
@@ -94,6 +101,7 @@ class Experiment:
     gathered: bool = False
     section: str = ""
     rule: str = ""
+    bounds: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def stem(self) -> str:
@@ -103,6 +111,12 @@ class Experiment:
     def __post_init__(self) -> None:
         if not self.rule:
             object.__setattr__(self, "rule", self.key)
+
+    def key_of(self, argument: str) -> str:
+        """The config key of ``argument`` (``force.F0``: key ``F0`` of argument ``force``)."""
+        name, _, inner = argument.partition(".")
+        key = self.args[name]
+        return key[inner] if inner else key
 
     def keys(self) -> list[str]:
         """Every config key the row reads (its arguments'), in order."""
@@ -203,6 +217,7 @@ def _angle_map(fig: str, index: int) -> Experiment:
         (*STROKE_VARIABLES, "best_delta0", "best_v_out"),
         "Figs. 2-3 map",
         section="angle_maps",
+        bounds={"L1": "L1"},
         threaded=True,
         chunks="chunks.angle_map",
         rows="theta0",
@@ -226,6 +241,7 @@ def _delay_map(fig: str, first: str, other: str) -> Experiment:
         (*STROKE_VARIABLES, "best_tau", "best_v_out", "v_out_tau0"),
         f"Fig. {fig[3:]} map",
         section=f"torque_delay.{fig}",
+        bounds={"L1": "L1", "C2": "C2", "tau": "tau"},
         threaded=True,
         chunks="chunks.delay_map",
         rows=first,
@@ -269,6 +285,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             STROKE_VARIABLES,
             "k sensitivity",
             section="k_sensitivity",
+            bounds={"k_range": "k_contact"},
             threaded=True,
             strokes=lambda a: (len(a["strokes"]) * int(a["points"]),),
         ),
@@ -287,6 +304,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             ("v_out_best", "theta0_best", "delta0_best", "theta_c", "failed_strokes"),
             "Figs. 5-6",
             section="mass_length",
+            bounds={"M2": "M2", "L1": "L1"},
             rule="mass_length",
             threaded=True,
             chunks="chunks.mass_length",
@@ -304,6 +322,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             (*STROKE_VARIABLES, *CURVE_VARIABLES, "tau"),
             "Figs. 10-12 strokes",
             section="torque_delay.strokes",
+            bounds=SEC5_BOUNDS,
             rule="delay_strokes",
         ),
         Experiment(
@@ -319,6 +338,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             STROKE_VARIABLES,
             "Fig. 13 map",
             section="elbow_force",
+            bounds={**SEC5_BOUNDS, "force.F0": "F0", "force.t_d": "t_d"},
             rule="elbow_force_map",
             threaded=True,
             chunks="chunks.elbow_force_map",
@@ -343,6 +363,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             (*STROKE_VARIABLES, *CURVE_VARIABLES, "F0", "psi_F"),
             "Table I and Fig. 14 strokes",
             section="elbow_force",
+            bounds={**SEC5_BOUNDS, "force.F0": "F0", "force.t_d": "t_d"},
             rule="elbow_force_strokes",
         ),
         Experiment(

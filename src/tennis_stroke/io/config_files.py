@@ -1,12 +1,47 @@
 """The YAML files the package reads (config, claims, readings): one reader whose errors
 name the file, the line and the column.
+
+Two departures from PyYAML's YAML 1.1 reading, both to refuse or avoid a silently wrong
+value: a key given twice in one mapping is an error (YAML 1.1 keeps the last), and a
+number in exponent form without a dot (``2e-3``, ``1e6``) is a number, as in YAML 1.2
+(YAML 1.1 reads it as a string).
 """
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import yaml
+
+
+class _DuplicateKey(yaml.MarkedYAMLError):
+    pass
+
+
+class _Loader(yaml.SafeLoader):
+    """SafeLoader with YAML 1.2 floats and duplicate keys refused."""
+
+    def construct_mapping(self, node, deep=False):
+        seen = set()
+        for key_node, _ in node.value:
+            key = self.construct_object(key_node, deep=True)
+            if key in seen:
+                raise _DuplicateKey(
+                    None,
+                    None,
+                    f"duplicate key {key!r} (a key may appear once)",
+                    key_node.start_mark,
+                )
+            seen.add(key)
+        return super().construct_mapping(node, deep)
+
+
+_Loader.add_implicit_resolver(
+    "tag:yaml.org,2002:float",
+    re.compile(r"^[-+]?(?:[0-9][0-9_]*)(?:\.[0-9_]*)?[eE][-+]?[0-9]+$"),
+    list("-+0123456789"),
+)
 
 
 class ConfigFileError(ValueError):
@@ -24,11 +59,15 @@ def load_yaml(path: str | Path) -> object:
         (lines and columns from 1).
     """
     try:
-        text = Path(path).read_text()
+        text = Path(path).read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise ConfigFileError(
+            f"{path}: not a UTF-8 text file (byte {exc.start}: {exc.reason})"
+        ) from None
     except OSError as exc:
         raise ConfigFileError(f"cannot read {str(path)!r}: {exc.strerror}") from None
     try:
-        return yaml.safe_load(text)
+        return yaml.load(text, Loader=_Loader)  # noqa: S506 (a SafeLoader)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""

@@ -10,6 +10,7 @@ truncated file.
 
 from __future__ import annotations
 
+import errno
 import os
 import platform
 import subprocess
@@ -26,6 +27,7 @@ from .._version import __version__
 from ..model.params import PARAMETERS, READINGS, scalar_params
 from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
+from .interrupts import deferred_signals
 from .units import VARIABLES, cf_attrs
 
 #: Global attributes that differ between two runs of the same job, and only those: when
@@ -172,7 +174,8 @@ def _umask() -> int:
 def temporary_beside(path: Path) -> Path:
     """An empty new file in ``path``'s folder, to be renamed to ``path``, with the
     permissions any new file gets under the umask (``mkstemp`` would give 0600)."""
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    # a short prefix: the temporary name is never longer than a name the folder takes
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:64]}.", suffix=".tmp", dir=path.parent)
     try:
         os.fchmod(fd, 0o666 & ~_umask())
     finally:
@@ -181,14 +184,20 @@ def temporary_beside(path: Path) -> Path:
 
 
 def check_writable(path: str | os.PathLike) -> Path:
-    """Fail early (:class:`OutputError`) if ``path`` cannot be created; return it.
+    """Fail early (:class:`OutputError`) if ``path`` cannot be created; return the path to
+    write (a symbolic link's target: the link stays a link).  A path that exists must be a
+    regular file, never a device or a pipe.
 
     Creates and removes a temporary file beside ``path``: the only reliable test.
     """
     path = Path(path)
+    if path.is_symlink():  # write where the link points (the rename replaces the target)
+        path = path.resolve()
     parent = path.parent
     if path.is_dir():
         raise OutputError(f"output path {str(path)!r} is a directory")
+    if path.exists() and not path.is_file():
+        raise OutputError(f"output path {str(path)!r} is not a regular file (a device, a pipe)")
     file = next((p for p in (parent, *parent.parents) if p.exists() and not p.is_dir()), None)
     if file is not None:
         raise OutputError(f"output directory {str(file)!r} is a file, not a directory")
@@ -239,19 +248,53 @@ def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
 
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     """Write ``ds`` to ``path`` atomically (temporary file in the same folder, then rename),
-    CF-encoded (:func:`cf_encoded`), with the permissions the umask gives a new file."""
+    CF-encoded (:func:`cf_encoded`), with the permissions the umask gives a new file.
+
+    SIGINT and SIGTERM wait until the file is written (:mod:`tennis_stroke.io.interrupts`:
+    an interrupt inside the netCDF library would leave its lock held and hang the
+    process); then the temporary file is removed, ``path`` keeps what it held, and the
+    signal takes effect."""
     path = check_writable(path)
     try:
         tmp = temporary_beside(path)
     except OSError as exc:
         raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
-    try:
-        cf_encoded(ds).to_netcdf(tmp, engine="netcdf4")
-        os.replace(tmp, path)
-    except OSError as exc:
-        tmp.unlink(missing_ok=True)
-        raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
-    except BaseException:
-        tmp.unlink(missing_ok=True)
-        raise
+    with deferred_signals() as received:
+        try:
+            cf_encoded(ds).to_netcdf(tmp, engine="netcdf4")
+            if received:
+                tmp.unlink(missing_ok=True)
+            else:
+                os.replace(tmp, path)
+        except OSError as exc:
+            tmp.unlink(missing_ok=True)
+            raise OutputError(f"cannot write {str(path)!r}: {_reason(exc)}") from None
+        except RuntimeError as exc:  # the netCDF library's errors ("NetCDF: HDF error")
+            tmp.unlink(missing_ok=True)
+            full = _free_bytes(path.parent) < FULL_DISK_BYTES
+            reason = "no space left on the device (disk full)" if full else str(exc)
+            raise OutputError(f"cannot write {str(path)!r}: {reason}") from None
+        except BaseException:
+            tmp.unlink(missing_ok=True)
+            raise
     return path
+
+
+#: Free bytes below which a failed write is put down to a full disk (the netCDF library
+#: reports a full disk as "NetCDF: HDF error").
+FULL_DISK_BYTES = 1 << 20
+
+
+def _free_bytes(folder: Path) -> int:
+    try:
+        stat = os.statvfs(folder)
+    except OSError:
+        return 1 << 62
+    return stat.f_bavail * stat.f_frsize
+
+
+def _reason(exc: OSError) -> str:
+    """An OS error in words: a full disk says so."""
+    if exc.errno == errno.ENOSPC:
+        return "no space left on the device (disk full)"
+    return str(exc)

@@ -22,9 +22,10 @@ from decimal import Decimal
 from pathlib import Path
 
 import jsonschema
+import numpy as np
 import yaml
 
-from ..experiments.grids import chunk_count, grid_size
+from ..experiments.grids import chunk_count, grid_size, lands_on_stop
 from ..experiments.specs import EXPERIMENTS, ConfigKeyError, value_at
 from ..model.params import ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
@@ -71,6 +72,13 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
                     f"config key {_path(parts)!r}: stop {stop} is below start {start} "
                     "(rule: stop >= start)"
                 )
+            step = node.get("step")
+            numbers = all(isinstance(v, int | float) for v in (start, stop, step))
+            if numbers and step > 0 and stop >= start and not lands_on_stop(start, stop, step):
+                yield (
+                    f"config key {_path(parts)!r}: step {step} does not land on stop {stop} "
+                    f"from start {start} (rule: a whole number of steps)"
+                )
         if (
             parts
             and str(parts[-1]).endswith("_range")
@@ -86,7 +94,36 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
         resolve_params(config.get("model") or {})
     except ParameterError as exc:
         yield f"config key 'model': {exc}"
+    yield from _bound_errors(config)
     yield from _solver_errors(config)
+
+
+def _values(value) -> list:
+    """The values of a config value a bound applies to: a range's ends, a list's items."""
+    if isinstance(value, Mapping):
+        return [value.get("start"), value.get("stop")]
+    return list(value) if isinstance(value, list) else [value]
+
+
+def _bound_errors(config: Mapping) -> Iterator[str]:
+    """The values the table's rows put into the model (``Experiment.bounds``) against the
+    unit and bounds of their parameter, naming the config key: a value the solver would
+    refuse never reaches a job."""
+    seen = set()
+    for e in EXPERIMENTS.values():
+        for argument, name in e.bounds.items():
+            key = e.key_of(argument)
+            if key in seen:
+                continue
+            seen.add(key)
+            try:
+                value = value_at(config, key)
+            except ConfigKeyError:  # a key the schema gives a default
+                continue
+            try:
+                resolve_params({name: np.asarray(_values(value), dtype=float)})
+            except (ParameterError, TypeError, ValueError) as exc:
+                yield f"config key {key!r}: {exc} (rule: bounds of {name})"
 
 
 def _solver_errors(config: Mapping) -> Iterator[str]:

@@ -20,6 +20,7 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.grids import chunk_rows
+from ..io.interrupts import Terminated, terminate_raises
 from ..io.netcdf import write_netcdf
 from ..solver.settings import SolverSettings
 from .chunks import mark_chunk
@@ -35,13 +36,19 @@ def logged(log_path: str | Path) -> Iterator[None]:
     """Send stdout and stderr of a script to its Snakemake log file.
 
     An exception ends the job with its traceback in the log, one line on stderr naming
-    the problem and the log, and exit status 1 (Snakemake then reports the failed rule).
+    the problem and the log, and exit status 1 (Snakemake then reports the failed rule);
+    SIGINT and SIGTERM end it with one line and status 130 or 143, no traceback.
     """
+    terminate_raises()
     Path(log_path).parent.mkdir(parents=True, exist_ok=True)
     with open(log_path, "w") as log:
         try:
             with contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
                 yield
+        except (KeyboardInterrupt, Terminated) as exc:
+            name = "interrupted" if isinstance(exc, KeyboardInterrupt) else "terminated"
+            sys.stderr.write(f"tennis-stroke job {name} (log in {log_path})\n")
+            raise SystemExit(130 if name == "interrupted" else 143) from None
         except Exception as exc:
             traceback.print_exc(file=log)
             message = str(exc).splitlines()[0] if str(exc) else ""

@@ -4,7 +4,7 @@ with its status (``results/claims.csv``), and the check of a finished table.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 import pandas as pd
@@ -68,10 +68,61 @@ def evaluate(
     return pd.DataFrame(rows, columns=COLUMNS)
 
 
-def check(csv_path: str | Path = "results/claims.csv") -> int:
+#: The statuses a claims table may hold.
+STATUSES = ("pass", "fail", "known_deviation", "used_for_fit")
+
+
+class ClaimsTableError(ValueError):
+    """A claims table is not one the claims job wrote (message is one line)."""
+
+
+def read_table(csv_path: str | Path, expected_ids: Sequence[str] | None = None) -> pd.DataFrame:
+    """A claims table, checked: readable (a UTF-8 byte-order mark is allowed), every
+    column of :data:`COLUMNS`, known statuses, a number in every reproduced value, and
+    with ``expected_ids`` (``config/claims.yaml``'s) exactly those claims in that order.
+
+    Raises
+    ------
+    ClaimsTableError
+        One line naming the file and what is wrong with it.
+    """
+    try:
+        table = pd.read_csv(csv_path, keep_default_na=False, encoding="utf-8-sig", dtype=str)
+    except FileNotFoundError:
+        raise ClaimsTableError(
+            f"claims table {str(csv_path)!r} does not exist (run the workflow first)"
+        ) from None
+    except (OSError, UnicodeDecodeError, pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
+        problem = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise ClaimsTableError(f"{csv_path}: not a claims table ({problem})") from None
+    missing = [c for c in COLUMNS if c not in table.columns]
+    if missing:
+        raise ClaimsTableError(f"{csv_path}: column {missing[0]!r} is missing (not a claims table)")
+    for i, row in table.iterrows():
+        if row["status"] not in STATUSES:
+            raise ClaimsTableError(
+                f"{csv_path}: row {i + 2} (claim {row['id']!r}) has status {row['status']!r}, "
+                f"not one of {', '.join(STATUSES)}"
+            )
+        try:
+            float(row["reproduced_value"])
+        except ValueError:
+            raise ClaimsTableError(
+                f"{csv_path}: row {i + 2} (claim {row['id']!r}) has no reproduced value"
+            ) from None
+    if expected_ids is not None and list(table["id"]) != list(expected_ids):
+        raise ClaimsTableError(
+            f"{csv_path}: holds {len(table)} claims, config/claims.yaml declares "
+            f"{len(expected_ids)} (or they differ): a table of another run or a damaged one"
+        )
+    return table
+
+
+def check(csv_path: str | Path = "results/claims.csv", expected_ids=None) -> int:
     """Print the counts of a claims table and every failed claim; 1 if a claim marked
-    ``reproduce`` failed, else 0 (``tennis-stroke claims``)."""
-    table = pd.read_csv(csv_path, keep_default_na=False)
+    ``reproduce`` failed, else 0 (``tennis-stroke claims``).  A table that is not one the
+    claims job wrote raises :class:`ClaimsTableError` (:func:`read_table`)."""
+    table = read_table(csv_path, expected_ids)
     failed = table[table["status"] == "fail"]
     counts = table["status"].value_counts().to_dict()
     print(f"claims: {counts}")

@@ -37,6 +37,10 @@ GROUPS = ("batch", "contact", "reference")
 _done: set[str] = set()
 
 
+class CompileCacheError(OSError):
+    """The compiled code's cache folder cannot be used (message is one line)."""
+
+
 def _marker(group: str) -> Path | None:
     """The marker of a complete cache of ``group`` for this checkout, or None without a
     cache dir."""
@@ -58,7 +62,13 @@ def ensure_compiled(group: str = "batch") -> None:
         return
     marker = _marker(group)
     if marker is not None and not marker.exists():
-        marker.parent.mkdir(parents=True, exist_ok=True)
+        try:
+            marker.parent.mkdir(parents=True, exist_ok=True)
+        except OSError as exc:
+            raise CompileCacheError(
+                f"cannot use the compiled code's cache folder {str(marker.parent)!r}: "
+                f"{exc.strerror} (set NUMBA_CACHE_DIR or XDG_CACHE_HOME to a folder)"
+            ) from None
         with open(marker.parent / ".compile.lock", "w") as lock:
             fcntl.flock(lock, fcntl.LOCK_EX)
             if not marker.exists():

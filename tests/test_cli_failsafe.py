@@ -1,0 +1,147 @@
+"""Fail safe, round three, on the command line: outputs through links, never onto a
+device; long output names; overflowing ranges; an unusable cache folder; claims tables
+that are not one the claims job wrote; an identify config with a bad model section."""
+
+import subprocess
+import sys
+from pathlib import Path
+
+import pandas as pd
+import pytest
+
+from tennis_stroke.cli import main
+
+ROOT = Path(__file__).resolve().parents[1]
+SMALL = ["sweep", "--theta0", "60:120:2", "--delta0", "0:90:2", "--no-progress"]
+
+
+def _run(capsys, *argv):
+    try:
+        code = main(list(argv))
+    except SystemExit as exc:  # argparse and the one-line errors exit with status 2
+        code = exc.code
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def _one_error_line(err: str) -> str:
+    lines = err.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("tennis-stroke: error:"), err
+    return lines[0]
+
+
+def test_an_output_link_is_written_through_and_stays_a_link(tmp_path, capsys):
+    (tmp_path / "real.nc").write_text("old")
+    (tmp_path / "link.nc").symlink_to("real.nc")
+    code, _, err = _run(capsys, *SMALL, "--out", str(tmp_path / "link.nc"))
+    assert code == 0, err
+    assert (tmp_path / "link.nc").is_symlink()
+    assert (tmp_path / "real.nc").read_bytes()[:4] == b"\x89HDF"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["link.nc", "real.nc"]
+
+
+def test_an_output_that_is_not_a_regular_file_is_refused(tmp_path, capsys):
+    """A pipe stands for a device here (the old code, run as root, replaced /dev/null)."""
+    import os
+    import stat
+
+    fifo = tmp_path / "pipe.nc"
+    os.mkfifo(fifo)
+    code, _, err = _run(capsys, *SMALL, "--out", str(fifo))
+    assert code == 2 and "is not a regular file" in _one_error_line(err)
+    assert stat.S_ISFIFO(fifo.stat().st_mode) and [p.name for p in tmp_path.iterdir()] == [
+        fifo.name
+    ]
+
+
+def test_a_long_output_name_that_the_folder_takes_is_written(tmp_path, capsys):
+    out = tmp_path / (("a" * 240) + ".nc")  # 243 characters: the folder takes 255
+    code, _, err = _run(capsys, *SMALL, "--out", str(out))
+    assert code == 0, err
+    assert [p.name for p in tmp_path.iterdir()] == [out.name]
+
+
+def test_a_range_whose_span_overflows_is_one_line_without_warnings(tmp_path, capsys):
+    argv = ["sweep", "--theta0", "-1.7e308:1.7e308:3", "--delta0", "0:1:2"]
+    code, _, err = _run(capsys, *argv, "--out", str(tmp_path / "x.nc"))
+    assert code == 2 and "overflows" in _one_error_line(err)
+
+
+def test_a_cache_folder_that_is_a_file_is_one_line(tmp_path):
+    (tmp_path / "cache").write_text("a file")
+    env = {"PATH": "/usr/bin:/bin", "XDG_CACHE_HOME": str(tmp_path / "cache")}
+    cmd = [sys.executable, "-m", "tennis_stroke.cli", "strike", "--theta0", "90", "--delta0", "45"]
+    done = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=300)
+    assert done.returncode == 2
+    assert "cannot use the compiled code's cache folder" in _one_error_line(done.stderr)
+
+
+def _table(tmp_path):
+    """The claims table of a run: one row per declared claim, all passing."""
+    ids = [
+        c["id"]
+        for c in __import__("yaml").safe_load((ROOT / "config" / "claims.yaml").read_text())[
+            "claims"
+        ]
+    ]
+    from tennis_stroke.replication.claims import COLUMNS
+
+    rows = [
+        {
+            **dict.fromkeys(COLUMNS, ""),
+            "id": i,
+            "status": "pass",
+            "reproduced_value": 1.0,
+            "paper_value": 1.0,
+            "tolerance": 1.0,
+        }
+        for i in ids
+    ]
+    return pd.DataFrame(rows, columns=COLUMNS)
+
+
+@pytest.mark.parametrize(
+    "damage, fragment",
+    [
+        (lambda t: t.iloc[:0], "holds 0 claims"),
+        (lambda t: t.iloc[: len(t) // 2], "claims, config/claims.yaml declares"),
+        (lambda t: t.assign(status=["FAIL"] * len(t)), "has status 'FAIL'"),
+        (lambda t: t.assign(status=["Fail"] * len(t)), "has status 'Fail'"),
+        (lambda t: t.assign(status=[""] * len(t)), "has status ''"),
+        (lambda t: t.drop(columns=["status"]), "column 'status' is missing"),
+        (lambda t: t.assign(reproduced_value=[""] * len(t)), "has no reproduced value"),
+    ],
+)
+def test_claims_refuses_a_broken_table_with_exit_2(tmp_path, capsys, monkeypatch, damage, fragment):
+    monkeypatch.chdir(ROOT)
+    csv = tmp_path / "claims.csv"
+    damage(_table(tmp_path)).to_csv(csv, index=False)
+    code, _, err = _run(capsys, "claims", str(csv))
+    assert code == 2 and fragment in _one_error_line(err)
+
+
+def test_claims_reads_a_table_with_a_byte_order_mark(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    csv = tmp_path / "claims.csv"
+    csv.write_bytes(b"\xef\xbb\xbf" + _table(tmp_path).to_csv(index=False).encode())
+    code, out, err = _run(capsys, "claims", str(csv))
+    assert code == 0 and "claims: {'pass':" in out, err
+
+
+def test_claims_exits_1_only_for_a_failed_claim(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    csv = tmp_path / "claims.csv"
+    table = _table(tmp_path)
+    table.loc[0, "status"] = "fail"
+    table.to_csv(csv, index=False)
+    code, out, _ = _run(capsys, "claims", str(csv))
+    assert code == 1 and out.count("FAIL ") == 1
+
+
+def test_identify_refuses_a_model_section_that_is_a_list(tmp_path, capsys, monkeypatch):
+    monkeypatch.chdir(ROOT)
+    config = (ROOT / "config" / "config.yaml").read_text().replace("\nmodel: {}", "\nmodel: [1, 2]")
+    assert "model: [1, 2]" in config
+    (tmp_path / "config.yaml").write_text(config)
+    code, _, err = _run(capsys, "identify", "--config", str(tmp_path / "config.yaml"))
+    assert code == 2 and "'model' must be a mapping" in _one_error_line(err)
