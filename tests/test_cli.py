@@ -434,7 +434,8 @@ def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     header += "expectation,reason,fit_set\n"
     declared = tmp_path / "claims.yaml"  # the one claim the table holds
     claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
-    claim.update(tolerance=0.1, expectation="reproduce", measure={"file": "fig9", "var": "v"})
+    claim.update(tolerance=0.1, expectation="reproduce")
+    claim["measure"] = {"file": "fig9", "var": "best_tau"}
     declared.write_text(json.dumps({"claims": [claim]}))
     table.write_text(header + row.format(value=1.5, status="fail"))
     assert main(["claims", str(table), "--claims", str(declared)]) == 1

@@ -55,6 +55,12 @@ def _duplicate(claims, by_id):
 
 BAD = {
     "duplicate id": (_duplicate, "duplicate claim id 'fig2_best_delta0_at_120'"),
+    # the table of experiments says which variables a file holds: refused before any job
+    # (it failed in the identification with only "KeyError: 'nonexistent'")
+    "unknown variable": (
+        _measure("fig4_t_a", var="nonexistent"),
+        "claim 'fig4_t_a': file 'fig4' has no variable 'nonexistent' (its variables:",
+    ),
     "missing field": (
         _drop("fig4_t_a", "unit"),
         "claim 'fig4_t_a': lacks 'unit'",

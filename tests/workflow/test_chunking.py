@@ -97,3 +97,12 @@ def test_missing_or_foreign_chunks_are_refused(tmp_path):
     plain = compute(values)
     with pytest.raises(ChunkError, match="no chunk attributes"):
         gather_chunks([write_netcdf(plain, tmp_path / "plain.nc")])
+
+
+def test_a_garbage_chunk_file_is_named(tmp_path):
+    from tennis_stroke.pipeline.chunks import ChunkError, gather_chunks
+
+    bad = tmp_path / "0-of-1.nc"
+    bad.write_bytes(b"garbage")
+    with pytest.raises(ChunkError, match=f"chunk file {str(bad)!r} cannot be read"):
+        gather_chunks([bad])

@@ -339,7 +339,7 @@ def test_a_result_deleted_by_hand_is_rebuilt_when_named_as_a_target(moved):
     from tennis_stroke.pipeline.targets import targets
 
     claims = moved.work / "results" / "claims.csv"
-    saved = claims.read_bytes()
+    saved, stat = claims.read_bytes(), claims.stat()
     claims.unlink()
     # the targets first: an option taking several values would swallow them
     command = snakemake_command(targets(), moved.work, "-n")
@@ -348,5 +348,26 @@ def test_a_result_deleted_by_hand_is_rebuilt_when_named_as_a_target(moved):
         done = subprocess.run(command, capture_output=True, text=True, timeout=600)
     finally:
         claims.write_bytes(saved)
+        os.utime(claims, ns=(stat.st_atime_ns, stat.st_mtime_ns))
     assert done.returncode == 0, done.stderr[-2000:]
     assert set(planned_jobs(done.stdout + done.stderr)) == {"claims", "report"}
+
+
+def test_a_truncated_result_is_named_before_any_job(moved):
+    """Snakemake takes a truncated file for up to date (every run failed with 'NetCDF:
+    HDF error' and deleted the claims table): the workflow names it and the way out."""
+    path = moved.work / "results" / "torque_delay" / "fig9.nc"
+    saved, stat = path.read_bytes(), path.stat()
+    path.write_bytes(saved[: len(saved) // 2])
+    try:
+        done = moved("-n")
+    finally:
+        path.write_bytes(saved)
+        os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+    assert done.returncode == 1 and "Traceback" not in done.stderr
+    lines = [line for line in done.stderr.splitlines() if "tennis-stroke" in line]
+    assert lines == [
+        f"tennis-stroke results error: results/torque_delay/fig9.nc is damaged (truncated "
+        f"({len(saved) // 2} of its {len(saved)} bytes)): remove it and run make report (it "
+        "names every result as a target, so it is rebuilt)"
+    ]

@@ -22,6 +22,7 @@ from tennis_stroke.inference.multiverse import MULTIVERSE_SETS
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
 from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
+from tennis_stroke.pipeline.targets import damaged_results
 from tennis_stroke.replication.registry import FIGURES
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
@@ -48,6 +49,17 @@ try:
     )
 except ReadingSpaceError as _exc:
     sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
+    sys.exit(1)
+
+# A damaged result file (truncated, garbage) is named before any job: Snakemake would take
+# it for up to date, and every job reading it would fail.
+_damaged = damaged_results()
+if _damaged:
+    _path, _problem = _damaged[0]
+    sys.stderr.write(
+        f"tennis-stroke results error: {_path} is damaged ({_problem}): remove it and run "
+        "make report (it names every result as a target, so it is rebuilt)\n"
+    )
     sys.exit(1)
 
 #: The workflow's scripts: each rule's code inputs are the package modules its job

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from ..experiments.specs import PAPER_RESULTS
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS
 from ..io.config_files import ConfigFileError, load_yaml
 from .measures import MEASUREMENTS
 
@@ -145,8 +145,12 @@ def _measure_errors(spec, files: Collection[str]) -> Iterator[str]:
             f"measure has unknown keys {unknown} (a variable of a file takes "
             f"{', '.join(VARIABLE_MEASURE)}; a named measurement takes 'function')"
         )
-    if not isinstance(spec.get("var"), str):
+    var = spec.get("var")
+    if not isinstance(var, str):
         yield "measure lacks 'var' (the variable of the file) or 'function'"
+    elif len(names) == 1 and names[0] in EXPERIMENTS and var not in EXPERIMENTS[names[0]].variables:
+        shown = ", ".join(sorted(EXPERIMENTS[names[0]].variables))
+        yield f"file {names[0]!r} has no variable {var!r} (its variables: {shown})"
     if len(names) != 1:
         yield f"a variable is read from one file, got {names}"
     sel = spec.get("sel", {})

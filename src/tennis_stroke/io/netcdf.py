@@ -298,3 +298,38 @@ def _reason(exc: OSError) -> str:
     if exc.errno == errno.ENOSPC:
         return "no space left on the device (disk full)"
     return str(exc)
+
+
+#: The signature that starts every HDF5 file (netCDF-4 is HDF5).
+HDF5_SIGNATURE = b"\x89HDF\r\n\x1a\n"
+
+
+def damage(path: str | os.PathLike) -> str | None:
+    """Why the netCDF file ``path`` is damaged, or None if it looks whole: without reading
+    it (fast enough to check every result before a run), from its HDF5 superblock: the
+    signature, and the end-of-file address it records against the file's size (a
+    truncated file is shorter; garbage has no signature)."""
+    try:
+        with open(path, "rb") as f:
+            head = f.read(96)
+        size = os.path.getsize(path)
+    except OSError as exc:
+        return f"cannot be read ({exc.strerror})"
+    if not head.startswith(HDF5_SIGNATURE):
+        return "not a netCDF-4 file (no HDF5 signature)"
+    version = head[8]
+    try:
+        if version in (0, 1):
+            offsets = head[13]
+            start = 24 + (4 if version == 1 else 0) + 2 * offsets
+        elif version in (2, 3):
+            offsets = head[9]
+            start = 12 + 2 * offsets
+        else:
+            return None
+        eof = int.from_bytes(head[start : start + offsets], "little")
+    except IndexError:
+        return "truncated (shorter than its superblock)"
+    if eof > size:
+        return f"truncated ({size} of its {eof} bytes)"
+    return None

@@ -59,8 +59,14 @@ def gather_chunks(paths: Sequence[str | Path]) -> xr.Dataset:
     """
     parts = []
     for path in paths:
-        with xr.open_dataset(path) as ds:
-            parts.append(ds.load())
+        try:
+            with xr.open_dataset(path) as ds:
+                parts.append(ds.load())
+        except (OSError, ValueError, RuntimeError) as exc:
+            problem = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise ChunkError(
+                f"chunk file {str(path)!r} cannot be read ({problem}): remove it and rerun"
+            ) from None
     if not parts:
         raise ChunkError("no chunk files to gather")
     first = parts[0].attrs

@@ -5,11 +5,18 @@ the files after it are present and up to date (``rm results/claims.csv; snakemak
 report`` says "Nothing to be done": snakemake/snakemake#1978); a file named as a target is
 rebuilt.  ``make report`` therefore names the report and every result, figure and the
 claims table: ``python -m tennis_stroke.pipeline.targets`` prints them, one per line.
+
+A damaged result file (truncated, or garbage) is no better than a missing one, but
+Snakemake would take it for up to date: the workflow refuses to run over one, naming it
+and the way out (:func:`damaged_results`).
 """
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from ..experiments.specs import RESULT_FILES
+from ..io.netcdf import damage
 from ..replication.registry import FIGURES
 
 #: The claims table and the report page (written by the claims and report rules).
@@ -20,6 +27,18 @@ def targets() -> list[str]:
     """The report, the claims table, every result file and every figure."""
     figures = [f"results/figures/{name}.png" for name in sorted(FIGURES)]
     return [*TABLES, *RESULT_FILES.values(), *figures]
+
+
+def damaged_results(results: str | Path = "results") -> list[tuple[str, str]]:
+    """The netCDF files under ``results`` (chunks included) that are damaged, with why
+    (:func:`tennis_stroke.io.netcdf.damage`): checked before every run, as Snakemake
+    would take a truncated file whose inputs are older for up to date."""
+    out = []
+    for path in sorted(Path(results).rglob("*.nc")):
+        problem = damage(path)
+        if problem is not None:
+            out.append((str(path), problem))
+    return out
 
 
 if __name__ == "__main__":
