@@ -33,6 +33,8 @@ BAD = [  # (path, value, fragment of the message)
         "'torque_delay.fig9.tau': step 0.5 does not land on stop 0.3",
     ),
     (("angle_maps", "theta0"), {"start": 60.0, "stop": 120.0, "step": 0.7}, "does not land"),
+    # a list where a model scalar belongs (it planned, then failed deep in numpy)
+    (("model",), {"M2": [0.3, 0.4]}, "'model.M2': a model parameter or reading takes one value"),
     # bounds of the model parameters a row's values become, named by their config key
     (("elbow_force", "F0"), 1.0e6, "'elbow_force.F0': parameter 'F0' must be <= 10000 N"),
     (("mass_length", "M2"), {"start": -0.1, "stop": 0.5, "step": 0.1}, "'mass_length.M2'"),

@@ -90,8 +90,16 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
             yield (
                 f"config key {_path(parts)!r}: {node} is empty or reversed (rule: lower < upper)"
             )
+    model = config.get("model") or {}
+    for name, value in model.items() if isinstance(model, Mapping) else ():
+        if not isinstance(value, int | float | str) or isinstance(value, bool):
+            yield (
+                f"config key 'model.{name}': a model parameter or reading takes one value, "
+                f"got {value!r} (rule: one value)"
+            )
+            return
     try:
-        resolve_params(config.get("model") or {})
+        resolve_params(model)
     except ParameterError as exc:
         yield f"config key 'model': {exc}"
     yield from _bound_errors(config)

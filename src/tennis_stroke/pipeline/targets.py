@@ -34,6 +34,8 @@ def damaged_results(results: str | Path = "results") -> list[tuple[str, str]]:
     (:func:`tennis_stroke.io.netcdf.damage`): checked before every run, as Snakemake
     would take a truncated file whose inputs are older for up to date."""
     out = []
+    if Path(results).exists() and not Path(results).is_dir():
+        return [(str(results), "a file where the results folder should be")]
     for path in sorted(Path(results).rglob("*.nc")):
         problem = damage(path)
         if problem is not None:
