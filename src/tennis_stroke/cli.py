@@ -323,7 +323,7 @@ def _claims(args: argparse.Namespace) -> int:
 def _identify(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from .experiments.specs import EXPERIMENTS, ConfigKeyError
+    from .experiments.specs import ConfigKeyError, fit_set_arguments
     from .inference.claims import load_claims
     from .inference.identification import run_identification, summary
     from .inference.reading_space import load_reading_space
@@ -346,11 +346,10 @@ def _identify(args: argparse.Namespace) -> int:
         raise ValueError(f"{args.config}: 'model' must be a mapping of parameters, got {base!r}")
     resolve_params(base)  # units and bounds: one line naming the parameter
     try:  # what the fit sets simulate, from the rows that compute it (as the workflow)
-        elbow = EXPERIMENTS["elbow"].arguments(config)
-        strokes = EXPERIMENTS["fig4"].arguments(config)["strokes"]
+        fit = fit_set_arguments(config)
     except ConfigKeyError as exc:
         raise ValueError(f"{args.config}: {exc}") from None
-    fits = run_identification(space, claims, strokes, elbow["force"], elbow["stroke"], base)
+    fits = run_identification(space, claims, **fit, base=base)
     print(summary(fits, args.rows))
     return 0
 

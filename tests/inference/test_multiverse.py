@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 import yaml
 
-from tennis_stroke.experiments.strokes import sec5_stroke, table1_cases
+from tennis_stroke.experiments.specs import fit_set_arguments
+from tennis_stroke.experiments.strokes import table1_cases
 from tennis_stroke.inference import multiverse as mv
 from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.inference.identification import targets
@@ -59,12 +60,12 @@ def test_design_is_seeded_and_inside_the_declared_ranges(claims, tmp_path):
 
 def test_the_screen_agrees_with_strokes_simulated_one_by_one(claims, tmp_path):
     space = small_space(claims, tmp_path, candidates=4)
-    screened = mv.screen(space, claims, STROKES, FORCE, sec5_stroke(CONFIG))
+    screened = mv.screen(space, claims, STROKES, FORCE, fit_set_arguments(CONFIG)["stroke"])
     points = mv.design(space)
     model_goal = targets(space, space.fits["model"], claims)
     elbow_goal = targets(space, space.fits["elbow_force"], claims)
-    cases = table1_cases(FORCE, sec5_stroke(CONFIG))
-    stroke = sec5_stroke(CONFIG)
+    cases = table1_cases(FORCE, fit_set_arguments(CONFIG)["stroke"])
+    stroke = fit_set_arguments(CONFIG)["stroke"]
     computed = np.isfinite(screened["residual"].values[0, :, -1])
     assert 0 < computed.sum() < 4  # both branches below are exercised
     for i in range(4):

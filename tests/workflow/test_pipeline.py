@@ -1,12 +1,10 @@
 """The workflow scripts' helpers: a failing job's traceback goes to its log."""
 
 import sys
-from types import SimpleNamespace
 
-import numpy as np
 import pytest
 
-from tennis_stroke.pipeline.jobs import chunk, logged
+from tennis_stroke.pipeline.jobs import logged
 
 
 def test_output_goes_to_the_log(tmp_path):
@@ -31,13 +29,6 @@ def test_an_exception_ends_the_job_with_one_line_and_the_traceback_in_the_log(tm
     text = log.read_text()
     assert text.startswith("working\nTraceback (most recent call last):")
     assert "ValueError: theta0 grid is empty" in text
-
-
-def test_chunk_takes_the_rows_of_the_wildcards():
-    values = np.arange(7.0)
-    parts = [chunk(values, SimpleNamespace(chunk=str(i), chunks="3")) for i in range(3)]
-    np.testing.assert_array_equal(np.concatenate(parts), values)
-    assert [p.size for p in parts] == [3, 2, 2]
 
 
 def test_save_marks_a_chunk_with_its_position(tmp_path):

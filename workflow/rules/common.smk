@@ -16,6 +16,7 @@ from tennis_stroke.experiments.specs import (
     PAPER_RESULTS,
     RESULT_FILES,
     EXPERIMENTS,
+    fit_set_arguments,
     value_at,
 )
 from tennis_stroke.inference.multiverse import MULTIVERSE_SETS
@@ -173,18 +174,6 @@ def solver():
 def common_params():
     """Params every model simulation needs."""
     return {"model": model(), "solver": solver()}
-
-
-def fit_set_experiments():
-    """What the fit sets simulate (config/readings.yaml): Fig. 4's strokes and Table I's
-    force on the Sec. V-VI stroke, from the rows that compute them (only those keys, so
-    that changing a map's grid does not rerun the identification)."""
-    elbow = EXPERIMENTS["elbow"].arguments(config)
-    return {
-        "fig4_strokes": EXPERIMENTS["fig4"].arguments(config)["strokes"],
-        "force": elbow["force"],
-        "stroke": elbow["stroke"],
-    }
 
 
 def paper_experiments():

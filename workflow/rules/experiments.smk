@@ -77,7 +77,7 @@ rule identification:
         "benchmarks/workflow/identification.tsv"
     threads: 1
     params:
-        **fit_set_experiments(),
+        **fit_set_arguments(config),
         common=common_params(),
     script:
         "../scripts/identification.py"
@@ -99,7 +99,7 @@ rule robustness_screen:
         "benchmarks/workflow/robustness_screen.tsv"
     threads: 1
     params:
-        **fit_set_experiments(),
+        **fit_set_arguments(config),
         common=common_params(),
     script:
         "../scripts/robustness_screen.py"

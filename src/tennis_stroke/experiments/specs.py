@@ -34,7 +34,7 @@ from .grids import axis_size, grid_size
 STROKE_VARIABLES = tuple(FILE_NAMES.get(k, k) for k in RESULT_FIELDS)
 #: Variables of the sampled curves of single strokes.
 CURVE_VARIABLES = ("omega1", "omega2", "theta", "phi", "x_elbow", "y_elbow")
-#: The sections that hold the Sec. V-VI base stroke (``sec5_stroke``).
+#: The config keys of the Sec. V-VI base stroke (Figs. 10-14, Table I).
 SEC5_STROKE = {
     "L1": "torque_delay.L1",
     "theta0": "torque_delay.theta0",
@@ -430,6 +430,20 @@ EXPERIMENTS: dict[str, Experiment] = {
         ),
     ]
 }
+
+
+def fit_set_arguments(config: Mapping) -> dict[str, object]:
+    """What the fit sets of ``config/readings.yaml`` simulate, from the rows that compute
+    it: Fig. 4's strokes (``fig4_strokes``), and Table I's force (``force``) on the Sec.
+    V-VI stroke (``stroke``).  The identification and the robustness screen get only these
+    keys (the workflow and ``tennis-stroke identify`` alike)."""
+    elbow = EXPERIMENTS["elbow"].arguments(config)
+    return {
+        "fig4_strokes": EXPERIMENTS["fig4"].arguments(config)["strokes"],
+        "force": elbow["force"],
+        "stroke": elbow["stroke"],
+    }
+
 
 #: The paper's result files (the claims read these), by key.  A file is named by the
 #: paper's figure, never by a parameter value the config can change (the value is in the

@@ -116,20 +116,6 @@ def fig4_strokes(
     )
 
 
-def sec5_stroke(config: Mapping[str, object]) -> dict[str, object]:
-    """The Sec. V-VI base stroke from the workflow config (``torque_delay``): ``L1``,
-    ``theta0``, ``C2`` and ``delta0`` of Fig. 9, ``tau_L``, ``tau_H``, ``t_end``,
-    ``samples`` (a plain dict: only what the stroke rules need)."""
-    d = config["torque_delay"]
-    return {
-        "L1": d["L1"],
-        "theta0": d["theta0"],
-        "C2": d["fig9"]["C2"],
-        "delta0": d["fig9"]["delta0"],
-        **d["strokes"],
-    }
-
-
 def delay_strokes(
     stroke: Mapping[str, object],
     params: Mapping[str, object],

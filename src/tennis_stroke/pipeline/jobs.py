@@ -16,10 +16,8 @@ import traceback
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
-import numpy as np
 import xarray as xr
 
-from ..experiments.grids import chunk_rows
 from ..io.interrupts import Terminated, terminate_raises
 from ..io.netcdf import write_netcdf
 from ..solver.settings import SolverSettings
@@ -62,11 +60,6 @@ def logged(log_path: str | Path) -> Iterator[None]:
 def chunk_position(wildcards) -> tuple[int, int]:
     """Index and count of this job's chunk (wildcards ``chunk`` of ``chunks``)."""
     return int(wildcards.chunk), int(wildcards.chunks)
-
-
-def chunk(values: np.ndarray, wildcards) -> np.ndarray:
-    """The rows of ``values`` that this job computes (wildcards ``chunk`` of ``chunks``)."""
-    return chunk_rows(values, *chunk_position(wildcards))
 
 
 class Timer:
