@@ -429,9 +429,9 @@ def test_console_script_runs_as_a_process(tmp_path):
 
 def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     table = tmp_path / "claims.csv"
-    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,\n"
+    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,,{value},0,agrees\n"
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,fit_set\n"
+    header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
     declared = tmp_path / "claims.yaml"  # the one claim the table holds
     claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
     claim.update(tolerance=0.1, expectation="reproduce")
@@ -442,6 +442,37 @@ def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     assert "FAIL x" in capsys.readouterr().out
     table.write_text(header + row.format(value=1.05, status="pass"))
     assert main(["claims", str(table), "--claims", str(declared)]) == 0
+
+
+def test_claims_command_exits_1_when_a_search_and_its_map_differ_without_cause(tmp_path, capsys):
+    import numpy as np
+    import xarray as xr
+
+    table = tmp_path / "claims.csv"
+    header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
+    header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
+    declared = tmp_path / "claims.yaml"
+    claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
+    claim.update(tolerance=0.1, expectation="reproduce")
+    claim["measure"] = {"file": "fig9", "var": "best_tau"}
+    declared.write_text(json.dumps({"claims": [claim]}))
+    table.write_text(header + "x,s,q,s,1.0,1.05,0.1,pass,reproduce,,,1.0,0.5,unexplained\n")
+    assert main(["claims", str(table), "--claims", str(declared)]) == 1
+    assert "UNEXPLAINED x (default reading)" in capsys.readouterr().out
+    table.write_text(header + "x,s,q,s,1.0,1.05,0.1,pass,reproduce,,,1.0,0.5,grid_step\n")
+    assert main(["claims", str(table), "--claims", str(declared)]) == 0
+    folder = tmp_path / "robustness" / "validation"  # the validation files beside the table
+    folder.mkdir(parents=True)
+    xr.Dataset(
+        {
+            "cause": (("reading", "claim"), np.array([["agrees"], ["unexplained"]], dtype=object)),
+            "targeted_value": (("reading", "claim"), [[1.0], [1.2]]),
+            "map_value": (("reading", "claim"), [[1.0], [1.0]]),
+        },
+        coords={"reading": [3, 7], "claim": ["x"]},
+    ).to_netcdf(folder / "fig9.nc")
+    assert main(["claims", str(table), "--claims", str(declared)]) == 1
+    assert "UNEXPLAINED x (reading 7)" in capsys.readouterr().out
 
 
 def test_claims_command_without_a_table_is_one_line(tmp_path, capsys):

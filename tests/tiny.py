@@ -14,7 +14,7 @@ TINY = {
         "theta0_range": [60.0, 120.0],
         "delta0_range": [0.0, 100.0],
         "coarse_step": 20.0,
-        "fine_step": 10.0,
+        "tolerance": 2.0,
     },
     "torque_delay": {
         "L1": 0.4,
@@ -43,7 +43,13 @@ TINY = {
             "k_contact": {"start": 2.0, "stop": 7.0, "num": 2},
             "cases": [["tennis_stroke.DOP853", 5e-8], ["fixed.RK4", 1e-3]],
         },
-        "optimum": {"M2": [0.3], "L1": [0.4], "steps": [[20.0, 5.0]], "reference_step": 2.0},
+        "optimum": {
+            "M2": [0.3],
+            "L1": [0.4],
+            "steps": [[20.0, 5.0]],
+            "searches": [[20.0, 2.0]],
+            "reference_step": 2.0,
+        },
     },
     "elbow_force": {
         "F0": 20.0,
@@ -52,6 +58,16 @@ TINY = {
         "tau_F": {"start": -0.05, "stop": 0.05, "step": 0.05},
         "table1_psi": [180.0, 275.0, 76.0],
         "table1_tau_F": -0.027,
+    },
+    "search": {
+        "angle_step": 30.0,
+        "tau_step": 0.1,
+        "psi_F_step": 90.0,
+        "tau_F_step": 0.05,
+        "angle_tolerance": 2.0,
+        "time_tolerance": 0.01,
+        "C2_step": 5.0,
+        "C2_tolerance": 0.5,
     },
 }
 
@@ -65,12 +81,11 @@ TINY_READINGS = {
         "readings": 3,
         "chunks": 2,
         "resolution": {
-            "angle_maps": {k: TINY["angle_maps"][k] for k in ("theta0", "delta0")},
-            "mass_length": {
-                k: TINY["mass_length"][k] for k in ("M2", "L1", "coarse_step", "fine_step")
-            },
+            "angle_maps": {"theta0": TINY["angle_maps"]["theta0"]},
+            "mass_length": {k: TINY["mass_length"][k] for k in ("M2", "L1")},
             "fig7_tau": TINY["torque_delay"]["fig7"]["tau"],
         },
+        "validation": {"readings": 2, "ml_steps": [20.0, 10.0]},
     },
 }
 #: Chunk files of the tiny run's robustness analysis.

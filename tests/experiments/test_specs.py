@@ -75,5 +75,5 @@ def test_memory_batches_follow_the_grids():
     a = EXPERIMENTS["fig2"].arguments(CONFIG)
     assert EXPERIMENTS["fig2"].strokes(a) == (241 * 401,)
     ml = EXPERIMENTS["ml"]
-    points, fine = 13 * 13, 41**2
-    assert ml.strokes(ml.arguments(CONFIG))[1] == points * fine
+    # the search's bracket: 60-120 deg and 0-100 deg at most 5 deg apart, every point at once
+    assert ml.strokes(ml.arguments(CONFIG)) == (13 * 13 * 13 * 21,)

@@ -158,15 +158,10 @@ def test_one_reading_end_to_end_equals_the_claims_of_its_files(space, claims):
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     raw = dict(space.raw)
     tiny = {
-        "angle_maps": {
-            "theta0": {"start": 60.0, "stop": 120.0, "step": 30.0},
-            "delta0": {"start": 0.0, "stop": 90.0, "step": 30.0},
-        },
+        "angle_maps": {"theta0": {"start": 60.0, "stop": 120.0, "step": 30.0}},
         "mass_length": {
             "M2": {"start": 0.2, "stop": 0.5, "step": 0.3},
             "L1": {"start": 0.2, "stop": 0.5, "step": 0.3},
-            "coarse_step": 20.0,
-            "fine_step": 10.0,
         },
         "fig7_tau": {"start": 0.0, "stop": 0.2, "step": 0.1},
     }

@@ -4,7 +4,7 @@ import numpy as np
 import pytest
 
 from tennis_stroke import SolverSettings
-from tennis_stroke.experiments.maps import angle_map, mass_length_map
+from tennis_stroke.experiments.maps import angle_map, mass_length_map, mass_length_optimum
 from tennis_stroke.io.failures import FailureShareError, check_failure_share, failure_counts
 
 THETA0 = np.array([60.0, 90.0, 120.0])
@@ -60,6 +60,24 @@ def test_optimum_map_counts_the_strokes_of_its_searches():
     assert failure_counts(ds) == {"total": 2 * per_point, "failed": 2 * per_point}
     with pytest.raises(FailureShareError, match="74 of 74 strokes failed"):
         check_failure_share(ds, 0.01, "mass_length")
+
+
+def test_the_searched_optimum_map_counts_every_stroke_it_ran():
+    ds = mass_length_optimum(
+        np.array([0.3]),
+        np.array([0.3, 0.4]),
+        30.0,
+        5.0,
+        (60.0, 120.0),
+        (0.0, 90.0),
+        {},
+        SolverSettings(t_max=0.05),  # no stroke reaches its release
+        1,
+    )
+    counts = failure_counts(ds)
+    assert counts["total"] == int(ds["evaluated_strokes"].sum()) >= 2 * 3 * 4
+    assert counts["failed"] == counts["total"]  # every stroke failed, and was counted
+    assert np.isnan(ds["v_out_best"]).all()
 
 
 def test_bad_share_is_refused():

@@ -105,9 +105,9 @@ BAD = [  # (path, value, fragment of the message)
     (("max_memory",), "lots", "config key 'max_memory': memory size must be a number"),
     (("max_memory",), 1.5, "'max_memory': 1.5 is not of type 'string', 'integer', 'null'"),
     (
-        ("mass_length", "fine_step"),
+        ("mass_length", "coarse_step"),
         1e-4,
-        "'mass_length': a Figs. 5-6 job (13 rows, 267189 + 270413520169 strokes)",
+        "'mass_length': a Figs. 5-6 job (13 x 7.80e+12 strokes)",
     ),
     (
         ("solver_study", "optimum", "reference_step"),

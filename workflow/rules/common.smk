@@ -16,12 +16,15 @@ from tennis_stroke.experiments.specs import (
     PAPER_RESULTS,
     RESULT_FILES,
     EXPERIMENTS,
+    VALIDATION_GROUPS,
     fit_set_arguments,
     value_at,
 )
 from tennis_stroke.inference.multiverse import MULTIVERSE_SETS
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
+from tennis_stroke.inference.targeted import targeted_config
+from tennis_stroke.inference.validation import group_config
 from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
 from tennis_stroke.pipeline.targets import damaged_results
 from tennis_stroke.replication.registry import FIGURES
@@ -176,16 +179,24 @@ def common_params():
     return {"model": model(), "solver": solver()}
 
 
-def paper_experiments():
-    """The config sections the paper's experiments read (the robustness analysis reruns
-    them under each reading), less those the multiverse sets itself."""
+def paper_sections():
+    """The config sections the paper's experiments read and the claims' search settings
+    (section ``search``), less those the multiverse sets itself."""
     sections = {
         key.split(".")[0]
         for e in EXPERIMENTS.values()
         if e.family == "paper"
         for key in e.keys()
     }
+    sections.add("search")
     return {k: config[k] for k in sorted(sections - set(MULTIVERSE_SETS))}
+
+
+def paper_experiments():
+    """What the targeted evaluation of the claims reads (the claims job and the
+    robustness analysis rerun it): :func:`paper_sections` less the steps of the maps it
+    searches instead (tennis_stroke.inference.targeted.targeted_config)."""
+    return targeted_config(paper_sections())
 
 
 def figure_inputs(wildcards):

@@ -123,3 +123,25 @@ rule robustness_chunk:
         experiments=paper_experiments(),
     script:
         "../scripts/robustness_chunk.py"
+
+
+rule claims_validation:
+    input:
+        code=code_inputs("claims_validation.py"),
+        kept=RESULT_FILES["robustness_readings"],
+        claims="config/claims.yaml",
+        readings="config/readings.yaml",
+    output:
+        "results/robustness/validation/{group}.nc",
+    log:
+        "logs/claims_validation/{group}.log",
+    benchmark:
+        "benchmarks/workflow/claims_validation_{group}.tsv"
+    wildcard_constraints:
+        group="|".join(VALIDATION_GROUPS),
+    threads: 1
+    params:
+        common=common_params(),
+        experiments=lambda w: group_config(config, w.group),
+    script:
+        "../scripts/claims_validation.py"

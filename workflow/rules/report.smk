@@ -12,8 +12,13 @@ rule claims:
         report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
     log:
         "logs/claims.log",
+    benchmark:
+        "benchmarks/workflow/claims.tsv"
+    threads: 1
     params:
         files=PAPER_RESULTS,
+        experiments=paper_experiments(),
+        common=common_params(),
     script:
         "../scripts/claims.py"
 

@@ -1,20 +1,23 @@
-"""Evaluate config/claims.yaml against the results into results/claims.csv, with each
-claim's robustness across the consistent readings and each deviation's evidence."""
+"""Evaluate config/claims.yaml into results/claims.csv: each claim measured on the
+targeted evaluation of the default reading (its optima and threshold by a search), on the
+workflow's maps as map_value, with its robustness across the consistent readings and each
+deviation's evidence."""
 
 import xarray as xr
 
-from tennis_stroke.inference.claims import load_claims
-from tennis_stroke.inference.reading_space import load_reading_space
-from tennis_stroke.pipeline.jobs import logged
+from tennis_stroke.inference.targeted import searched_files
+from tennis_stroke.pipeline.jobs import claims_and_readings, logged, settings
 from tennis_stroke.replication.claims import evaluate
 from tennis_stroke.replication.robustness import annotate
 
+p = snakemake.params
 with logged(snakemake.log[0]):
-    claims = load_claims(snakemake.input.claims)
-    space = load_reading_space(snakemake.input.readings, [c["id"] for c in claims])
-    files = {k: xr.load_dataset(v) for k, v in snakemake.params.files.items()}
-    table = evaluate(claims, files, space.fit_of_claim())
+    claims, space = claims_and_readings(snakemake.input.claims, snakemake.input.readings)
+    maps = {k: xr.load_dataset(v) for k, v in p.files.items()}
+    config = {**p.experiments, "model": p.common["model"]}
+    found = searched_files(config, p.common["model"], settings(p.common), None, snakemake.threads)
+    table = evaluate(claims, {**maps, **found}, space.fit_of_claim(), maps)
     robustness = xr.load_dataset(snakemake.input.robustness)
-    table = annotate(table, robustness, space, claims, files)
+    table = annotate(table, robustness, space, claims, maps)
     table.to_csv(snakemake.output[0], index=False)
-    print(table[["id", "reproduced_value", "status", "robustness", "evidence"]].to_string())
+    print(table[["id", "reproduced_value", "map_value", "status", "robustness"]].to_string())

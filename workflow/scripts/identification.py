@@ -1,16 +1,13 @@
 """Identification as a fit (config/readings.yaml): fits, profiles and leave-one-out of
 both declared fit sets, one netCDF file each."""
 
-from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.inference.identification import run_identification, summary, to_datasets
-from tennis_stroke.inference.reading_space import load_reading_space
-from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, claims_and_readings, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):
     clock = Timer()
-    claims = load_claims(snakemake.input.claims)
-    space = load_reading_space(snakemake.input.readings, [c["id"] for c in claims])
+    claims, space = claims_and_readings(snakemake.input.claims, snakemake.input.readings)
     solver = settings(p.common)
     results = run_identification(
         space, claims, p.fig4_strokes, p.force, p.stroke, p.common["model"], solver

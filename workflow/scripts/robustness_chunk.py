@@ -2,16 +2,20 @@
 
 import xarray as xr
 
-from tennis_stroke.inference.claims import load_claims
-from tennis_stroke.inference.reading_space import load_reading_space
 from tennis_stroke.inference.robustness import evaluate_readings
-from tennis_stroke.pipeline.jobs import Timer, chunk_position, logged, save, settings
+from tennis_stroke.pipeline.jobs import (
+    Timer,
+    chunk_position,
+    claims_and_readings,
+    logged,
+    save,
+    settings,
+)
 
 p = snakemake.params
 with logged(snakemake.log[0]):
     clock = Timer()
-    claims = load_claims(snakemake.input.claims)
-    space = load_reading_space(snakemake.input.readings, [c["id"] for c in claims])
+    claims, space = claims_and_readings(snakemake.input.claims, snakemake.input.readings)
     kept = xr.load_dataset(snakemake.input.kept)
     config = {**p.experiments, "model": p.common["model"]}
     rows = chunk_position(snakemake.wildcards)

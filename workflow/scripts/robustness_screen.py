@@ -3,16 +3,13 @@ fit sets, and the consistent readings kept (config/readings.yaml, multiverse).""
 
 import xarray as xr
 
-from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.inference.multiverse import best_fits, readings_dataset, screen
-from tennis_stroke.inference.reading_space import load_reading_space
-from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, claims_and_readings, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):
     clock = Timer()
-    claims = load_claims(snakemake.input.claims)
-    space = load_reading_space(snakemake.input.readings, [c["id"] for c in claims])
+    claims, space = claims_and_readings(snakemake.input.claims, snakemake.input.readings)
     fits = {n: xr.load_dataset(snakemake.input[f"{n}_fits"]) for n in space.fits}
     screened = screen(
         space,

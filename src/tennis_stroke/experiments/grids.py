@@ -50,6 +50,17 @@ def grid(start: float, stop: float, step: float) -> np.ndarray:
     return np.round(start + step * np.arange(grid_size(start, stop, step)), 10)
 
 
+def bracket_size(lower: float, upper: float, step: float) -> int:
+    """Points of a search's bracket grid: equally spaced from ``lower`` to ``upper``
+    inclusive, no further apart than ``step``
+    (:func:`tennis_stroke.experiments.search.coarse_axis`)."""
+    if not step > 0:
+        raise ValueError(f"a search step must be > 0, got {step}")
+    if upper < lower:
+        raise ValueError(f"a search range must have lower <= upper, got [{lower}, {upper}]")
+    return max(2, math.ceil((upper - lower) / step - 1e-9) + 1) if upper > lower else 1
+
+
 def axis_size(spec) -> int:
     """Number of points of :func:`axis` ``(spec)``, computed without making it."""
     if isinstance(spec, Mapping):

@@ -28,7 +28,7 @@ from dataclasses import dataclass, field
 from importlib import import_module
 
 from ..solver.results import FILE_NAMES, RESULT_FIELDS
-from .grids import axis_size, grid_size
+from .grids import axis_size, bracket_size
 
 #: Variables of every file of strokes (one per stroke result field).
 STROKE_VARIABLES = tuple(FILE_NAMES.get(k, k) for k in RESULT_FIELDS)
@@ -157,6 +157,23 @@ def value_at(config: Mapping, key: str):
     return node
 
 
+def pruned(config: Mapping, keys) -> dict:
+    """The part of ``config`` at the dotted ``keys`` (their parents as nested dicts; a
+    list is taken whole): what a job that reads only those keys gets, so that a change of
+    another key reruns nothing of it."""
+    out: dict = {}
+    for key in keys:
+        node, source = out, config
+        parts = key.split(".")
+        for n, part in enumerate(parts):
+            value = value_at(source, part)
+            if n == len(parts) - 1 or isinstance(value, list):
+                node[part] = plain(value)
+                break
+            node, source = node.setdefault(part, {}), value
+    return out
+
+
 def plain(value):
     """``value`` as plain data: mappings as dicts with sorted keys, sequences as lists."""
     if isinstance(value, Mapping):
@@ -192,12 +209,11 @@ def _grid(a, key) -> int:
 
 
 def _mass_length_strokes(a) -> tuple[int, ...]:
+    """The coarse bracket of every point at once (the largest batch of the search)."""
     points = _grid(a, "M2") * _grid(a, "L1")
-    coarse = grid_size(*a["theta0_range"], a["coarse_step"]) * grid_size(
-        *a["delta0_range"], a["coarse_step"]
-    )
-    fine = grid_size(-a["coarse_step"], a["coarse_step"], a["fine_step"]) ** 2
-    return (points * coarse, points * fine)
+    coarse = bracket_size(*a["theta0_range"], a["coarse_step"])
+    coarse *= bracket_size(*a["delta0_range"], a["coarse_step"])
+    return (points * coarse,)
 
 
 def _delay_strokes(first: str) -> Callable[[Mapping], tuple[int, ...]]:
@@ -299,9 +315,16 @@ EXPERIMENTS: dict[str, Experiment] = {
                 "theta0_range": "mass_length.theta0_range",
                 "delta0_range": "mass_length.delta0_range",
                 "coarse_step": "mass_length.coarse_step",
-                "fine_step": "mass_length.fine_step",
+                "tolerance": "mass_length.tolerance",
             },
-            ("v_out_best", "theta0_best", "delta0_best", "theta_c", "failed_strokes"),
+            (
+                "v_out_best",
+                "theta0_best",
+                "delta0_best",
+                "theta_c",
+                "failed_strokes",
+                "evaluated_strokes",
+            ),
             "Figs. 5-6",
             section="mass_length",
             bounds={"M2": "M2", "L1": "L1"},
@@ -420,6 +443,7 @@ EXPERIMENTS: dict[str, Experiment] = {
                 "M2": "solver_study.optimum.M2",
                 "L1": "solver_study.optimum.L1",
                 "steps": "solver_study.optimum.steps",
+                "searches": "solver_study.optimum.searches",
                 "reference_step": "solver_study.optimum.reference_step",
             },
             ("v_err", "theta0_err", "delta0_err", "seconds"),
@@ -460,11 +484,27 @@ IDENTIFICATION_FILES = {
 
 
 #: The robustness analysis' files: the screen of the candidate readings, the kept
-#: consistent readings, and every claim under each of them (claims x readings).
+#: consistent readings, every claim under each of them (claims x readings), and the
+#: targeted evaluation checked against the full maps on some of them.
 ROBUSTNESS_FILES = {
     "robustness_screen": "results/robustness/screen.nc",
     "robustness_readings": "results/robustness/readings.nc",
     "robustness": "results/robustness/claims.nc",
+}
+#: The check of the claims' searches against the maps (tennis_stroke.inference.validation):
+#: one job and file per group of the files the claims find by a search (a claim reads
+#: the files of one group), by ``validation_{group}``, so a change of one figure's
+#: config reruns one of them.
+VALIDATION_GROUPS = {
+    "angle_maps": ("fig2", "fig3"),
+    "mass_length": ("ml",),
+    "fig7": ("fig7",),
+    "fig8": ("fig8",),
+    "fig9": ("fig9",),
+    "elbow_map": ("elbow_map",),
+}
+ROBUSTNESS_FILES |= {
+    f"validation_{g}": f"results/robustness/validation/{g}.nc" for g in VALIDATION_GROUPS
 }
 
 

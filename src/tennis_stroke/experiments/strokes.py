@@ -83,13 +83,9 @@ def trajectories(
     ds["label"].attrs = cf_attrs("label")
     ds = ds.assign_coords(t=("t", times, cf_attrs("t")))
     ds.attrs["curves"] = curves
-    for key, values in samples.items():
-        ds[key] = (
-            ("stroke", "t"),
-            np.asarray(values),
-            cf_attrs(key),
-        )
-    return ds
+    return ds.assign(
+        {key: (("stroke", "t"), np.asarray(v), cf_attrs(key)) for key, v in samples.items()}
+    )
 
 
 def _times(spec: Mapping[str, object]) -> np.ndarray:

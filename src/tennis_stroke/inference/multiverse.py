@@ -280,9 +280,10 @@ def experiment_config(
     resolution = dict(space.raw["multiverse"]["resolution"])
     fig7_tau = resolution.pop("fig7_tau", None)
     cfg = _merge(config, resolution)
-    if fig7_tau is not None:
+    # a config pruned to what one job reads may lack these sections
+    if fig7_tau is not None and "fig7" in cfg.get("torque_delay", {}):
         cfg["torque_delay"]["fig7"]["tau"] = dict(fig7_tau)
-    if "table1_tau_F" in reading:
+    if "table1_tau_F" in reading and "elbow_force" in cfg:
         cfg["elbow_force"]["table1_tau_F"] = float(reading["table1_tau_F"])
     model = dict(cfg.get("model") or {})
     model.update({k: v for k, v in reading.items() if k in space.raw["model"]})
@@ -296,16 +297,17 @@ def paper_results(
     settings: SolverSettings,
     curves: Sequence[str] = ("free_swing",),
     threads: int | None = 1,
+    skip: Sequence[str] = (),
 ) -> dict[str, xr.Dataset]:
     """Every paper experiment of the table (:data:`tennis_stroke.experiments.specs.EXPERIMENTS`,
     family ``paper``) from the workflow ``config`` with ``model`` overrides, by result key
     (``fig2`` ... ``elbow``).  The curve files (:data:`CURVE_FILES`) are computed once per
     entry of ``curves``, keyed ``"{key}/{curves}"``; another row that reads the curves
-    setting gets the first; the others are computed once."""
+    setting gets the first; the others are computed once.  ``skip``: keys not computed."""
     config = {**config, "figure_curves": curves[0]}
     out: dict[str, xr.Dataset] = {}
     for key, experiment in EXPERIMENTS.items():
-        if experiment.family != "paper":
+        if experiment.family != "paper" or key in skip:
             continue
         args = experiment.arguments(config)
         if "curves" in args and key in CURVE_FILES:

@@ -19,8 +19,9 @@ from ..io.netcdf import labelled
 from ..solver.settings import SolverSettings
 from .claims import measure, within
 from .identification import quoted_variable
-from .multiverse import CLAIM_LEVEL, CURVE_FILES, experiment_config, paper_results, reading_of
+from .multiverse import CLAIM_LEVEL, CURVE_FILES, experiment_config, reading_of
 from .reading_space import ReadingSpace
+from .targeted import targeted_files
 
 
 def variants(space: ReadingSpace) -> list[dict[str, str]]:
@@ -72,27 +73,26 @@ def evaluate_reading(
     """Values of every claim (``variant x claim``) under ``reading`` (its discrete
     readings and continuous unknowns) and every claim-level variant.
 
-    Claims that no claim-level reading touches are evaluated once."""
-    level = space.quoting_of_claim()
-    touched = {c for c, g in level.items() if g in CLAIM_LEVEL}
-    touched |= set(space.raw["figure_curves"].get("claims", []))
+    A claim is measured once per distinct thing it reads: its measure (the quoted
+    variable of its instant) and, if it reads a curve file, the curves; the variants that
+    change neither reuse the value."""
     fixed = {g: str(reading[g]) for g in space.raw["quoting"] if g in reading}
     l1_max = reading.get("fig6_L1_max")
-    out = []
+    out, seen = [], {}
     cases = variants(space)
-    first: np.ndarray | None = None
     for case in cases:
         instants = {**fixed, **{g: case[g] for g in CLAIM_LEVEL if g in space.raw["quoting"]}}
         files = files_of_reading(results, case["figure_curves"], l1_max)
         row = []
-        for j, c in enumerate(quoted_claims(claims, space, instants)):
-            if first is not None and c["id"] not in touched:
-                row.append(first[j])
-                continue
-            row.append(measure(c["measure"], files))
-        values = np.array(row, dtype=float)
-        first = values if first is None else first
-        out.append(values)
+        for c in quoted_claims(claims, space, instants):
+            names = c["measure"]["file"]
+            names = names if isinstance(names, list) else [names]
+            curves = case["figure_curves"] if set(names) & set(CURVE_FILES) else None
+            key = (c["id"], repr(sorted(c["measure"].items())), curves)
+            if key not in seen:
+                seen[key] = measure(c["measure"], files)
+            row.append(seen[key])
+        out.append(np.array(row, dtype=float))
     return np.array(out), cases
 
 
@@ -156,15 +156,23 @@ def evaluate_readings(
     threads: int | None = 1,
 ) -> xr.Dataset:
     """Every claim under every kept reading (or chunk ``rows = (index, count)`` of them,
-    :func:`tennis_stroke.experiments.grids.chunk_rows`): the paper's experiments run at the
-    multiverse's resolution over the workflow ``config``, the claims evaluated under
-    every claim-level variant (:func:`readings_results`)."""
+    :func:`tennis_stroke.experiments.grids.chunk_rows`): the files the claims read, by
+    the targeted evaluation (:func:`tennis_stroke.inference.targeted.targeted_files`) on
+    the rows of the multiverse's resolution over the workflow ``config``, the claims
+    evaluated under every claim-level variant (:func:`readings_results`)."""
     index = select_rows(np.arange(readings.sizes["reading"]), rows)
     cases = variants(space)
     values = np.full((index.size, len(cases), len(claims)), np.nan)
     for n, i in enumerate(index):
         reading = reading_of(readings, int(i))
         cfg, model = experiment_config(config, space, reading)
-        results = paper_results(cfg, model, settings, space.discrete["figure_curves"], threads)
+        results = targeted_files(
+            cfg,
+            model,
+            settings,
+            space.discrete["figure_curves"],
+            reading.get("fig6_L1_max"),
+            threads,
+        )
         values[n] = evaluate_reading(claims, space, results, reading)[0]
     return readings_results(claims, space, readings.isel(reading=index), values, cases)

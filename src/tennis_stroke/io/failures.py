@@ -7,8 +7,9 @@ gather step raises :class:`FailureShareError` with one line naming the map, the 
 the statuses, and the report lists the counts of every map.
 
 Maps of stroke results carry a ``status`` variable; the optimum map of Figs. 5-6 carries
-``failed_strokes`` (failed strokes of each point's search) and the attribute
-``strokes_per_point``.
+``failed_strokes`` and ``evaluated_strokes`` (the strokes of each point's search that
+failed and that ran; the grid search of the studies, the attribute ``strokes_per_point``
+instead).
 """
 
 from __future__ import annotations
@@ -35,6 +36,9 @@ def failure_counts(ds: xr.Dataset) -> dict[str, int]:
             if code != 0:
                 counts[name] = int(np.count_nonzero(status == code))
         return counts
+    if "failed_strokes" in ds and "evaluated_strokes" in ds:
+        failed = np.asarray(ds["failed_strokes"].values)
+        return {"total": int(ds["evaluated_strokes"].sum()), "failed": int(failed.sum())}
     if "failed_strokes" in ds:
         failed = np.asarray(ds["failed_strokes"].values)
         per_point = int(ds.attrs["strokes_per_point"])

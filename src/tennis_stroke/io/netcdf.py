@@ -17,7 +17,8 @@ import subprocess
 import tempfile
 from collections.abc import Mapping
 from datetime import UTC, datetime
-from importlib.metadata import version as installed_version
+from functools import cache
+from importlib.metadata import version
 from pathlib import Path
 
 import numpy as np
@@ -47,8 +48,16 @@ class OutputError(OSError):
     """The output file cannot be written (message is one line)."""
 
 
+@cache
+def installed_version(package: str) -> str:
+    """The installed version of ``package`` (read once per process)."""
+    return version(package)
+
+
+@cache
 def git_commit() -> str:
-    """Commit of the source tree this package runs from, or ``"unknown"``."""
+    """Commit of the source tree this package runs from, or ``"unknown"`` (read once per
+    process: a job's files all carry the commit it started from)."""
     try:
         out = subprocess.run(
             ["git", "rev-parse", "HEAD"],

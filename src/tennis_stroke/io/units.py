@@ -56,6 +56,7 @@ OTHER_VARIABLES: dict[str, tuple[str, str]] = {
     "delta0_best": ("degree", "delta0 of the fastest rebound"),
     "theta_c": ("degree", "|theta| at phi = 0 of the fastest rebound"),
     "failed_strokes": ("1", "failed strokes of the optimum search at this point"),
+    "evaluated_strokes": ("1", "strokes of the optimum search at this point"),
     # curves of single strokes
     "omega1": ("rad/s", "rod-1 angular velocity (clockwise)"),
     "omega2": ("rad/s", "rod-2 angular velocity (clockwise)"),

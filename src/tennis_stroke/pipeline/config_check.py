@@ -25,7 +25,7 @@ import jsonschema
 import numpy as np
 import yaml
 
-from ..experiments.grids import chunk_count, grid_size, lands_on_stop
+from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
 from ..experiments.specs import EXPERIMENTS, ConfigKeyError, value_at
 from ..model.params import ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
@@ -220,6 +220,14 @@ def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
             f"the optimum search with steps {coarse_step:g}/{fine_step:g} deg "
             f"({_n(points)} points, {_n(coarse)} + {_n(fine)} strokes each)",
             job(points * coarse) + job(points * fine),
+        )
+    for bracket, _ in opt.get("searches", []):
+        coarse = bracket_size(*th_range, bracket) * bracket_size(*de_range, bracket)
+        yield (
+            "solver_study.optimum",
+            f"the optimum search with a {bracket:g} deg bracket ({_n(points)} points, "
+            f"{_n(coarse)} strokes each at once)",
+            job(points * coarse),
         )
     k = study["stability"]["k_contact"]
     cases = len(study["stability"]["cases"])

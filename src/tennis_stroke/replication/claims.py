@@ -7,10 +7,12 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import xarray as xr
 
 from ..inference.claims import measure, within
+from ..inference.validation import cause, difference, grid_half_step
 
 COLUMNS = [
     "id",
@@ -24,25 +26,40 @@ COLUMNS = [
     "expectation",
     "reason",
     "fit_set",
+    "map_value",
+    "map_difference",
+    "map_cause",
 ]
+
+
+def _datasets(files: Mapping[str, str | Path | xr.Dataset]) -> dict[str, xr.Dataset]:
+    return {k: v if isinstance(v, xr.Dataset) else xr.load_dataset(v) for k, v in files.items()}
 
 
 def evaluate(
     claims: list[dict],
     files: Mapping[str, str | Path | xr.Dataset],
     fit_of_claim: Mapping[str, str] | None = None,
+    maps: Mapping[str, str | Path | xr.Dataset] | None = None,
 ) -> pd.DataFrame:
     """Evaluate every claim against the result files (``files``: key -> path or dataset).
 
     ``fit_of_claim``: claim id -> the fit set (``config/readings.yaml``) that uses it; the
     ``fit_set`` column marks those claims, which chose the readings and so cannot confirm
-    them: within tolerance their status is ``used_for_fit``, not ``pass``.
+    them: within tolerance their status is ``used_for_fit``, not ``pass``.  ``maps``: the
+    workflow's full maps, when ``files`` are the targeted evaluation's
+    (:func:`tennis_stroke.inference.targeted.targeted_files`): the same measurement on
+    them is ``map_value``, and ``map_difference`` its distance from the reproduced value
+    in tolerances (:func:`tennis_stroke.inference.validation.difference`), ``map_cause``
+    why they differ (:func:`~tennis_stroke.inference.validation.cause`).
     """
-    datasets = {k: v if isinstance(v, xr.Dataset) else xr.load_dataset(v) for k, v in files.items()}
+    datasets = _datasets(files)
+    on_maps = _datasets(maps) if maps is not None else None
     fit_of_claim = fit_of_claim or {}
     rows = []
     for c in claims:
         value = measure(c["measure"], datasets)
+        map_value = measure(c["measure"], on_maps) if on_maps is not None else value
         ok = bool(within(value, c["paper_value"], c["tolerance"]))
         fit_set = fit_of_claim.get(c["id"], "")
         if ok:
@@ -63,6 +80,13 @@ def evaluate(
                 "expectation": c["expectation"],
                 "reason": c.get("reason", ""),
                 "fit_set": fit_set,
+                "map_value": map_value,
+                "map_difference": float(difference(value, map_value, c["tolerance"])),
+                "map_cause": str(
+                    cause(value, map_value, c["tolerance"], grid_half_step(c, on_maps))
+                )
+                if on_maps is not None
+                else "agrees",
             }
         )
     return pd.DataFrame(rows, columns=COLUMNS)
@@ -120,7 +144,9 @@ def read_table(csv_path: str | Path, expected_ids: Sequence[str] | None = None) 
 
 def check(csv_path: str | Path = "results/claims.csv", expected_ids=None) -> int:
     """Print the counts of a claims table and every failed claim; 1 if a claim marked
-    ``reproduce`` failed, else 0 (``tennis-stroke claims``).  A table that is not one the
+    ``reproduce`` failed or a claim's searched value differs from the map's without a
+    cause (``map_cause``; and in the validation files of ``robustness/validation`` beside
+    the table, if there are any), else 0 (``tennis-stroke claims``).  A table that is not one the
     claims job wrote raises :class:`ClaimsTableError` (:func:`read_table`)."""
     table = read_table(csv_path, expected_ids)
     failed = table[table["status"] == "fail"]
@@ -131,4 +157,30 @@ def check(csv_path: str | Path = "results/claims.csv", expected_ids=None) -> int
             f"FAIL {row['id']}: paper {row['paper_value']} {row['unit']}, reproduced "
             f"{float(row['reproduced_value']):.6g} (tolerance {row['tolerance']})"
         )
-    return 1 if len(failed) else 0
+    unexplained = [
+        f"UNEXPLAINED {row['id']} (default reading): "
+        f"searched {float(row['reproduced_value']):.6g}, "
+        f"map {float(row['map_value']):.6g} {row['unit']}"
+        for _, row in table[table["map_cause"] == "unexplained"].iterrows()
+    ]
+    unexplained += _unexplained_in_validation(Path(csv_path).parent / "robustness" / "validation")
+    for line in unexplained:
+        print(line)
+    return 1 if len(failed) or unexplained else 0
+
+
+def _unexplained_in_validation(folder: Path) -> list[str]:
+    """A line for every claim and reading of the validation files in ``folder`` (if
+    any) whose searched value differs from the map's without a cause."""
+    out = []
+    for path in sorted(folder.glob("*.nc")):
+        with xr.open_dataset(path) as ds:
+            bad = np.argwhere(ds["cause"].values == "unexplained")
+            for r, c in bad:
+                out.append(
+                    f"UNEXPLAINED {ds['claim'].values[c]} "
+                    f"(reading {int(ds['reading'].values[r])}): "
+                    f"searched {float(ds['targeted_value'].values[r, c]):.6g}, "
+                    f"map {float(ds['map_value'].values[r, c]):.6g} ({path.name})"
+                )
+    return out

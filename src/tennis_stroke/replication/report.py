@@ -24,6 +24,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import jinja2
+import numpy as np
 import pandas as pd
 import xarray as xr
 import yaml
@@ -332,6 +333,53 @@ def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
     }
 
 
+def validation_table(claims: pd.DataFrame, validation: xr.Dataset) -> pd.DataFrame:
+    """Per searched claim: the largest |targeted - map| (in tolerances) under the default
+    reading (``claims.csv``) and over the validation's readings, with how many of them
+    agree within the agreement, differ by no more than the map's grid step, or differ
+    unexplained."""
+    by_id = claims.set_index("id")
+    rows = []
+    for j, cid in enumerate(validation["claim"].values):
+        diff = validation["difference"].values[:, j]
+        causes = list(validation["cause"].values[:, j])
+        default = by_id.loc[cid] if cid in by_id.index else None
+        if default is not None:
+            causes.append(default["map_cause"])
+        rows.append(
+            {
+                "claim": cid,
+                "default: targeted": float(default["reproduced_value"])
+                if default is not None
+                else np.nan,
+                "default: map": float(default["map_value"]) if default is not None else np.nan,
+                "default: difference (tol)": float(default["map_difference"])
+                if default is not None
+                else np.nan,
+                "readings: largest difference (tol)": float(np.nanmax(diff)),
+                "agree": causes.count("agrees"),
+                "grid step": causes.count("grid_step"),
+                "unexplained": causes.count("unexplained"),
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def _validation(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
+    """The validation of the targeted evaluation against the full maps."""
+    paths = [v for k, v in inference.items() if k.startswith("validation_")]
+    if not paths or "map_cause" not in claims:
+        return {}
+    ds = xr.concat([xr.load_dataset(p) for p in paths], dim="claim", data_vars="all")
+    table = validation_table(claims, ds)
+    return {
+        "readings": ds.sizes["reading"],
+        "agreement": float(ds.attrs["agreement"]),
+        "unexplained": int(table["unexplained"].sum()),
+        "table": _table(table, index=False, float_format=lambda x: f"{x:.4g}", na_rep="-"),
+    }
+
+
 def _timings(directory: Path) -> pd.DataFrame:
     """Per-job timings, with the time each was measured: jobs of an earlier run (e.g.
     with other chunk counts) keep their files until ``benchmarks/workflow`` is removed."""
@@ -440,6 +488,7 @@ def build_report(
         "fit_ok": int((claims.status == "used_for_fit").sum()),
     }
     page_sections = _paper_sections(rows, paper_figures, statements, sections)
+    validation = _validation(claims, inference)
     robustness = _robustness(
         claims.assign(
             **{
@@ -476,6 +525,7 @@ def build_report(
         inference={"figures": [e for n, e in entries.items() if n.startswith("inference")]},
         fits=_fit_tables(inference),
         robustness=robustness,
+        validation=validation,
         study_figures=[e for n, e in entries.items() if n.startswith("study")],
         study_tables=study_tables,
         ladder_error=ladder_error,

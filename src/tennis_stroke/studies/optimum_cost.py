@@ -1,5 +1,7 @@
-"""Cost against accuracy of the optimum search of Figs. 5-6 (coarse grid, fine grid,
-parabola), for several step pairs against a finer reference search."""
+"""Cost against accuracy of the optimum search of Figs. 5-6: the nested grid (coarse
+grid, fine grid, parabola) for several step pairs, and the search of the workflow
+(coarse bracket, compass search) for several (bracket step, tolerance) pairs, against a
+finer reference grid search."""
 
 from __future__ import annotations
 
@@ -8,7 +10,7 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from ..experiments.maps import mass_length_map
+from ..experiments.maps import mass_length_map, mass_length_optimum
 from ..io.netcdf import provenance
 from ..io.units import cf_attrs
 from ..model.params import resolve_params
@@ -24,21 +26,28 @@ def optimum_cost(
     reference_step: float = 0.05,
     theta0_range=(60.0, 120.0),
     delta0_range=(0.0, 100.0),
+    searches: Sequence[tuple[float, float]] = (),
 ) -> xr.Dataset:
-    """Accuracy of the nested optimum of Figs. 5-6 against its cost.
+    """Accuracy of the optimum of Figs. 5-6 against its cost.
 
-    For each ``(coarse, fine)`` step pair the optimum at every ``(M2, L1)`` point is found
-    as in :func:`tennis_stroke.experiments.maps.mass_length_map`; the reference is the same
-    search with a ``reference_step`` fine grid around a 1-degree coarse one.  Errors are the
-    largest over the points.
+    For each ``(coarse, fine)`` step pair of ``steps`` the optimum at every ``(M2, L1)``
+    point is found by the nested grid of
+    :func:`tennis_stroke.experiments.maps.mass_length_map`, for each ``(bracket step,
+    tolerance)`` of ``searches`` by the search of
+    :func:`~tennis_stroke.experiments.maps.mass_length_optimum`; the reference is the
+    nested grid with a ``reference_step`` fine grid around a 1-degree coarse one.  Errors
+    are the largest over the points (the search's values are strokes' own; the grid's
+    are parabola estimates, which can lie above every stroke at an edge of the range).
     """
     settings = SolverSettings()
     m2, l1 = np.asarray(m2, float), np.asarray(l1, float)
     ref = mass_length_map(m2, l1, 1.0, reference_step, theta0_range, delta0_range, {}, settings)
     rows = {k: [] for k in ("v_err", "theta0_err", "delta0_err", "seconds")}
-    for coarse, fine in steps:
+    runs = [(mass_length_map, c, f) for c, f in steps]
+    runs += [(mass_length_optimum, c, t) for c, t in searches]
+    for fn, coarse, fine in runs:
         seconds, ds = median_time(
-            lambda c=coarse, f=fine: mass_length_map(
+            lambda fn=fn, c=coarse, f=fine: fn(
                 m2, l1, c, f, theta0_range, delta0_range, {}, settings
             ),
             1,
@@ -47,7 +56,8 @@ def optimum_cost(
         rows["v_err"].append(float(np.nanmax(np.abs(ds["v_out_best"] - ref["v_out_best"]))))
         rows["theta0_err"].append(float(np.nanmax(np.abs(ds["theta0_best"] - ref["theta0_best"]))))
         rows["delta0_err"].append(float(np.nanmax(np.abs(ds["delta0_best"] - ref["delta0_best"]))))
-    labels = [f"coarse {c:g} deg, fine {f:g} deg" for c, f in steps]
+    labels = [f"grid: coarse {c:g} deg, fine {f:g} deg" for c, f in steps]
+    labels += [f"search: bracket {c:g} deg, tolerance {t:g} deg" for c, t in searches]
     ds = xr.Dataset(
         {
             k: (
@@ -69,6 +79,9 @@ def optimum_cost_study(
     L1: Sequence[float],
     steps: Sequence[Sequence[float]],
     reference_step: float,
+    searches: Sequence[Sequence[float]] = (),
 ) -> xr.Dataset:
     """The optimum-search cost from the config (``solver_study.optimum``)."""
-    return optimum_cost(M2, L1, [tuple(s) for s in steps], reference_step)
+    return optimum_cost(
+        M2, L1, [tuple(s) for s in steps], reference_step, searches=[tuple(s) for s in searches]
+    )

@@ -1,0 +1,229 @@
+"""The targeted evaluation checked against the full maps, claim by claim, on kept
+readings of the robustness analysis (``config/readings.yaml``, ``multiverse.validation``).
+
+For each chosen reading, every claim that reads a file the targeted evaluation finds by a
+search (:data:`tennis_stroke.inference.targeted.SEARCHED`) is measured twice with the
+same measurement: on the targeted files and on the full maps (the workflow's steps on
+the multiverse's rows; Figs. 5-6 by the grid search that the workflow used before).  The
+claims that read only files of single strokes are the same computation either way and
+are left out.  The default reading is checked in ``results/claims.csv`` (its
+``map_value``), against the workflow's own maps.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..experiments.grids import axis
+from ..experiments.maps import mass_length_map
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, VALIDATION_GROUPS, plain, pruned
+from ..io.netcdf import labelled, provenance
+from ..solver.settings import SolverSettings
+from .claims import measure
+from .multiverse import experiment_config, paper_results, reading_of
+from .reading_space import ReadingSpace
+from .targeted import SEARCHED, searched_files
+
+#: The validation's jobs, by group: the searched files each checks.
+GROUPS = VALIDATION_GROUPS
+
+#: Agreement asked of a targeted value: within this share of the claim's tolerance of the
+#: map's (issue 21); a qualitative claim must give the same answer.
+AGREEMENT = 0.1
+
+
+def _files(claim: Mapping) -> list[str]:
+    names = claim["measure"]["file"]
+    return names if isinstance(names, list) else [names]
+
+
+def searched_claims(claims: Sequence[Mapping], keys: Sequence[str] = SEARCHED) -> list[Mapping]:
+    """The claims that read a file found by a search (of ``keys``) and no other file."""
+    return [c for c in claims if set(_files(c)) <= set(keys)]
+
+
+def group_config(config: Mapping, group: str) -> dict:
+    """What a validation job of ``group`` reads of the workflow ``config``: the keys of
+    its files' rows and the ``search`` section (its params)."""
+    keys = [k for key in GROUPS[group] for k in EXPERIMENTS[key].keys()]
+    return {**pruned(config, keys), "search": plain(config["search"])}
+
+
+def difference(targeted, mapped, tolerance) -> np.ndarray:
+    """|targeted - map| in tolerances (a qualitative claim, tolerance 0: 0 if the same
+    answer, else 1; NaN where either is missing)."""
+    t, m = np.asarray(targeted, float), np.asarray(mapped, float)
+    tol = np.asarray(tolerance, float)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return np.where(tol > 0, np.abs(t - m) / np.where(tol > 0, tol, 1.0), np.abs(t - m))
+
+
+def agrees(targeted, mapped, tolerance) -> np.ndarray:
+    """Whether a targeted value agrees with the map's (:data:`AGREEMENT`)."""
+    d = difference(targeted, mapped, tolerance)
+    with np.errstate(invalid="ignore"):
+        return np.where(np.asarray(tolerance) > 0, d <= AGREEMENT + 1e-12, d == 0)
+
+
+#: Measurements that read a grid point of a map (its coordinate ``coord``), and the one
+#: that reads the midpoint between two grid rows (``C2``): their map value is limited by
+#: the grid, to half its step.
+GRID_POINT = {"optimum": None, "minimum": None, "delay_threshold": "C2"}
+
+
+def grid_half_step(claim: Mapping, maps: Mapping[str, xr.Dataset]) -> float:
+    """Half the step of the map grid a claim's map value is read on (its resolution, in
+    the claim's unit; 0 where the value is refined between grid points or is no
+    location)."""
+    spec = claim["measure"]
+    name = spec.get("function")
+    if name not in GRID_POINT:
+        return 0.0
+    coord = GRID_POINT[name] or spec["coord"]
+    values = np.asarray(maps[spec["file"]][coord].values, float)
+    return 0.5 * float(np.max(np.abs(np.diff(values)))) if values.size > 1 else 0.0
+
+
+def cause(targeted, mapped, tolerance, half_step) -> np.ndarray:
+    """Why a targeted value differs from the map's: ``agrees`` (:func:`agrees`),
+    ``grid_step`` (the map's value is a grid point, and the two differ by no more than
+    half its step plus the agreement: the targeted value is the finer estimate), else
+    ``unexplained``."""
+    ok = agrees(targeted, mapped, tolerance)
+    gap = np.abs(np.asarray(targeted, float) - np.asarray(mapped, float))
+    with np.errstate(invalid="ignore"):
+        grid = (np.asarray(half_step) > 0) & (
+            gap <= np.asarray(half_step) + AGREEMENT * np.asarray(tolerance) + 1e-12
+        )
+    return np.where(ok, "agrees", np.where(grid, "grid_step", "unexplained"))
+
+
+def chosen_readings(count: int, kept: int) -> np.ndarray:
+    """``count`` of the ``kept`` readings, evenly spread over them (all if fewer)."""
+    return np.unique(np.round(np.linspace(0, kept - 1, min(count, kept))).astype(int))
+
+
+def maps_of_reading(
+    config: Mapping,
+    model: Mapping,
+    settings: SolverSettings,
+    l1_max,
+    ml_steps,
+    threads=1,
+    keys: Sequence[str] = SEARCHED,
+) -> dict[str, xr.Dataset]:
+    """The full maps of the searched files ``keys`` under one reading's ``config`` and
+    ``model``: the table's functions, Figs. 5-6 by the grid search of ``ml_steps``
+    (coarse, fine) at the two ends of L1 the claims read."""
+    skip = [k for k in PAPER_RESULTS if k not in keys or k == "ml"]
+    out = paper_results(config, model, settings, threads=threads, skip=skip)
+    if "ml" not in keys:
+        return out
+    ml = config["mass_length"]
+    l1 = axis(ml["L1"])
+    if l1_max is not None:
+        l1 = l1[l1 <= l1_max + 1e-9]
+    out["ml"] = mass_length_map(
+        axis(ml["M2"]),
+        np.unique(l1[[0, -1]]),
+        float(ml_steps[0]),
+        float(ml_steps[1]),
+        tuple(ml["theta0_range"]),
+        tuple(ml["delta0_range"]),
+        model,
+        settings,
+        threads,
+    )
+    return out
+
+
+def validate(
+    claims: Sequence[Mapping],
+    space: ReadingSpace,
+    readings: xr.Dataset,
+    config: Mapping,
+    settings: SolverSettings,
+    threads: int | None = 1,
+    group: str | None = None,
+) -> xr.Dataset:
+    """Targeted against map values of every searched claim (of the files of ``group`` of
+    :data:`GROUPS`; None: all) on the readings chosen by ``multiverse.validation``
+    (:func:`chosen_readings`), over ``(reading, claim)``."""
+    keys = GROUPS[group] if group is not None else SEARCHED
+    spec = space.raw["multiverse"]["validation"]
+    index = chosen_readings(int(spec["readings"]), readings.sizes["reading"])
+    checked = searched_claims(claims, keys)
+    values = {k: np.full((index.size, len(checked)), np.nan) for k in ("targeted", "map")}
+    half = np.zeros((index.size, len(checked)))
+    for n, i in enumerate(index):
+        reading = reading_of(readings, int(i))
+        cfg, model = experiment_config(config, space, reading)
+        l1_max = reading.get("fig6_L1_max")
+        found = {
+            "targeted": searched_files(cfg, model, settings, l1_max, threads, keys),
+            "map": maps_of_reading(cfg, model, settings, l1_max, spec["ml_steps"], threads, keys),
+        }
+        for kind, results in found.items():
+            files = {k: results[k] for k in keys}
+            for j, c in enumerate(checked):
+                values[kind][n, j] = measure(c["measure"], files)
+                if kind == "map":
+                    half[n, j] = grid_half_step(c, files)
+    tol = np.array([c["tolerance"] for c in checked], float)
+    ds = xr.Dataset(
+        {
+            "targeted_value": (
+                ("reading", "claim"),
+                values["targeted"],
+                {"long_name": "value by the targeted search (its unit: claim_unit)"},
+            ),
+            "map_value": (
+                ("reading", "claim"),
+                values["map"],
+                {"long_name": "value from the full maps (its unit: claim_unit)"},
+            ),
+            "difference": (
+                ("reading", "claim"),
+                difference(values["targeted"], values["map"], tol),
+                {
+                    "long_name": "|targeted - map| in tolerances (qualitative: 0 same, 1 not)",
+                    "units": "1",
+                },
+            ),
+            "agrees": (
+                ("reading", "claim"),
+                agrees(values["targeted"], values["map"], tol).astype(np.int8),
+                {
+                    "long_name": f"1 if within {AGREEMENT} tolerance (qualitative: the same)",
+                    "units": "1",
+                },
+            ),
+            "grid_half_step": (
+                ("reading", "claim"),
+                half,
+                {
+                    "long_name": "half the map's grid step the map value is read on "
+                    "(0: refined between grid points; its unit: claim_unit)"
+                },
+            ),
+            "cause": (
+                ("reading", "claim"),
+                cause(values["targeted"], values["map"], tol, half).astype(object),
+                {"long_name": "agrees, grid_step (the map's grid limits it) or unexplained"},
+            ),
+            "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),
+            "claim_unit": ("claim", [c["unit"] for c in checked], {"long_name": "unit"}),
+        },
+        coords={
+            "reading": readings["reading"].values[index],
+            "claim": ("claim", [c["id"] for c in checked], {"long_name": "claim id"}),
+        },
+    )
+    ds["reading"].attrs.update(units="1", long_name="index of the kept reading")
+    ds.attrs.update(provenance({}, settings))
+    ds.attrs["agreement"] = AGREEMENT
+    ds.attrs["files"] = " ".join(keys)
+    return labelled(ds)

@@ -1,0 +1,100 @@
+"""The searches that replace dense maps (tennis_stroke.experiments.search): closed-form
+objectives with known optima, the edges of the box, a periodic axis, failed strokes, the
+threshold's bracket, and the stroke objective against the solver."""
+
+import numpy as np
+import pytest
+
+from tennis_stroke.experiments.grids import bracket_size
+from tennis_stroke.experiments.search import (
+    StrokeObjective,
+    coarse_axis,
+    first_crossing,
+    maximize,
+)
+from tennis_stroke.solver.settings import SolverSettings
+from tennis_stroke.solver.stroke import strike_batch
+
+
+def quadratic(centres: np.ndarray, scale=1.0):
+    """-(x - c)^2 summed over the axes, one centre (row of ``centres``) per problem."""
+
+    def f(points, index):
+        return -scale * np.sum((points - centres[index, None, :]) ** 2, axis=-1)
+
+    return f
+
+
+def test_coarse_axis_includes_both_ends_and_keeps_the_step():
+    a = coarse_axis(0.0, 100.0, 7.0)
+    assert a[0] == 0.0 and a[-1] == 100.0 and np.max(np.diff(a)) <= 7.0
+    assert a.size == bracket_size(0.0, 100.0, 7.0) == 16
+    assert coarse_axis(3.0, 3.0, 1.0).tolist() == [3.0]
+    with pytest.raises(ValueError, match="step must be > 0"):
+        coarse_axis(0.0, 1.0, 0.0)
+
+
+@pytest.mark.parametrize("dims", [1, 2])
+def test_maximize_finds_interior_optima_between_grid_points(dims):
+    rng = np.random.default_rng(3)
+    centres = rng.uniform(5.0, 95.0, size=(20, dims))
+    best = maximize(
+        quadratic(centres), 20, [0.0] * dims, [100.0] * dims, [10.0] * dims, [1e-4] * dims
+    )
+    assert np.max(np.abs(best.x - centres)) <= 1e-4
+    assert np.max(np.abs(best.value)) <= dims * 1e-8
+
+
+def test_maximize_keeps_an_optimum_on_the_edge_and_finds_minima():
+    centres = np.array([[-5.0], [120.0], [50.0]])  # below, above and inside [0, 100]
+    best = maximize(quadratic(centres), 3, [0.0], [100.0], [10.0], [1e-3])
+    assert best.x[:, 0] == pytest.approx([0.0, 100.0, 50.0], abs=1e-3)
+    low = maximize(quadratic(centres), 3, [0.0], [100.0], [10.0], [1e-3], sign=-1.0)
+    # the minimum of -(x - c)^2 is at the end farthest from c; the value is not negated
+    assert low.x[:, 0] == pytest.approx([100.0, 0.0, 0.0], abs=1e-3)
+    assert low.value == pytest.approx(-((low.x[:, 0] - centres[:, 0]) ** 2))
+
+
+def test_a_periodic_axis_wraps_around():
+    # a peak at 359 deg of a full turn: on [0, 360] without wrapping the search would
+    # stop at the edge 360 or at 0; wrapped it finds 359 (or the same point mod 360)
+    def f(points, index):
+        return np.cos(np.radians(points[..., 0] - 359.0))
+
+    best = maximize(f, 1, [0.0], [360.0], [20.0], [1e-4], periods=[360.0])
+    assert best.x[0, 0] == pytest.approx(359.0, abs=1e-3)
+    with pytest.raises(ValueError, match="span exactly one period"):
+        maximize(f, 1, [0.0], [180.0], [20.0], [1e-4], periods=[360.0])
+
+
+def test_failed_strokes_are_the_worst_value():
+    centres = np.array([[30.0]])
+
+    def f(points, index):
+        v = quadratic(centres)(points, index)
+        return np.where(points[..., 0] > 60.0, np.nan, v)  # fails beyond 60
+
+    best = maximize(f, 1, [0.0], [100.0], [10.0], [1e-4])
+    assert best.x[0, 0] == pytest.approx(30.0, abs=1e-4)
+
+    def never(points, index):
+        return np.full(points.shape[:-1], np.nan)
+
+    assert np.isnan(maximize(never, 2, [0.0], [1.0], [0.5], [0.1]).value).all()
+
+
+def test_first_crossing_brackets_each_switch_to_its_tolerance():
+    switch = np.array([0.123, 7.77, 2.5])
+    lo, hi = first_crossing(lambda x: x >= switch[:, None], np.zeros(3), np.full(3, 10.0), 1e-3)
+    assert np.all(hi - lo <= 1e-3) and np.all(lo < switch) and np.all(switch <= hi)
+
+
+def test_the_stroke_objective_is_the_solver_and_counts_its_strokes():
+    settings = SolverSettings()
+    theta0 = np.array([70.0, 110.0])
+    objective = StrokeObjective(("delta0",), 2, {"theta0": theta0}, {"L1": 0.35}, settings)
+    points = np.array([[[10.0], [40.0]], [[20.0], [60.0]]])
+    got = objective(points, np.arange(2))
+    want = strike_batch(theta0[:, None], points[..., 0], {"L1": 0.35}, settings)["v_out_kmh"]
+    assert np.array_equal(got, want)
+    assert objective.evaluated.tolist() == [2, 2] and objective.failed.tolist() == [0, 0]

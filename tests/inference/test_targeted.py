@@ -1,0 +1,106 @@
+"""The targeted evaluation (tennis_stroke.inference.targeted): the same measurements on
+searched files answer what they answer on the maps, and it reads no map step."""
+
+import copy
+from pathlib import Path
+
+import numpy as np
+import pytest
+import yaml
+
+from tennis_stroke.experiments import maps, strokes
+from tennis_stroke.experiments.grids import axis
+from tennis_stroke.experiments.specs import EXPERIMENTS
+from tennis_stroke.inference import measures as ms
+from tennis_stroke.inference import targeted as tg
+from tennis_stroke.solver.settings import SolverSettings
+
+ROOT = Path(__file__).resolve().parents[2]
+CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+SETTINGS = SolverSettings(**CONFIG["solver"])
+SEARCH = CONFIG["search"]
+
+
+def args(key, config=CONFIG):
+    return EXPERIMENTS[key].arguments(config)
+
+
+def test_angle_rows_find_the_red_line_of_a_dense_map():
+    a = args("fig2")
+    a["theta0"] = {"start": 60.0, "stop": 120.0, "step": 30.0}
+    found = tg.angle_rows(a, SEARCH, {}, SETTINGS)
+    dense = maps.angle_map(
+        axis(a["theta0"]), np.arange(0.0, 100.01, 0.1), {"L1": a["L1"]}, SETTINGS
+    )
+    # the dense map's parabola-refined optimum, 0.1 deg apart: the same within 0.02 deg
+    assert np.max(np.abs(found["best_delta0"] - dense["best_delta0"])) < 0.02
+    assert ms.measure_best_delta0(found, 120.0) == pytest.approx(
+        ms.measure_best_delta0(dense, 120.0), abs=0.02
+    )
+
+
+def test_the_threshold_is_bracketed_to_its_tolerance_and_agrees_with_the_map():
+    a = args("fig7")
+    a["C2"] = {"start": 0.0, "stop": 4.0, "step": 0.05}
+    a["tau"] = {"start": 0.0, "stop": 0.3, "step": 0.005}
+    found = tg.delay_threshold(a, SEARCH, {}, SETTINGS)
+    half = 0.5 * 0.005
+    c2, best = found["C2"].values, found["best_tau"].values
+    threshold = ms.measure_delay_threshold(found)
+    below, above = c2[c2 < threshold], c2[c2 > threshold]
+    assert above[0] - below[-1] <= SEARCH["C2_tolerance"] + 1e-12
+    assert np.all(best[(c2 > 0) & (c2 < threshold)] <= half)  # tau stays 0 below
+    assert np.all(best[c2 > threshold] > half)
+    grid = maps.torque_delay_section(
+        a["L1"], a["theta0"], a["C2"], a["delta0"], a["tau"], {}, SETTINGS
+    )
+    # the map's threshold is a midpoint between its C2 rows: within half their step
+    assert abs(ms.measure_delay_threshold(grid) - threshold) <= 0.025 + 1e-9
+    assert ms.measure_below_threshold_tau_zero(found) == 1.0
+
+
+def test_the_optima_of_figs_8_9_and_13_are_no_worse_than_any_grid_point():
+    fig9 = tg.delay_line(args("fig9"), SEARCH, {}, SETTINGS)
+    a9 = args("fig9")
+    line = maps.torque_delay_section(
+        a9["L1"], a9["theta0"], a9["C2"], a9["delta0"], a9["tau"], {}, SETTINGS
+    )
+    assert float(fig9["best_v_out"][0]) >= float(ms.valid_v_out(line).max()) - 1e-6
+    assert ms.measure_fig9(fig9, "v_L") == ms.measure_fig9(line, "v_L")  # the same stroke
+    a13 = copy.deepcopy(args("elbow_map"))
+    a13["psi_f"] = {"start": 0.0, "stop": 360.0, "step": 20.0}
+    a13["tau_f"] = {"start": -0.1, "stop": 0.1, "step": 0.05}
+    found = tg.elbow_extremes(a13, SEARCH, {}, SETTINGS)
+    grid = maps.elbow_force_section_map(
+        a13["force"], a13["psi_f"], a13["tau_f"], a13["stroke"], {}, SETTINGS
+    )
+    v = ms.valid_v_out(grid)
+    assert float(found["v_out"].max()) >= float(v.max()) - 1e-6
+    assert float(found["v_out"].min()) <= float(v.min()) + 1e-6
+    assert 0.0 <= ms.measure_minimum(found, "psi_F") < 360.0  # a direction, wrapped
+
+
+def test_table1_numbers_are_the_strokes_of_the_workflow():
+    a = args("elbow", {**CONFIG, "figure_curves": "free_swing"})
+    found = tg.table1_numbers(a, {}, SETTINGS)
+    whole = strokes.elbow_force_strokes(a["force"], a["stroke"], {}, SETTINGS)
+    for name in ("v_out", "omega2_phi0", "omega2_contact", "t_contact_start"):
+        assert np.array_equal(found[name].values, whole[name].values), name
+
+
+def test_the_targeted_evaluation_reads_no_map_step():
+    """targeted_config drops exactly the steps of UNREAD_STEPS, and changing one of them
+    changes no targeted value (so the jobs that run it need not rerun)."""
+    stripped = tg.targeted_config(CONFIG)
+    for key in tg.UNREAD_STEPS:
+        node = stripped
+        for part in key.split("."):
+            node = node[part]
+        assert "step" not in node and {"start", "stop"} <= set(node)
+    assert stripped["angle_maps"]["theta0"] == CONFIG["angle_maps"]["theta0"]
+    assert stripped["torque_delay"]["fig7"]["tau"] == CONFIG["torque_delay"]["fig7"]["tau"]
+    finer = copy.deepcopy(CONFIG)
+    finer["torque_delay"]["fig9"]["tau"]["step"] = 0.001
+    a, b = (tg.delay_line(args("fig9", c), SEARCH, {}, SETTINGS) for c in (CONFIG, finer))
+    assert a.equals(b)
+    assert tg.delay_line(args("fig9", stripped), SEARCH, {}, SETTINGS).equals(a)
