@@ -313,6 +313,17 @@ def test_an_edit_of_the_identification_reruns_only_inference_claims_and_report(m
     assert planned == {*INFERENCE_RULES, "gather_map", "claims", "figure", "report"}
 
 
+def test_a_step_of_fig9_reruns_fig9_its_check_claims_and_report_only(moved):
+    """The claims' searches read no map step (targeted_config), and the validation job
+    of each group only its rows' keys; a --config merge reorders keys, which must not
+    look like a change (params compare by repr)."""
+    done = moved("-n", "--config", "torque_delay={fig9: {tau: {step: 0.02}}}")
+    assert done.returncode == 0, done.stderr[-2000:]
+    planned = planned_jobs(done.stdout + done.stderr)
+    assert set(planned) == {"fig9", "gather_map", "claims_validation", "claims", "figure", "report"}
+    assert planned["claims_validation"] == 1 and planned["gather_map"] == 1
+
+
 def test_an_edit_of_the_figures_reruns_the_figures_and_the_report_only(moved):
     assert planned_after_edit(moved, "replication/figures.py") == {"figure", "report"}
 

@@ -18,6 +18,7 @@ from tennis_stroke.experiments.specs import (
     EXPERIMENTS,
     VALIDATION_GROUPS,
     fit_set_arguments,
+    plain,
     value_at,
 )
 from tennis_stroke.inference.multiverse import MULTIVERSE_SETS
@@ -189,14 +190,15 @@ def paper_sections():
         for key in e.keys()
     }
     sections.add("search")
-    return {k: config[k] for k in sorted(sections - set(MULTIVERSE_SETS))}
+    # plain: keys sorted, as a --config merge reorders them (params compare by repr)
+    return plain({k: config[k] for k in sections - set(MULTIVERSE_SETS)})
 
 
 def paper_experiments():
     """What the targeted evaluation of the claims reads (the claims job and the
     robustness analysis rerun it): :func:`paper_sections` less the steps of the maps it
     searches instead (tennis_stroke.inference.targeted.targeted_config)."""
-    return targeted_config(paper_sections())
+    return plain(targeted_config(paper_sections()))
 
 
 def figure_inputs(wildcards):

@@ -49,7 +49,7 @@ def group_config(config: Mapping, group: str) -> dict:
     """What a validation job of ``group`` reads of the workflow ``config``: the keys of
     its files' rows and the ``search`` section (its params)."""
     keys = [k for key in GROUPS[group] for k in EXPERIMENTS[key].keys()]
-    return {**pruned(config, keys), "search": plain(config["search"])}
+    return plain({**pruned(config, keys), "search": config["search"]})
 
 
 def difference(targeted, mapped, tolerance) -> np.ndarray:
