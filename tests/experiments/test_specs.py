@@ -75,5 +75,5 @@ def test_memory_batches_follow_the_grids():
     a = EXPERIMENTS["fig2"].arguments(CONFIG)
     assert EXPERIMENTS["fig2"].strokes(a) == (241 * 401,)
     ml = EXPERIMENTS["ml"]
-    # the search's bracket: 60-120 deg and 0-100 deg at most 5 deg apart, every point at once
-    assert ml.strokes(ml.arguments(CONFIG)) == (13 * 13 * 13 * 21,)
+    # the search's bracket: 60-120 deg and 0-100 deg at most 10 deg apart, all points at once
+    assert ml.strokes(ml.arguments(CONFIG)) == (13 * 13 * 7 * 11,)
