@@ -1,6 +1,7 @@
 """Shared fixtures: the paper's default parameters and handy coefficient rows."""
 
 import shutil
+import signal
 import subprocess
 import sys
 from pathlib import Path
@@ -17,6 +18,14 @@ from tennis_stroke.solver._kernels import coefficient_tuple
 #: The two strokes of the paper's Fig. 4: (theta0, delta0) in degrees.
 FIG4_A = (120.0, 81.5)
 FIG4_B = (75.0, 39.0)
+
+
+def pytest_configure(config):
+    """A test run started in the background by a shell without job control (``nohup cmd
+    &``) inherits SIGINT ignored, and so would every process it starts: the tests of
+    Ctrl-C need Python's default handling, which a user's terminal gives."""
+    if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
+        signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
 #: Fixtures that run the workflow: a test using one is slow.

@@ -77,25 +77,23 @@ def test_a_cache_folder_that_is_a_file_is_one_line(tmp_path):
 
 
 def _table(tmp_path):
-    """The claims table of a run: one row per declared claim, all passing."""
-    ids = [
-        c["id"]
-        for c in __import__("yaml").safe_load((ROOT / "config" / "claims.yaml").read_text())[
-            "claims"
-        ]
-    ]
+    """The claims table of a run: one row per declared claim, each reproducing the paper's
+    value (so passing), as the claims job would write it."""
+    declared = __import__("yaml").safe_load((ROOT / "config" / "claims.yaml").read_text())
     from tennis_stroke.replication.claims import COLUMNS
 
     rows = [
         {
             **dict.fromkeys(COLUMNS, ""),
-            "id": i,
+            "id": c["id"],
             "status": "pass",
-            "reproduced_value": 1.0,
-            "paper_value": 1.0,
-            "tolerance": 1.0,
+            "reproduced_value": c["paper_value"],
+            "paper_value": c["paper_value"],
+            "tolerance": c["tolerance"],
+            "expectation": c["expectation"],
+            "map_cause": "agrees",
         }
-        for i in ids
+        for c in declared["claims"]
     ]
     return pd.DataFrame(rows, columns=COLUMNS)
 
@@ -132,10 +130,37 @@ def test_claims_exits_1_only_for_a_failed_claim(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(ROOT)
     csv = tmp_path / "claims.csv"
     table = _table(tmp_path)
+    assert table.loc[0, "expectation"] == "reproduce"
+    table.loc[0, "reproduced_value"] = float(table.loc[0, "paper_value"]) + 100.0
     table.loc[0, "status"] = "fail"
     table.to_csv(csv, index=False)
     code, out, _ = _run(capsys, "claims", str(csv))
     assert code == 1 and out.count("FAIL ") == 1
+
+
+@pytest.mark.parametrize(
+    "column, value, fragment",
+    [
+        ("status", "pass", "gives 'fail' (edited by hand?)"),  # a failure marked pass
+        ("tolerance", 1000.0, "has tolerance 1000.0, config/claims.yaml"),
+        ("expectation", "known_deviation", "has expectation 'known_deviation'"),
+    ],
+)
+def test_claims_refuses_a_table_edited_by_hand(
+    tmp_path, capsys, monkeypatch, column, value, fragment
+):
+    """A claims table whose statuses do not follow from its values and the declared
+    claims was not written by the claims job (the report refuses it too)."""
+    monkeypatch.chdir(ROOT)
+    csv = tmp_path / "claims.csv"
+    table = _table(tmp_path)
+    table.loc[0, "reproduced_value"] = float(table.loc[0, "paper_value"]) + 100.0
+    table.loc[0, "status"] = "fail"
+    table[column] = table[column].astype(object)
+    table.loc[0, column] = value
+    table.to_csv(csv, index=False)
+    code, _, err = _run(capsys, "claims", str(csv))
+    assert code == 2 and fragment in _one_error_line(err)
 
 
 def test_identify_refuses_a_model_section_that_is_a_list(tmp_path, capsys, monkeypatch):

@@ -312,12 +312,12 @@ def _claims(args: argparse.Namespace) -> int:
     from .replication.claims import check
 
     try:
-        ids = [c["id"] for c in load_claims(args.claims)]
+        declared = load_claims(args.claims)
     except ClaimError as exc:
         raise ValueError(f"the declared claims: {exc}") from None
     if not Path(args.csv).is_file():
         raise ValueError(f"claims table {args.csv!r} does not exist (run the workflow first)")
-    return check(args.csv, ids)
+    return check(args.csv, [c["id"] for c in declared], declared)
 
 
 def _identify(args: argparse.Namespace) -> int:

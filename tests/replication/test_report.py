@@ -72,11 +72,16 @@ def test_text_from_files_is_escaped(tiny_run, tmp_path):
     as text, never run as HTML."""
     claims = pd.read_csv(tiny_run / "results/claims.csv", keep_default_na=False, dtype=str)
     claims.loc[0, "quantity"] = HOSTILE
-    claims.loc[1, "reason"] = HOSTILE
-    claims.loc[1, "status"] = "known_deviation"
-    claims.to_csv(tmp_path / "claims.csv", index=False)
     statements = yaml.safe_load((ROOT / "config/claims.yaml").read_text())
     statements["statements"]["fig04"] = HOSTILE
+    # claim 1 declared a known deviation with a hostile reason, and deviating (a table
+    # that does not follow from the declared claims is refused)
+    declared = statements["claims"][1]
+    declared.update(expectation="known_deviation", reason=HOSTILE)
+    far = float(declared["paper_value"]) + 100.0 * float(declared["tolerance"])
+    claims.loc[1, ["reason", "expectation", "status"]] = [HOSTILE, *["known_deviation"] * 2]
+    claims.loc[1, "reproduced_value"] = str(far)
+    claims.to_csv(tmp_path / "claims.csv", index=False)
     (tmp_path / "claims.yaml").write_text(yaml.safe_dump(statements))
     html = _build(
         tiny_run, tmp_path / "index.html", tmp_path / "claims.csv", tmp_path / "claims.yaml"
@@ -84,6 +89,49 @@ def test_text_from_files_is_escaped(tiny_run, tmp_path):
     assert "<script>" not in html and "<b>co</b>" not in html
     escaped = "&lt;script&gt;alert(&#34;claim&#34;)&lt;/script&gt; &amp; &lt;b&gt;co&lt;/b&gt;"
     assert html.count(escaped) >= 3, html.count(escaped)
+
+
+def test_the_report_refuses_inputs_it_was_not_given_by_the_workflow(tiny_run, tmp_path):
+    """A claims table edited by hand (a deviation marked pass), a figure that does not
+    decode and an empty assumption ledger are each one line, and no page is written."""
+    from tennis_stroke.replication.report import ReportInputError
+
+    claims = pd.read_csv(tiny_run / "results/claims.csv", keep_default_na=False, dtype=str)
+    declared = yaml.safe_load((ROOT / "config/claims.yaml").read_text())["claims"]
+    i = next(
+        n for n, c in enumerate(declared) if c["expectation"] == "reproduce" and c["tolerance"]
+    )
+    claims.loc[i, "reproduced_value"] = str(
+        declared[i]["paper_value"] + 100 * declared[i]["tolerance"]
+    )
+    claims.loc[i, "status"] = "pass"
+    claims.to_csv(tmp_path / "claims.csv", index=False)
+    page = tmp_path / "index.html"
+    with pytest.raises(ReportInputError, match="gives 'fail' \\(edited by hand\\?\\)"):
+        _build(tiny_run, page, tmp_path / "claims.csv", ROOT / "config/claims.yaml")
+    assert not page.exists()
+    work = tmp_path / "work"
+    shutil.copytree(tiny_run, work, symlinks=True)
+    figure = work / "results/figures/fig09_v_tau.png"
+    figure.write_bytes(figure.read_bytes()[:200])
+    with pytest.raises(ReportInputError, match="fig09_v_tau.png does not decode"):
+        _build(work, page, work / "results/claims.csv", ROOT / "config/claims.yaml")
+    shutil.copy2(tiny_run / "results/figures/fig09_v_tau.png", figure)
+    ledger = tmp_path / "assumptions.md"
+    ledger.write_text("  \n")
+    with pytest.raises(ReportInputError, match="assumption ledger .* is empty"):
+        build_report(
+            figures=[],
+            claims_csv=str(work / "results/claims.csv"),
+            inference={},
+            results=[],
+            config={},
+            benchmarks_dir=str(work),
+            output=str(page),
+            assumptions_md=str(ledger),
+            statements_yaml=str(ROOT / "config/claims.yaml"),
+        )
+    assert not page.exists()
 
 
 #: Run in the page by the browser test: what a reader would see go wrong.

@@ -22,17 +22,13 @@ from ..experiments.maps import mass_length_map
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, VALIDATION_GROUPS, plain, pruned
 from ..io.netcdf import labelled, provenance
 from ..solver.settings import SolverSettings
-from .claims import measure
+from .claims import AGREEMENT, agrees, cause, difference, grid_half_step, measure
 from .multiverse import experiment_config, paper_results, reading_of
 from .reading_space import ReadingSpace
 from .targeted import SEARCHED, searched_files
 
 #: The validation's jobs, by group: the searched files each checks.
 GROUPS = VALIDATION_GROUPS
-
-#: Agreement asked of a targeted value: within this share of the claim's tolerance of the
-#: map's (issue 21); a qualitative claim must give the same answer.
-AGREEMENT = 0.1
 
 
 def _files(claim: Mapping) -> list[str]:
@@ -50,55 +46,6 @@ def group_config(config: Mapping, group: str) -> dict:
     its files' rows and the ``search`` section (its params)."""
     keys = [k for key in GROUPS[group] for k in EXPERIMENTS[key].keys()]
     return plain({**pruned(config, keys), "search": config["search"]})
-
-
-def difference(targeted, mapped, tolerance) -> np.ndarray:
-    """|targeted - map| in tolerances (a qualitative claim, tolerance 0: 0 if the same
-    answer, else 1; NaN where either is missing)."""
-    t, m = np.asarray(targeted, float), np.asarray(mapped, float)
-    tol = np.asarray(tolerance, float)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        return np.where(tol > 0, np.abs(t - m) / np.where(tol > 0, tol, 1.0), np.abs(t - m))
-
-
-def agrees(targeted, mapped, tolerance) -> np.ndarray:
-    """Whether a targeted value agrees with the map's (:data:`AGREEMENT`)."""
-    d = difference(targeted, mapped, tolerance)
-    with np.errstate(invalid="ignore"):
-        return np.where(np.asarray(tolerance) > 0, d <= AGREEMENT + 1e-12, d == 0)
-
-
-#: Measurements that read a grid point of a map (its coordinate ``coord``), and the one
-#: that reads the midpoint between two grid rows (``C2``): their map value is limited by
-#: the grid, to half its step.
-GRID_POINT = {"optimum": None, "minimum": None, "delay_threshold": "C2"}
-
-
-def grid_half_step(claim: Mapping, maps: Mapping[str, xr.Dataset]) -> float:
-    """Half the step of the map grid a claim's map value is read on (its resolution, in
-    the claim's unit; 0 where the value is refined between grid points or is no
-    location)."""
-    spec = claim["measure"]
-    name = spec.get("function")
-    if name not in GRID_POINT:
-        return 0.0
-    coord = GRID_POINT[name] or spec["coord"]
-    values = np.asarray(maps[spec["file"]][coord].values, float)
-    return 0.5 * float(np.max(np.abs(np.diff(values)))) if values.size > 1 else 0.0
-
-
-def cause(targeted, mapped, tolerance, half_step) -> np.ndarray:
-    """Why a targeted value differs from the map's: ``agrees`` (:func:`agrees`),
-    ``grid_step`` (the map's value is a grid point, and the two differ by no more than
-    half its step plus the agreement: the targeted value is the finer estimate), else
-    ``unexplained``."""
-    ok = agrees(targeted, mapped, tolerance)
-    gap = np.abs(np.asarray(targeted, float) - np.asarray(mapped, float))
-    with np.errstate(invalid="ignore"):
-        grid = (np.asarray(half_step) > 0) & (
-            gap <= np.asarray(half_step) + AGREEMENT * np.asarray(tolerance) + 1e-12
-        )
-    return np.where(ok, "agrees", np.where(grid, "grid_step", "unexplained"))
 
 
 def chosen_readings(count: int, kept: int) -> np.ndarray:

@@ -11,8 +11,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..inference.claims import measure, within
-from ..inference.validation import cause, difference, grid_half_step
+from ..inference.claims import cause, difference, grid_half_step, measure, within
 
 COLUMNS = [
     "id",
@@ -142,13 +141,56 @@ def read_table(csv_path: str | Path, expected_ids: Sequence[str] | None = None) 
     return table
 
 
-def check(csv_path: str | Path = "results/claims.csv", expected_ids=None) -> int:
+def consistency_errors(table: pd.DataFrame, claims: Sequence[Mapping], name: str) -> list[str]:
+    """Rows of a claims ``table`` (named ``name``) that the claims job cannot have written
+    from the declared ``claims``: a paper value, tolerance or expectation other than the
+    declared one, or a status other than the one its reproduced value gives (the rule of
+    :func:`evaluate`; a table edited by hand).  One line each."""
+    declared = {c["id"]: c for c in claims}
+    out = []
+    for i, row in enumerate(table.to_dict("records")):
+        c = declared.get(row["id"])
+        if c is None:
+            continue  # read_table checks the ids
+        where = f"{name}: row {i + 2} (claim {row['id']!r})"
+        for key in ("paper_value", "tolerance"):
+            if not np.isclose(float(row[key]), float(c[key]), rtol=1e-12, atol=0.0):
+                out.append(f"{where} has {key} {row[key]}, config/claims.yaml {c[key]}")
+        if row["expectation"] != c["expectation"]:
+            out.append(
+                f"{where} has expectation {row['expectation']!r}, "
+                f"config/claims.yaml {c['expectation']!r}"
+            )
+        ok = bool(within(float(row["reproduced_value"]), c["paper_value"], c["tolerance"]))
+        if ok:
+            status = "used_for_fit" if row["fit_set"] else "pass"
+        else:
+            status = "known_deviation" if c["expectation"] == "known_deviation" else "fail"
+        if row["status"] != status:
+            out.append(
+                f"{where} has status {row['status']!r}, but its reproduced value "
+                f"{float(row['reproduced_value']):.6g} gives {status!r} (edited by hand?)"
+            )
+    return out
+
+
+def check(
+    csv_path: str | Path = "results/claims.csv",
+    expected_ids=None,
+    claims: Sequence[Mapping] | None = None,
+) -> int:
     """Print the counts of a claims table and every failed claim; 1 if a claim marked
     ``reproduce`` failed or a claim's searched value differs from the map's without a
     cause (``map_cause``; and in the validation files of ``robustness/validation`` beside
-    the table, if there are any), else 0 (``tennis-stroke claims``).  A table that is not one the
+    the table, if there are any), else 0 (``tennis-stroke claims``).  With the declared
+    ``claims``, a row the claims job cannot have written from them
+    (:func:`consistency_errors`) raises :class:`ClaimsTableError`.  A table that is not one the
     claims job wrote raises :class:`ClaimsTableError` (:func:`read_table`)."""
     table = read_table(csv_path, expected_ids)
+    if claims is not None:
+        errors = consistency_errors(table, claims, str(csv_path))
+        if errors:
+            raise ClaimsTableError(errors[0])
     failed = table[table["status"] == "fail"]
     counts = table["status"].value_counts().to_dict()
     print(f"claims: {counts}")

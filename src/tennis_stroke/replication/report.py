@@ -32,10 +32,12 @@ from markdown_it import MarkdownIt
 from markupsafe import Markup
 
 from .._version import __version__
+from ..inference.claims import load_claims
 from ..io.config_files import load_yaml
 from ..io.failures import failure_counts
 from ..io.netcdf import git_commit
 from ..model.params import READINGS
+from .claims import ClaimsTableError, consistency_errors, read_table
 from .registry import FIGURES
 from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING
 
@@ -446,7 +448,26 @@ def _studies(studies: Sequence[str]) -> tuple[str, list[dict]]:
     return ladder_error, tables
 
 
+class ReportInputError(ValueError):
+    """An input of the report is not one the workflow wrote (one line)."""
+
+
+def _check_image(path: str) -> None:
+    """A figure must decode as an image (a truncated file would embed as a broken one)."""
+    from PIL import Image, UnidentifiedImageError
+
+    try:
+        with Image.open(path) as image:
+            image.load()
+    except (OSError, UnidentifiedImageError, SyntaxError) as exc:
+        problem = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+        raise ReportInputError(
+            f"figure {path} does not decode as an image ({problem}): remove it and run make report"
+        ) from None
+
+
 def _figure_entry(path: str) -> dict:
+    _check_image(path)
     name = Path(path).stem
     title = FIGURES[name].title if name in FIGURES else name
     return {
@@ -454,6 +475,22 @@ def _figure_entry(path: str) -> dict:
         "title": title if "{" not in title else title.split(":")[0],
         "data": base64.b64encode(Path(path).read_bytes()).decode(),
     }
+
+
+def _checked_claims(claims_csv: str, claims_yaml: str | None) -> pd.DataFrame:
+    """The claims table, checked (:func:`~tennis_stroke.replication.claims.read_table`)
+    and, with the declared claims, consistent with them (a status edited by hand is
+    refused: :func:`~tennis_stroke.replication.claims.consistency_errors`)."""
+    declared = load_claims(claims_yaml) if claims_yaml else None
+    try:
+        table = read_table(claims_csv, [c["id"] for c in declared] if declared else None)
+    except ClaimsTableError as exc:
+        raise ReportInputError(str(exc)) from None
+    errors = consistency_errors(table, declared, claims_csv) if declared else []
+    if errors:
+        raise ReportInputError(errors[0])
+    table["reproduced_value"] = table["reproduced_value"].astype(float)
+    return table
 
 
 def build_report(
@@ -471,8 +508,9 @@ def build_report(
     """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
     ``statements_yaml``: ``config/claims.yaml``, whose ``statements`` quote the paper on
     each figure and whose ``sections`` name the paper's sections)."""
-    claims = pd.read_csv(claims_csv, keep_default_na=False, dtype=str)
-    claims["reproduced_value"] = claims["reproduced_value"].astype(float)
+    claims = _checked_claims(claims_csv, statements_yaml)
+    if assumptions_md and not Path(assumptions_md).read_text(encoding="utf-8").strip():
+        raise ReportInputError(f"the assumption ledger {assumptions_md} is empty")
     paper = load_yaml(statements_yaml) if statements_yaml else {}
     statements, sections = paper.get("statements") or {}, paper.get("sections") or {}
     rows = [_claim_row(c) for c in claims.to_dict("records")]
