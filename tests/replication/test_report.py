@@ -15,7 +15,12 @@ from conftest import ROOT, merged, run_snakemake
 from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS
 from tennis_stroke.experiments.specs import RESULT_FILES as FILES
 from tennis_stroke.replication.registry import FIGURES
-from tennis_stroke.replication.report import _paper_place, build_report, markdown_html
+from tennis_stroke.replication.report import (
+    _paper_place,
+    build_report,
+    ladder_summary,
+    markdown_html,
+)
 
 CLAIM_IDS = [c["id"] for c in yaml.safe_load((ROOT / "config/claims.yaml").read_text())["claims"]]
 #: Chromium as Debian installs it (.ci/run); the browser tests skip without it.
@@ -41,6 +46,15 @@ def _build(work: Path, output: Path, claims_csv: Path, statements: Path) -> str:
         statements_yaml=str(statements),
     )
     return output.read_text()
+
+
+def test_the_ladder_sentence_follows_the_numbers():
+    """The report said 'more than the 1 km/h tolerance' of a 0.16 km/h error: the
+    comparison is now made from the file and the claims."""
+    claims = pd.DataFrame({"unit": ["km/h", "km/h", "s"], "tolerance": ["1.0", "2.0", "0.002"]})
+    assert ladder_summary(0.16, claims) == {"error": "0.16", "tolerance": "1", "above": False}
+    assert ladder_summary(1.58, claims)["above"] is True
+    assert ladder_summary(None, claims)["error"] == "n/a"
 
 
 def test_markdown_renders_tables_and_escapes_raw_html():

@@ -5,8 +5,9 @@ deviation's evidence."""
 
 import xarray as xr
 
+from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.targeted import searched_files
-from tennis_stroke.pipeline.jobs import claims_and_readings, logged, settings
+from tennis_stroke.pipeline.jobs import logged, settings
 from tennis_stroke.replication.claims import evaluate
 from tennis_stroke.replication.robustness import annotate
 

@@ -3,8 +3,9 @@
 
 import xarray as xr
 
+from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.validation import validate
-from tennis_stroke.pipeline.jobs import Timer, claims_and_readings, logged, save, settings
+from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -2,7 +2,8 @@
 both declared fit sets, one netCDF file each."""
 
 from tennis_stroke.inference.identification import run_identification, summary, to_datasets
-from tennis_stroke.pipeline.jobs import Timer, claims_and_readings, logged, save, settings
+from tennis_stroke.inference.reading_space import claims_and_readings
+from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

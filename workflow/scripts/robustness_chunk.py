@@ -2,15 +2,9 @@
 
 import xarray as xr
 
+from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.robustness import evaluate_readings
-from tennis_stroke.pipeline.jobs import (
-    Timer,
-    chunk_position,
-    claims_and_readings,
-    logged,
-    save,
-    settings,
-)
+from tennis_stroke.pipeline.jobs import Timer, chunk_position, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

@@ -4,7 +4,8 @@ fit sets, and the consistent readings kept (config/readings.yaml, multiverse).""
 import xarray as xr
 
 from tennis_stroke.inference.multiverse import best_fits, readings_dataset, screen
-from tennis_stroke.pipeline.jobs import Timer, claims_and_readings, logged, save, settings
+from tennis_stroke.inference.reading_space import claims_and_readings
+from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):

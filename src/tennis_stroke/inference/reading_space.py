@@ -225,3 +225,12 @@ def literal_rank(name: str, choice: str) -> int:
     """0 for a reading's literal choice (the paper word for word), else 1."""
     reading = READINGS.get(name)
     return 0 if reading is not None and reading.literal == choice else 1
+
+
+def claims_and_readings(claims_path, readings_path):
+    """The declared claims and the reading space (``config/claims.yaml``,
+    ``config/readings.yaml``) of an inference job, checked against each other."""
+    from .claims import load_claims
+
+    claims = load_claims(claims_path)
+    return claims, load_reading_space(readings_path, [c["id"] for c in claims])

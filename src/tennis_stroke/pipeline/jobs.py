@@ -24,16 +24,6 @@ from ..solver.settings import SolverSettings
 from .chunks import mark_chunk
 
 
-def claims_and_readings(claims_path, readings_path):
-    """The declared claims and the reading space (``config/claims.yaml``,
-    ``config/readings.yaml``) of an inference job, checked against each other."""
-    from ..inference.claims import load_claims
-    from ..inference.reading_space import load_reading_space
-
-    claims = load_claims(claims_path)
-    return claims, load_reading_space(readings_path, [c["id"] for c in claims])
-
-
 def settings(common: Mapping[str, object]) -> SolverSettings:
     """Solver settings from the ``common`` params of a rule."""
     return SolverSettings(**common["solver"])
