@@ -44,6 +44,15 @@ def angle_map(
     return ds
 
 
+def _optimum_dataset(m2, l1, variables, params, settings, attrs) -> xr.Dataset:
+    """A Figs. 5-6 file: ``variables`` (name -> values over ``(M2, L1)``) with their
+    labels, the model's provenance and the search's ``attrs``."""
+    ds = result_dataset({}, {"M2": m2, "L1": l1}, resolve_params(params), settings, attrs)
+    for name, values in variables.items():
+        ds[name] = (("M2", "L1"), values, cf_attrs(name))
+    return ds
+
+
 def mass_length_map(
     m2: np.ndarray,
     l1: np.ndarray,
@@ -94,24 +103,15 @@ def mass_length_map(
         out["v"][idx] = max(v_t, v_d)
         out["theta0"][idx], out["delta0"][idx] = t_opt, d_opt
         out["theta_c"][idx] = abs(fine_res["theta_deg_at_phi0"][idx][i, j])
-    coords = {"M2": m2, "L1": l1}
-    ds = result_dataset(
-        {},
-        coords,
-        resolve_params(params),
-        settings,
-        {
-            "coarse_step_deg": coarse_step,
-            "fine_step_deg": fine_step,
-            "strokes_per_point": th_c.size * de_c.size + offsets.size**2,
-        },
-    )
     names = {"v": "v_out_best", "theta0": "theta0_best", "delta0": "delta0_best"}
-    for key, values in out.items():
-        name = names.get(key, key)
-        ds[name] = (("M2", "L1"), values, cf_attrs(name))
-    ds["failed_strokes"] = (("M2", "L1"), failed.astype(np.int64), cf_attrs("failed_strokes"))
-    return ds
+    variables = {names.get(k, k): v for k, v in out.items()}
+    variables["failed_strokes"] = failed.astype(np.int64)
+    attrs = {
+        "coarse_step_deg": coarse_step,
+        "fine_step_deg": fine_step,
+        "strokes_per_point": th_c.size * de_c.size + offsets.size**2,
+    }
+    return _optimum_dataset(m2, l1, variables, params, settings, attrs)
 
 
 def mass_length_optimum(
@@ -145,30 +145,23 @@ def mass_length_optimum(
     best = maximize(objective, n, lower, upper, (coarse_step, coarse_step), (tolerance, tolerance))
     at = objective.strike(best.x[:, None, :], np.arange(n))
     ok = at["status"][:, 0] == 0
-    out = {
+    variables = {
         "v_out_best": best.value,
         "theta0_best": np.where(ok, best.x[:, 0], np.nan),
         "delta0_best": np.where(ok, best.x[:, 1], np.nan),
         "theta_c": np.where(ok, np.abs(at["theta_deg_at_phi0"][:, 0]), np.nan),
+        "failed_strokes": objective.failed,
+        "evaluated_strokes": objective.evaluated,
     }
-    ds = result_dataset(
-        {},
-        {"M2": np.asarray(m2, float), "L1": np.asarray(l1, float)},
-        resolve_params(params),
-        settings,
-        {
-            "search": "coarse grid, then compass search",
-            "coarse_step_deg": coarse_step,
-            "tolerance_deg": tolerance,
-        },
+    attrs = {
+        "search": "coarse grid, then compass search",
+        "coarse_step_deg": coarse_step,
+        "tolerance_deg": tolerance,
+    }
+    variables = {k: v.reshape(mm.shape) for k, v in variables.items()}
+    return _optimum_dataset(
+        np.asarray(m2, float), np.asarray(l1, float), variables, params, settings, attrs
     )
-    for name, values in out.items():
-        ds[name] = (("M2", "L1"), values.reshape(mm.shape), cf_attrs(name))
-    failed = objective.failed.reshape(mm.shape)
-    ds["failed_strokes"] = (("M2", "L1"), failed, cf_attrs("failed_strokes"))
-    evaluated = objective.evaluated.reshape(mm.shape)
-    ds["evaluated_strokes"] = (("M2", "L1"), evaluated, cf_attrs("evaluated_strokes"))
-    return ds
 
 
 def delay_map(
