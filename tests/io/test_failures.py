@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from tennis_stroke import SolverSettings
-from tennis_stroke.experiments.maps import angle_map, mass_length_map, mass_length_optimum
+from tennis_stroke.experiments.maps import angle_map, mass_length_map
+from tennis_stroke.experiments.optima import mass_length_optimum
 from tennis_stroke.io.failures import FailureShareError, check_failure_share, failure_counts
 
 THETA0 = np.array([60.0, 90.0, 120.0])

@@ -21,7 +21,6 @@ from ..model.params import resolve_params
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 from .grids import axis, grid, ok_speeds, refine_peak, select_rows
-from .search import StrokeObjective, maximize
 
 
 def angle_map(
@@ -44,7 +43,7 @@ def angle_map(
     return ds
 
 
-def _optimum_dataset(m2, l1, variables, params, settings, attrs) -> xr.Dataset:
+def optimum_dataset(m2, l1, variables, params, settings, attrs) -> xr.Dataset:
     """A Figs. 5-6 file: ``variables`` (name -> values over ``(M2, L1)``) with their
     labels, the model's provenance and the search's ``attrs``."""
     ds = result_dataset({}, {"M2": m2, "L1": l1}, resolve_params(params), settings, attrs)
@@ -111,57 +110,7 @@ def mass_length_map(
         "fine_step_deg": fine_step,
         "strokes_per_point": th_c.size * de_c.size + offsets.size**2,
     }
-    return _optimum_dataset(m2, l1, variables, params, settings, attrs)
-
-
-def mass_length_optimum(
-    m2: np.ndarray,
-    l1: np.ndarray,
-    coarse_step: float,
-    tolerance: float,
-    theta0_range: tuple[float, float],
-    delta0_range: tuple[float, float],
-    params: Mapping[str, object],
-    settings: SolverSettings,
-    threads: int | None = None,
-) -> xr.Dataset:
-    """Figs. 5-6: the fastest rebound over the initial angles at every ``(M2, L1)``, by a
-    search (:func:`tennis_stroke.experiments.search.maximize`).
-
-    What is optimised: ``v_out`` over ``(theta0, delta0)`` in the given ranges, the other
-    parameters fixed, as in :func:`mass_length_map`.  How: a coarse grid (at most
-    ``coarse_step`` degrees apart) over the whole range brackets the optimum, a compass
-    search refines it to ``tolerance`` degrees; an optimum on the edge of the range stays
-    there.  ``theta_c`` is ``|theta|`` at ``phi = 0`` of the optimal stroke;
-    ``failed_strokes`` and ``evaluated_strokes`` count the strokes of each point's search
-    that failed and that ran.
-    """
-    mm, ll = np.meshgrid(np.asarray(m2, float), np.asarray(l1, float), indexing="ij")
-    n = mm.size
-    objective = StrokeObjective(
-        ("theta0", "delta0"), n, {"M2": mm.ravel(), "L1": ll.ravel()}, params, settings, threads
-    )
-    lower, upper = (theta0_range[0], delta0_range[0]), (theta0_range[1], delta0_range[1])
-    best = maximize(objective, n, lower, upper, (coarse_step, coarse_step), (tolerance, tolerance))
-    at = objective.strike(best.x[:, None, :], np.arange(n))
-    ok = at["status"][:, 0] == 0
-    variables = {
-        "v_out_best": best.value,
-        "theta0_best": np.where(ok, best.x[:, 0], np.nan),
-        "delta0_best": np.where(ok, best.x[:, 1], np.nan),
-        "theta_c": np.where(ok, np.abs(at["theta_deg_at_phi0"][:, 0]), np.nan),
-        "failed_strokes": objective.failed,
-        "evaluated_strokes": objective.evaluated,
-    }
-    attrs = {
-        "search": "coarse grid, then compass search",
-        "coarse_step_deg": coarse_step,
-        "tolerance_deg": tolerance,
-    }
-    variables = {k: v.reshape(mm.shape) for k, v in variables.items()}
-    return _optimum_dataset(
-        np.asarray(m2, float), np.asarray(l1, float), variables, params, settings, attrs
-    )
+    return optimum_dataset(m2, l1, variables, params, settings, attrs)
 
 
 def delay_map(
@@ -355,31 +304,3 @@ def angle_map_section(
     figure's rod-1 length ``L1`` (m); ``rows``: only that chunk of the ``theta0`` rows."""
     theta = select_rows(axis(theta0), rows)
     return angle_map(theta, axis(delta0), {**params, "L1": float(L1)}, settings, threads)
-
-
-def mass_length_section(
-    M2,
-    L1,
-    theta0_range,
-    delta0_range,
-    coarse_step: float,
-    tolerance: float,
-    params: Mapping[str, object],
-    settings: SolverSettings,
-    rows: tuple[int, int] | None = None,
-    threads: int | None = None,
-) -> xr.Dataset:
-    """Figs. 5-6 from their config: the ranges ``M2`` (kg) and ``L1`` (m), the search
-    ranges, the bracket step and the tolerance (degrees) of :func:`mass_length_optimum`;
-    ``rows``: only that chunk of the ``M2`` rows."""
-    return mass_length_optimum(
-        select_rows(axis(M2), rows),
-        axis(L1),
-        coarse_step,
-        tolerance,
-        tuple(theta0_range),
-        tuple(delta0_range),
-        params,
-        settings,
-        threads,
-    )

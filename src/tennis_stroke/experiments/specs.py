@@ -308,7 +308,7 @@ EXPERIMENTS: dict[str, Experiment] = {
         Experiment(
             "ml",
             "results/mass_length/map.nc",
-            "experiments.maps:mass_length_section",
+            "experiments.optima:mass_length_section",
             {
                 "M2": "mass_length.M2",
                 "L1": "mass_length.L1",

@@ -9,7 +9,7 @@ so the same measurement answers the same question on either file:
   row, by a search along ``delta0`` (the red line of the figures);
 * Figs. 5-6 (``ml``): the optimum of every ``M2`` at the smallest and the largest ``L1``
   (the claims compare these two ends; the largest no further than the reading's
-  ``l1_max``), by the search of :func:`tennis_stroke.experiments.maps.mass_length_optimum`;
+  ``l1_max``), by the search of :func:`tennis_stroke.experiments.optima.mass_length_optimum`;
 * Fig. 7 (``fig7``): ``best_tau`` on ``C2`` rows ``C2_step`` apart, plus the two rows at
   most ``C2_tolerance`` apart between which the best delay leaves 0 (located by
   :func:`~tennis_stroke.experiments.search.first_crossing`); the ``tau`` coordinate is
@@ -37,7 +37,7 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.grids import axis
-from ..experiments.maps import mass_length_optimum
+from ..experiments.optima import mass_length_optimum
 from ..experiments.search import StrokeObjective, coarse_axis, first_crossing, maximize
 from ..experiments.specs import EXPERIMENTS
 from ..experiments.strokes import table1_cases

@@ -10,7 +10,8 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from ..experiments.maps import mass_length_map, mass_length_optimum
+from ..experiments.maps import mass_length_map
+from ..experiments.optima import mass_length_optimum
 from ..io.netcdf import provenance
 from ..io.units import cf_attrs
 from ..model.params import resolve_params
@@ -34,7 +35,7 @@ def optimum_cost(
     point is found by the nested grid of
     :func:`tennis_stroke.experiments.maps.mass_length_map`, for each ``(bracket step,
     tolerance)`` of ``searches`` by the search of
-    :func:`~tennis_stroke.experiments.maps.mass_length_optimum`; the reference is the
+    :func:`~tennis_stroke.experiments.optima.mass_length_optimum`; the reference is the
     nested grid with a ``reference_step`` fine grid around a 1-degree coarse one.  Errors
     are the largest over the points (the search's values are strokes' own; the grid's
     are parabola estimates, which can lie above every stroke at an edge of the range).

@@ -1,0 +1,93 @@
+"""The Figs. 5-6 optimum by a search (:mod:`tennis_stroke.experiments.search`): the
+workflow's ``mass_length`` row.  Apart from the grid maps (:mod:`tennis_stroke.experiments.maps`),
+so an edit of the search reruns this row and the claims' searches, not the maps."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import xarray as xr
+
+from ..solver.settings import SolverSettings
+from .grids import axis, select_rows
+from .maps import optimum_dataset
+from .search import StrokeObjective, maximize
+
+
+def mass_length_optimum(
+    m2: np.ndarray,
+    l1: np.ndarray,
+    coarse_step: float,
+    tolerance: float,
+    theta0_range: tuple[float, float],
+    delta0_range: tuple[float, float],
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Figs. 5-6: the fastest rebound over the initial angles at every ``(M2, L1)``, by a
+    search (:func:`tennis_stroke.experiments.search.maximize`).
+
+    What is optimised: ``v_out`` over ``(theta0, delta0)`` in the given ranges, the other
+    parameters fixed, as in :func:`~tennis_stroke.experiments.maps.mass_length_map`.  How: a coarse grid (at most
+    ``coarse_step`` degrees apart) over the whole range brackets the optimum, a compass
+    search refines it to ``tolerance`` degrees; an optimum on the edge of the range stays
+    there.  ``theta_c`` is ``|theta|`` at ``phi = 0`` of the optimal stroke;
+    ``failed_strokes`` and ``evaluated_strokes`` count the strokes of each point's search
+    that failed and that ran.
+    """
+    mm, ll = np.meshgrid(np.asarray(m2, float), np.asarray(l1, float), indexing="ij")
+    n = mm.size
+    objective = StrokeObjective(
+        ("theta0", "delta0"), n, {"M2": mm.ravel(), "L1": ll.ravel()}, params, settings, threads
+    )
+    lower, upper = (theta0_range[0], delta0_range[0]), (theta0_range[1], delta0_range[1])
+    best = maximize(objective, n, lower, upper, (coarse_step, coarse_step), (tolerance, tolerance))
+    at = objective.strike(best.x[:, None, :], np.arange(n))
+    ok = at["status"][:, 0] == 0
+    variables = {
+        "v_out_best": best.value,
+        "theta0_best": np.where(ok, best.x[:, 0], np.nan),
+        "delta0_best": np.where(ok, best.x[:, 1], np.nan),
+        "theta_c": np.where(ok, np.abs(at["theta_deg_at_phi0"][:, 0]), np.nan),
+        "failed_strokes": objective.failed,
+        "evaluated_strokes": objective.evaluated,
+    }
+    attrs = {
+        "search": "coarse grid, then compass search",
+        "coarse_step_deg": coarse_step,
+        "tolerance_deg": tolerance,
+    }
+    variables = {k: v.reshape(mm.shape) for k, v in variables.items()}
+    return optimum_dataset(
+        np.asarray(m2, float), np.asarray(l1, float), variables, params, settings, attrs
+    )
+
+
+def mass_length_section(
+    M2,
+    L1,
+    theta0_range,
+    delta0_range,
+    coarse_step: float,
+    tolerance: float,
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    rows: tuple[int, int] | None = None,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Figs. 5-6 from their config: the ranges ``M2`` (kg) and ``L1`` (m), the search
+    ranges, the bracket step and the tolerance (degrees) of :func:`mass_length_optimum`;
+    ``rows``: only that chunk of the ``M2`` rows."""
+    return mass_length_optimum(
+        select_rows(axis(M2), rows),
+        axis(L1),
+        coarse_step,
+        tolerance,
+        tuple(theta0_range),
+        tuple(delta0_range),
+        params,
+        settings,
+        threads,
+    )
