@@ -30,12 +30,12 @@ def mass_length_optimum(
     search (:func:`tennis_stroke.experiments.search.maximize`).
 
     What is optimised: ``v_out`` over ``(theta0, delta0)`` in the given ranges, the other
-    parameters fixed, as in :func:`~tennis_stroke.experiments.maps.mass_length_map`.  How: a coarse grid (at most
-    ``coarse_step`` degrees apart) over the whole range brackets the optimum, a compass
-    search refines it to ``tolerance`` degrees; an optimum on the edge of the range stays
-    there.  ``theta_c`` is ``|theta|`` at ``phi = 0`` of the optimal stroke;
-    ``failed_strokes`` and ``evaluated_strokes`` count the strokes of each point's search
-    that failed and that ran.
+    parameters fixed, as in :func:`~tennis_stroke.experiments.maps.mass_length_map`.
+    How: a coarse grid (at most ``coarse_step`` degrees apart) over the whole range
+    brackets the optimum, a compass search refines it to ``tolerance`` degrees; an
+    optimum on the edge of the range stays there.  ``theta_c`` is ``|theta|`` at
+    ``phi = 0`` of the optimal stroke; ``failed_strokes`` and ``evaluated_strokes`` count
+    the strokes of each point's search that failed and that ran.
     """
     mm, ll = np.meshgrid(np.asarray(m2, float), np.asarray(l1, float), indexing="ij")
     n = mm.size
