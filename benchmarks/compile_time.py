@@ -1,58 +1,70 @@
-"""Where the cold compilation of the solver goes: each compiled function timed on its
-first call in a fresh process with an empty numba cache, leaves first (a caller's time
-excludes the callees already compiled).
+"""Where the cold compilation of the solver goes: the stroke batch of one method compiled
+in a fresh process with an empty numba cache, each compiled function's own time
+(exclusive of the functions it calls, from numba's ``numba:compile`` events), largest
+first, and the total.
 
-Run: ``.venv/bin/python benchmarks/compile_time.py`` (about a minute: it compiles
-everything once, in place, in a temporary cache).
+Run: ``.venv/bin/python benchmarks/compile_time.py [--method DOP853|DP54]`` (about half a
+minute: it compiles once, in a temporary cache).  Timings vary with the machine's load:
+compare runs side by side.
 """
 
 from __future__ import annotations
 
+import argparse
 import os
 import subprocess
 import sys
 import tempfile
 
 PROBE = """
+import sys
 import time
+from collections import defaultdict
+
 import numpy as np
-from tennis_stroke.model.dynamics import coefficients, rhs_trig
+from numba.core import event
+
+from tennis_stroke.model.dynamics import coefficients
 from tennis_stroke.model.params import resolve_params
-from tennis_stroke.solver import _kernels as K
 from tennis_stroke.solver import stroke as S
-from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS
 from tennis_stroke.solver.settings import METHOD_IDS, SolverSettings
 
-def timed(label, call, *args):
-    t = time.perf_counter()
-    out = call(*args)
-    print(f"{label:36s} {time.perf_counter() - t:6.1f} s", flush=True)
-    return out
+own = defaultdict(float)
+stack = []
 
+
+class Listener(event.Listener):
+    def on_start(self, ev):
+        stack.append([ev.data["dispatcher"].py_func.__qualname__, time.perf_counter(), 0.0])
+
+    def on_end(self, ev):
+        name, start, inner = stack.pop()
+        spent = time.perf_counter() - start
+        own[name] += spent - inner
+        if stack:
+            stack[-1][2] += spent
+
+
+event.register("numba:compile", Listener())
+method = sys.argv[1]
 rows = coefficients(resolve_params({}), np.array([90.0]), np.array([45.0]))
-cf = timed("coefficient_tuple", K.coefficient_tuple, rows[0])
-y = (1.0, 0.0, 0.7, 0.7, 0.0, 0.0, 1.5, 0.8, 0.0, 0.0)
-f = timed("rhs_trig", rhs_trig, 0.0, y, cf, 0.0, False)
-for method in ("dp54", "dop853"):
-    for phase in ("swing", "contact"):
-        step = getattr(K, f"step_{method}_{phase}")
-        y1, f1, _ = timed(f"step_{method}_{phase}", step, 0.0, y, f, 1e-3, cf, 0.0, 1e-8, 1e-8)
-        dense = getattr(K, f"dense_{method}")
-        timed(f"dense_{method} ({phase})", dense, 0.0, y, f, 1e-3, cf, 0.0, y1, f1,
-              phase == "contact")
-st = SolverSettings().as_array()
-out, history, stats = np.empty(S.N_OUT), np.zeros((513, HISTORY_COLS)), np.zeros(N_STATS)
-timed("solve_stroke (the rest below it)", S.solve_stroke, METHOD_IDS["DOP853"], rows[0], st,
-      out, history, stats)
-timed("solve_rows (the range driver)", S.solve_rows, METHOD_IDS["DOP853"], rows, st,
-      np.empty((1, S.N_OUT)), 0, 1, 512)
+start = time.perf_counter()
+S.solve_rows(METHOD_IDS[method], rows, SolverSettings(method=method).as_array(),
+             np.empty((1, S.N_OUT)), 0, 1, 512)
+total = time.perf_counter() - start
+for name, spent in sorted(own.items(), key=lambda kv: -kv[1])[:15]:
+    print(f"{name:44s} {spent:6.2f} s")
+print(f"{'total (' + str(len(own)) + ' functions)':44s} {total:6.2f} s")
 """
 
 
 def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--method", default="DOP853", choices=("DOP853", "DP54"))
+    args = parser.parse_args()
     with tempfile.TemporaryDirectory() as cache:
         env = {**os.environ, "NUMBA_CACHE_DIR": cache, "TENNIS_STROKE_WARMUP": "0"}
-        subprocess.run([sys.executable, "-c", PROBE], env=env, check=True)
+        subprocess.run([sys.executable, "-c", PROBE, args.method], env=env, check=True)
 
 
 if __name__ == "__main__":

@@ -2,8 +2,12 @@
 
 The Butcher tableaux of Dormand-Prince 5(4) and 8(5,3) (scipy's ``RK45`` and ``DOP853``
 classes carry the published coefficients) are written out as straight-line code on
-tuples, one set of functions per method and phase (free swing: 8 integrated components;
-contact: 10), all calling :func:`tennis_stroke.model.dynamics.rhs_trig`.  States are tuples, not
+tuples, one step function per method for both phases (a run-time ``contact`` flag: the
+ball's spring acts, and the error norm covers its 2 components besides the pendulum's
+8; in the free swing the ball's derivatives are 0, so its state is carried over
+exactly), all calling :func:`tennis_stroke.model.dynamics.rhs_trig`.  One function for
+both phases instead of one each halves the largest part of the cold compilation, at no
+measured cost per stroke.  States are tuples, not
 arrays, so numba passes them by value (no reference counting per call) and LLVM keeps
 them in registers; zero coefficients disappear.  This makes a step several times faster
 than loops over padded tableau arrays.  The dense output, needed only at an event (twice a
@@ -26,7 +30,7 @@ ROOT = Path(__file__).resolve().parents[1]
 TARGET = ROOT / "src" / "tennis_stroke" / "solver" / "_kernels.py"
 DYNAMICS = ROOT / "src" / "tennis_stroke" / "model" / "dynamics.py"
 N_STATE = 10  # trig layout with the ball; see tennis_stroke.model.dynamics
-PHASES = {"swing": (8, "False"), "contact": (10, "True")}
+N_SWING = 8  # components integrated in the free swing (the pendulum)
 
 
 def _combo(coeffs, rows, var: str, i: int) -> str:
@@ -61,44 +65,52 @@ def _method(name: str, cls) -> list[str]:
     ns = cls.n_stages
     a, c = _tableau(cls, extra)
     e5 = cls.E5 if extra else cls.E
-    out: list[str] = []
-    for phase, (n, contact) in PHASES.items():
-        y_new = _state(n, lambda i: f"y[{i}] + h * ({_combo(cls.B, range(ns), 'k', i)})")
-        out += [
-            "",
-            "",
-            "@njit(**JIT_FAST)",
-            f"def step_{name}_{phase}(t, y, f0, h, cf, c2, rtol, atol):",
-            f'    """{name.upper()} step, {phase} phase: ``(y_new, f(t+h, y_new), error)``."""',
-            "    k0 = f0",
-        ]
-        out += _stages(a, c, 1, ns, n, contact)
-        out += [
-            f"    y_new = {y_new}",
-            f"    k{ns} = rhs_trig(t + h, y_new, cf, c2, {contact})",
-            "    e5 = 0.0",
+    y_new = _state(N_STATE, lambda i: f"y[{i}] + h * ({_combo(cls.B, range(ns), 'k', i)})")
+    out = [
+        "",
+        "",
+        "@njit(**JIT_FAST_INNER)",
+        f"def step_{name}(t, y, f0, h, cf, c2, rtol, atol, contact):",
+        f'    """{name.upper()} step: ``(y_new, f(t+h, y_new), error)``; ``contact``: the ball',
+        f'    spring acts and the error norm covers {N_STATE} components, else {N_SWING}',
+        '    (the ball\'s derivatives are then 0, so its state is carried over exactly)."""',
+        "    k0 = f0",
+    ]
+    out += _stages(a, c, 1, ns, N_STATE, "contact")
+    out += [
+        f"    y_new = {y_new}",
+        f"    k{ns} = rhs_trig(t + h, y_new, cf, c2, contact)",
+        "    e5 = 0.0",
+    ]
+    if extra:
+        out.append("    e3 = 0.0")
+
+    def norm_terms(i: int, indent: str) -> list[str]:
+        lines = [
+            f"{indent}scale = atol + rtol * max(abs(y[{i}]), abs(y_new[{i}]))",
+            f"{indent}d = ({_combo(e5, range(ns + 1), 'k', i)}) / scale",
+            f"{indent}e5 += d * d",
         ]
         if extra:
-            out.append("    e3 = 0.0")
-        for i in range(n):
-            out += [
-                f"    scale = atol + rtol * max(abs(y[{i}]), abs(y_new[{i}]))",
-                f"    d = ({_combo(e5, range(ns + 1), 'k', i)}) / scale",
-                "    e5 += d * d",
+            lines += [
+                f"{indent}d = ({_combo(cls.E3, range(ns + 1), 'k', i)}) / scale",
+                f"{indent}e3 += d * d",
             ]
-            if extra:
-                out += [
-                    f"    d = ({_combo(cls.E3, range(ns + 1), 'k', i)}) / scale",
-                    "    e3 += d * d",
-                ]
-        if extra:
-            out += [
-                "    if e5 == 0.0:",
-                f"        return y_new, k{ns}, 0.0",
-                f"    return y_new, k{ns}, abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * {n})",
-            ]
-        else:
-            out.append(f"    return y_new, k{ns}, abs(h) * math.sqrt(e5 / {n})")
+        return lines
+
+    for i in range(N_SWING):
+        out += norm_terms(i, "    ")
+    out += [f"    n = {float(N_SWING)!r}", "    if contact:", f"        n = {float(N_STATE)!r}"]
+    for i in range(N_SWING, N_STATE):
+        out += norm_terms(i, "        ")
+    if extra:
+        out += [
+            "    if e5 == 0.0:",
+            f"        return y_new, k{ns}, 0.0",
+            f"    return y_new, k{ns}, abs(h) * e5 / math.sqrt((e5 + 0.01 * e3) * n)",
+        ]
+    else:
+        out.append(f"    return y_new, k{ns}, abs(h) * math.sqrt(e5 / n)")
     return out + _dense(name, cls)
 
 
@@ -134,7 +146,7 @@ def _dense(name: str, cls) -> list[str]:
     lines += [
         "",
         "",
-        "@njit(**JIT_FAST)",
+        "@njit(**JIT_FAST_INNER)",
         f"def dense_{name}(t, y, f0, h, cf, c2, y_new, f_new, contact):",
         '    """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:',
         '    10 integrated components, else 8)."""',
@@ -198,13 +210,13 @@ def _dense_evals() -> list[str]:
     return [
         "",
         "",
-        "@njit(**JIT_FAST)",
+        "@njit(**JIT_FAST_INNER)",
         "def dense_eval_dp54(x, y, z):",
         '    """Shampine\'s 4th-order interpolant at the fraction ``x`` of the step."""',
         f"    return ({dp54})",
         "",
         "",
-        "@njit(**JIT_FAST)",
+        "@njit(**JIT_FAST_INNER)",
         "def dense_eval_dop853(x, y, z):",
         '    """The 7th-order DOP853 interpolant at the fraction ``x`` of the step."""',
         "    u = 1.0 - x",
@@ -227,7 +239,7 @@ def render() -> str:
         "import numpy as np",
         "from numba import njit",
         "",
-        "from ..model.dynamics import JIT_FAST, rhs_trig",
+        "from ..model.dynamics import JIT_FAST, JIT_FAST_INNER, rhs_trig",
         "",
         "# Indexed by method id (0: DP54, 1: DOP853).",
         f"N_STAGES_BY_ID = ({RK45.n_stages}, {DOP853.n_stages})",
@@ -243,6 +255,16 @@ def render() -> str:
     lines += _dense_evals()
     lines += _method("dp54", RK45)
     lines += _method("dop853", DOP853)
+    lines += [
+        "",
+        "",
+        "#: The kernels of each method id: (step, dense-output coefficients, dense-output",
+        "#: evaluation); chosen when the solver is compiled.",
+        "KERNELS_BY_ID = (",
+    ]
+    for tag in ("dp54", "dop853"):
+        lines.append(f"    (step_{tag}, dense_{tag}, dense_eval_{tag}),")
+    lines.append(")")
     return "\n".join(lines) + "\n"
 
 

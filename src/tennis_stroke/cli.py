@@ -361,7 +361,7 @@ def main(argv: Sequence[str] | None = None) -> int:
     terminate_raises()
     try:
         args = build_parser().parse_args(argv)
-        from .io.netcdf import OutputError
+        from .io.errors import OutputError
         from .model.params import ParameterError
         from .solver.compiled import CompileCacheError
 

@@ -37,3 +37,12 @@ def test_an_empty_cache_gives_the_bits_of_a_full_one(tmp_path):
     assert (tmp_path / ".compile.lock").exists()
     warm = _run(tmp_path)
     assert cold == warm
+
+
+def test_a_run_of_one_method_compiles_no_other(tmp_path):
+    """The method is a compile-time constant (solver/integrate.py): the stroke batch of
+    DOP853 (the default) caches DOP853's step kernel and not DP54's."""
+    _run(tmp_path)
+    cached = {p.name.split("-")[0] for p in tmp_path.rglob("*.nbi")}
+    assert "_kernels.step_dop853" in cached
+    assert not any("dp54" in name for name in cached), sorted(cached)

@@ -38,7 +38,7 @@ def result_differences(a, b, also_differ: Sequence[str] = ()) -> list[str]:
             continue
         va, vb = a[name].variable, b[name].variable
         if _kind(va.values) != _kind(vb.values) or not _same_value(va.values, vb.values):
-            problems.append(f"variable {name}: values or dtype differ")
+            problems.append(f"variable {name}: values or dtype differ{_change(va, vb)}")
         elif not va.identical(vb):
             problems.append(f"variable {name}: dimensions or attributes differ")
     differ = {*RUN_ATTRS, *also_differ}
@@ -67,3 +67,22 @@ def _same_value(x, y) -> bool:
     x, y = np.asarray(x), np.asarray(y)
     numeric = x.dtype.kind in "fc" and y.dtype.kind in "fc"
     return x.shape == y.shape and bool(np.array_equal(x, y, equal_nan=numeric))
+
+
+def _change(va: xr.Variable, vb: xr.Variable) -> str:
+    """For two float variables of one shape and dtype: how many values differ and by how
+    much at most (absolute, and relative to the larger magnitude), as ``"; ..."``."""
+    x, y = va.values, vb.values
+    if x.shape != y.shape or x.dtype != y.dtype or x.dtype.kind != "f":
+        return ""
+    same = (x == y) | (np.isnan(x) & np.isnan(y))
+    n = int((~same).sum())
+    finite = ~same & np.isfinite(x) & np.isfinite(y)
+    if not finite.any():
+        return f"; {n} of {x.size} values (NaN or inf in one only)"
+    d = np.abs(x[finite] - y[finite])
+    rel = d / np.maximum(np.abs(x[finite]), np.abs(y[finite]))
+    return (
+        f"; {n} of {x.size} values, by at most {d.max():.3g} (relative {rel.max():.3g})"
+        + ("" if finite.sum() == n else f", {n - int(finite.sum())} NaN or inf in one only")
+    )

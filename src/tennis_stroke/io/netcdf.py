@@ -28,6 +28,7 @@ from .._version import __version__
 from ..model.params import PARAMETERS, READINGS, scalar_params
 from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
+from .errors import OutputError
 from .interrupts import deferred_signals
 from .units import VARIABLES, cf_attrs
 
@@ -42,10 +43,6 @@ RUN_ATTRS = (
     "us_per_stroke_spring",
     "us_per_stroke_impact_python",
 )
-
-
-class OutputError(OSError):
-    """The output file cannot be written (message is one line)."""
 
 
 @cache

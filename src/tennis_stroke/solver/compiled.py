@@ -31,9 +31,10 @@ from .._cache import compiled_sources
 
 #: Set in the compiling process, and by a user who wants to compile in place.
 ENV = "TENNIS_STROKE_WARMUP"
-#: Groups of entry points compiled together: the stroke batch (both methods), the
-#: contact phase alone (both methods), and the scipy reference path's right-hand sides.
-GROUPS = ("batch", "contact", "reference")
+#: Groups of entry points compiled together: the stroke batch and the contact phase
+#: alone, each per method (a run of DOP853 compiles no DP54), and the scipy reference
+#: path's right-hand sides.
+GROUPS = ("batch:DOP853", "batch:DP54", "contact:DOP853", "contact:DP54", "reference")
 _done: set[str] = set()
 
 
@@ -50,10 +51,10 @@ def _marker(group: str) -> Path | None:
     digest = hashlib.sha256(str(Path(__file__).resolve().parents[1]).encode())
     for path in compiled_sources():
         digest.update(f"{path.name}:{path.stat().st_mtime_ns}".encode())
-    return Path(cache) / f"compiled-{group}-{digest.hexdigest()[:16]}"
+    return Path(cache) / f"compiled-{group.replace(':', '-')}-{digest.hexdigest()[:16]}"
 
 
-def ensure_compiled(group: str = "batch") -> None:
+def ensure_compiled(group: str) -> None:
     """Make sure numba's cache holds the entry points of ``group`` (compiling them in a
     subprocess if not)."""
     if group not in GROUPS:

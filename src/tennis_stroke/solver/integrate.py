@@ -10,8 +10,17 @@ Two methods, both explicit, adaptive, with local extrapolation and scipy's error
 The tableaux are data (scipy's ``RK45``/``DOP853`` coefficients), turned into
 straight-line kernels by ``tools/generate_kernels.py`` (:mod:`tennis_stroke.solver._kernels`).
 This module holds the dispatch to those kernels, the step-size controller and event
-location.  Methods and phases are runtime integers, not closures: numba caches
-module-level functions on disk, but recompiles closures in every new process.
+location.  The method is a compile-time constant: every compiled function that takes it
+calls ``literally(method)``, so an entry point is compiled (and cached) once per method,
+and the overloads :func:`method_step`, :func:`method_dense` and :func:`method_dense_eval`
+pick that method's kernels while compiling: a run of DOP853 never compiles DP54.  The
+phase (swing or contact) is a run-time flag of one kernel per method.  Not closures:
+numba caches module-level functions on disk, but recompiles closures in every new
+process.  Functions only compiled code calls are compiled without the wrapper that lets
+Python call them, and the small ones are inlined into their callers (``inline="always"``):
+every compiled function is compiled again, machine code included, in each of its callers'
+modules, so fewer levels and no unused wrappers compile faster
+(``benchmarks/compile_time.py``).
 
 Contract of a phase integrator ``integrate(t, y, f, t_end, h, h_max, cf, c2, rtol, atol,
 max_steps, event_on, stats, history) -> (status, t, y, f, h)``: advance the state tuple
@@ -25,14 +34,15 @@ phase: the caller ends a phase at every switch and starts a new one.
 
 from __future__ import annotations
 
+import inspect
 import math
 
 import numpy as np
-from numba import njit
+from numba import literally, njit, types
+from numba.extending import overload
 
-from ..model.dynamics import JIT, N_CONTACT, OMEGA2, compression, swing_event
+from ..model.dynamics import JIT, JIT_INNER, N_CONTACT, OMEGA2, compression, swing_event
 from . import _kernels
-from .settings import METHOD_DP54
 
 #: Step-size controller constants (Hairer & Wanner; scipy uses the same).
 SAFETY = 0.9
@@ -57,7 +67,7 @@ N_STATS = 4
 HISTORY_COLS = 3 + 2 * N_CONTACT
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def flag(value):
     """``value`` as a run-time bool.  A constant ``True`` or ``False`` passed to a compiled
     function makes numba compile it, and everything it calls, once per constant (the phase
@@ -66,7 +76,7 @@ def flag(value):
     return bool(value)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def peak_omega2(y0, y1, f0, f1, h, best):
     """Running maximum of omega2 updated with a step ``y0 -> y1`` of size ``h``.
 
@@ -93,7 +103,7 @@ def peak_omega2(y0, y1, f0, f1, h, best):
     return best
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT)
 def step_factor(err, exponent, h, h_acc, err_acc):
     """Growth factor of the step after an accepted step of size ``h`` and error norm
     ``err`` (``exponent = -1 / (error order + 1)``).
@@ -115,7 +125,7 @@ def step_factor(err, exponent, h, h_acc, err_acc):
     return factor
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def history_state(row):
     """``(t, step, omega2 max before, y, f)`` of a history row, states as tuples."""
     y = (row[3], row[4], row[5], row[6], row[7], row[8], row[9], row[10], row[11], row[12])
@@ -123,13 +133,13 @@ def history_state(row):
     return row[0], row[1], row[2], y, f
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def history_reset(history):
     """Forget all recorded steps."""
     history[history.shape[0] - 1, 0] = 0.0
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def history_find(history, t):
     """Row of the latest recorded step starting at or before ``t``; -1 if forgotten."""
     capacity = history.shape[0] - 1
@@ -140,35 +150,86 @@ def history_find(history, t):
     return -1
 
 
+def method_step(method, contact, t, y, f, h, cf, c2, rtol, atol):
+    """One step of the compile-time ``method`` (compiled code only; see :func:`rk_step`)."""
+    raise NotImplementedError
+
+
+def method_dense(method, contact, t, y, f, h, cf, c2, y_new, f_new):
+    """Dense-output coefficients of the compile-time ``method`` (compiled code only; see
+    :func:`dense_coefficients`)."""
+    raise NotImplementedError
+
+
+def method_dense_eval(method, x, y, z):
+    """Dense output of the compile-time ``method`` (compiled code only; see
+    :func:`dense_value`)."""
+    raise NotImplementedError
+
+
+def _step_impl(step):
+    def impl(method, contact, t, y, f, h, cf, c2, rtol, atol):
+        return step(t, y, f, h, cf, c2, rtol, atol, contact)
+
+    return impl
+
+
+def _dense_impl(dense):
+    def impl(method, contact, t, y, f, h, cf, c2, y_new, f_new):
+        return dense(t, y, f, h, cf, c2, y_new, f_new, contact)
+
+    return impl
+
+
+def _dense_eval_impl(dense_eval):
+    def impl(method, x, y, z):
+        return dense_eval(x, y, z)
+
+    return impl
+
+
+def _overload_kernel(stub, column, make_impl):
+    """Compile ``stub`` as a call of the kernel in ``column`` of the method's row of
+    :data:`_kernels.KERNELS_BY_ID`, inlined into the caller (no function of its own
+    between the driver and the kernels).  A run-time ``method`` gets None: numba then
+    retries with its literal value (``literally``)."""
+
+    def typer(method, *args):
+        if not isinstance(method, types.IntegerLiteral):
+            return None
+        return make_impl(_kernels.KERNELS_BY_ID[method.literal_value][column])
+
+    typer.__signature__ = inspect.signature(stub)  # numba matches it with the impl's
+    overload(stub, inline="always")(typer)
+
+
+_overload_kernel(method_step, 0, _step_impl)
+_overload_kernel(method_dense, 1, _dense_impl)
+_overload_kernel(method_dense_eval, 2, _dense_eval_impl)
+
+
 @njit(**JIT)
 def rk_step(method, contact, t, y, f, h, cf, c2, rtol, atol):
-    """One step of ``method`` in the swing or contact phase: ``(y_new, f_new, error norm)``."""
-    if method == METHOD_DP54:
-        if contact:
-            return _kernels.step_dp54_contact(t, y, f, h, cf, c2, rtol, atol)
-        return _kernels.step_dp54_swing(t, y, f, h, cf, c2, rtol, atol)
-    if contact:
-        return _kernels.step_dop853_contact(t, y, f, h, cf, c2, rtol, atol)
-    return _kernels.step_dop853_swing(t, y, f, h, cf, c2, rtol, atol)
+    """One step of ``method`` in the swing or contact phase: ``(y_new, f_new, error norm)``.
+
+    Callable from Python (the tests); the integrator calls :func:`method_step`.
+    """
+    return method_step(literally(method), contact, t, y, f, h, cf, c2, rtol, atol)
 
 
 @njit(**JIT)
 def dense_coefficients(method, contact, t, y, f, h, cf, c2, y_new, f_new):
     """Dense-output coefficients (7 rows) of the step ``y -> y_new``."""
-    if method == METHOD_DP54:
-        return _kernels.dense_dp54(t, y, f, h, cf, c2, y_new, f_new, contact)
-    return _kernels.dense_dop853(t, y, f, h, cf, c2, y_new, f_new, contact)
+    return method_dense(literally(method), contact, t, y, f, h, cf, c2, y_new, f_new)
 
 
 @njit(**JIT)
 def dense_value(method, x, y, z):
     """State at the fraction ``x`` of the step from its dense-output coefficients ``z``."""
-    if method == METHOD_DP54:
-        return _kernels.dense_eval_dp54(x, y, z)
-    return _kernels.dense_eval_dop853(x, y, z)
+    return method_dense_eval(literally(method), x, y, z)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def event_value(contact, y, cf):
     """The phase's terminal event function (model functions of
     :mod:`tennis_stroke.model.dynamics`): ``phi`` in the swing, the compression of the
@@ -178,18 +239,18 @@ def event_value(contact, y, cf):
     return swing_event(y, cf)
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def event_crossed(contact, y0, y1, cf):
     """Whether the phase's event value fell through 0 during the step ``y0 -> y1``."""
     return event_value(contact, y0, cf) > 0.0 and event_value(contact, y1, cf) <= 0.0
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def locate_event(method, contact, y, z, cf):
     """Fraction of the step where the event value falls through 0 (Illinois method)."""
     lo, hi = 0.0, 1.0
     glo = event_value(contact, y, cf)
-    ghi = event_value(contact, dense_value(method, 1.0, y, z), cf)
+    ghi = event_value(contact, method_dense_eval(method, 1.0, y, z), cf)
     side = 0
     for _ in range(EVENT_MAX_ITER):
         if hi - lo <= EVENT_XTOL:
@@ -197,7 +258,7 @@ def locate_event(method, contact, y, z, cf):
         x = lo + (hi - lo) * glo / (glo - ghi)
         if not lo < x < hi:
             x = 0.5 * (lo + hi)
-        gx = event_value(contact, dense_value(method, x, y, z), cf)
+        gx = event_value(contact, method_dense_eval(method, x, y, z), cf)
         if gx > 0.0:
             lo, glo = x, gx
             if side == 1:
@@ -270,7 +331,7 @@ def integrate_phase(
         ``PHASE_END``/``PHASE_EVENT``/``PHASE_FAIL``, time reached, state and derivative
         there, proposed next step.
     """
-    n_stages = _kernels.N_STAGES_BY_ID[method]
+    n_stages = _kernels.N_STAGES_BY_ID[literally(method)]
     n_extra = _kernels.N_EXTRA_BY_ID[method]
     exponent = -1.0 / (_kernels.ERROR_ORDER_BY_ID[method] + 1)
     # Counters live in locals and reach ``stats`` on return.
@@ -291,7 +352,7 @@ def integrate_phase(
         last = direction * (t + dt - t_end) >= 0.0
         if last:
             dt = t_end - t
-        y_new, f_new, err = rk_step(method, contact, t, y, f, dt, cf, c2, rtol, atol)
+        y_new, f_new, err = method_step(method, contact, t, y, f, dt, cf, c2, rtol, atol)
         nfev += n_stages
         if not err <= 1.0:  # also NaN
             nreject += 1
@@ -311,10 +372,10 @@ def integrate_phase(
             count += 1
         nstep += 1
         if event_on and event_crossed(contact, y, y_new, cf):
-            z = dense_coefficients(method, contact, t, y, f, dt, cf, c2, y_new, f_new)
+            z = method_dense(method, contact, t, y, f, dt, cf, c2, y_new, f_new)
             nfev += n_stages - 1 + n_extra
             x = locate_event(method, contact, y, z, cf)
-            y = dense_value(method, x, y, z)
+            y = method_dense_eval(method, x, y, z)
             w2max = max(w2max, y[OMEGA2])
             t += x * dt
             f = f_new

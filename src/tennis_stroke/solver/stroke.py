@@ -25,7 +25,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import numba
 import numpy as np
-from numba import njit
+from numba import literally, njit
 
 from ..model.dynamics import (
     BALL_W,
@@ -35,6 +35,7 @@ from ..model.dynamics import (
     COS_PH,
     COS_TH,
     JIT,
+    JIT_INNER,
     OMEGA1,
     OMEGA2,
     PHI,
@@ -69,8 +70,8 @@ from .integrate import (
     history_reset,
     history_state,
     integrate_phase,
+    method_step,
     peak_omega2,
-    rk_step,
 )
 from .results import (
     EARLY_CONTACT,
@@ -114,6 +115,7 @@ from .settings import (
 @njit(**JIT)
 def run_phases(method, contact, t, y, t_stop, h, h_max, cf, event_on, st, stats, history):
     """Integrate one phase kind through the torque switches until an event or ``t_stop``."""
+    method = literally(method)  # compiled per method (integrate.rk_step)
     while True:
         t_seg = next_switch(t, cf, t_stop)
         c2 = wrist_torque(t, t_seg, cf)
@@ -141,7 +143,7 @@ def run_phases(method, contact, t, y, t_stop, h, h_max, cf, event_on, st, stats,
             return status, t, y, h
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def restart_at(method, t_c, row, cf, st, stats):
     """Swing state at ``t_c`` by one step from a recorded step start (``row``)."""
     t_i, h_i, w2max, y, f = history_state(row)
@@ -150,13 +152,14 @@ def restart_at(method, t_c, row, cf, st, stats):
     if dt <= 0.0:
         return y
     c2 = wrist_torque(t_i, t_i + h_i, cf)
-    y_new, f_new, _ = rk_step(method, flag(False), t_i, y, f, dt, cf, c2, st[S_RTOL], st[S_ATOL])
+    rtol, atol = st[S_RTOL], st[S_ATOL]
+    y_new, f_new, _ = method_step(method, flag(False), t_i, y, f, dt, cf, c2, rtol, atol)
     stats[ST_NFEV] += N_STAGES_BY_ID[method]
     stats[ST_W2MAX] = peak_omega2(y, y_new, f, f_new, dt, w2max)
     return y_new
 
 
-@njit(**JIT)
+@njit(inline="always", **JIT_INNER)
 def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     """Ball contact from ``t_c`` to separation, then the follow-through; returns a status."""
     s_th, c_th, s_ph, c_ph = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH]
@@ -195,6 +198,7 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
 @njit(**JIT)
 def solve_stroke(method, cf_row, st, out, history, stats):
     """Simulate one stroke (coefficient row ``cf_row``); write the ``O_*`` columns of ``out``."""
+    method = literally(method)  # compiled per method (integrate.rk_step)
     cf = coefficient_tuple(cf_row)
     out[:] = np.nan
     stats[:] = 0.0
@@ -233,6 +237,7 @@ def solve_stroke(method, cf_row, st, out, history, stats):
 def solve_rows(method, cf_rows, st, out, start, stop, history_capacity):
     """Solve the strokes ``start:stop`` of ``cf_rows`` into the same rows of ``out``
     (releases the GIL: threads run such ranges side by side)."""
+    method = literally(method)  # compiled per method (integrate.rk_step)
     history = np.zeros((history_capacity + 1, HISTORY_COLS))
     stats = np.zeros(N_STATS)
     for i in range(start, stop):
@@ -288,8 +293,8 @@ def solve_coefficients(
     progress : bool
         Show a tqdm progress bar (in blocks of :data:`PROGRESS_BLOCK` strokes).
     """
-    ensure_compiled("batch")
     settings = settings or SolverSettings()
+    ensure_compiled(f"batch:{settings.method}")
     method = METHOD_IDS[settings.method]
     st = settings.as_array()
     n_threads = default_threads()
@@ -391,7 +396,7 @@ def solve_contact(
         Whether the ball left before ``t_end``, the time reached (s) and the state there
         (angle layout).
     """
-    ensure_compiled("contact")
+    ensure_compiled(f"contact:{settings.method}")
     cf = coefficient_tuple(cf_row)
     y = to_trig(y_angles)
     st = settings.as_array()

@@ -16,21 +16,20 @@ def warm_up(group: str) -> None:
     from ..model.dynamics import coefficients
     from ..model.params import resolve_params
     from .reference import free_swing, solve_stroke
-    from .settings import METHOD_IDS, SolverSettings
+    from .settings import SolverSettings
     from .stroke import solve_contact, strike_batch
 
     if group == "reference":
         solve_stroke(120.0, 81.5, rtol=1e-6, atol=1e-6)
         free_swing(120.0, 81.5, 0.05)
         return
-    cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
-    for method in METHOD_IDS:
-        settings = SolverSettings(method=method)
-        if group == "batch":
-            strike_batch(np.array([90.0, 120.0]), 45.0, settings=settings, threads=1)
-        else:
-            solve_contact(cf_row, np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0]), 0.01, settings)
-
+    kind, method = group.split(":")
+    settings = SolverSettings(method=method)
+    if kind == "batch":
+        strike_batch(np.array([90.0, 120.0]), 45.0, settings=settings, threads=1)
+    else:
+        cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
+        solve_contact(cf_row, np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0]), 0.01, settings)
 
 if __name__ == "__main__":
     warm_up(sys.argv[1])
