@@ -72,6 +72,7 @@ from .integrate import (
     integrate_phase,
     method_step,
     peak_omega2,
+    specialised,
 )
 from .results import (
     EARLY_CONTACT,
@@ -263,11 +264,12 @@ def _solve_block(method, cf_rows, st, out, history, n_threads, pool):
     n = cf_rows.shape[0]
     n_ranges = min(max(n, 1), RANGES_PER_THREAD * n_threads) if n_threads > 1 else 1
     bounds = [(c * n // n_ranges, (c + 1) * n // n_ranges) for c in range(n_ranges)]
+    solve = specialised(solve_rows, method, cf_rows, st, out, 0, n, history)
     if pool is None:
         for a, b in bounds:
-            solve_rows(method, cf_rows, st, out, a, b, history)
+            solve(method, cf_rows, st, out, a, b, history)
         return
-    jobs = [pool.submit(solve_rows, method, cf_rows, st, out, a, b, history) for a, b in bounds]
+    jobs = [pool.submit(solve, method, cf_rows, st, out, a, b, history) for a, b in bounds]
     for job in jobs:
         job.result()
 
@@ -401,18 +403,8 @@ def solve_contact(
     y = to_trig(y_angles)
     st = settings.as_array()
     h_max = contact_duration(y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], cf) / st[S_CONTACT_STEPS]
-    status, t, y, _ = run_phases(
-        METHOD_IDS[settings.method],
-        True,
-        0.0,
-        y,
-        t_end,
-        min(settings.first_step, h_max),
-        h_max,
-        cf,
-        True,
-        st,
-        np.zeros(N_STATS),
-        np.zeros((1, HISTORY_COLS)),
-    )
+    args = (True, 0.0, y, t_end, min(settings.first_step, h_max), h_max, cf, True, st)
+    args += (np.zeros(N_STATS), np.zeros((1, HISTORY_COLS)))
+    method = METHOD_IDS[settings.method]
+    status, t, y, _ = specialised(run_phases, method, *args)(method, *args)
     return status == PHASE_EVENT, t, to_angles(y)
