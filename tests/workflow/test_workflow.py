@@ -174,6 +174,55 @@ def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
     pd.testing.assert_frame_equal(claims, pd.read_csv(tiny_run / "results/claims.csv"))
 
 
+@pytest.mark.parametrize(
+    "signum, line", [(signal.SIGINT, "interrupted"), (signal.SIGTERM, "terminated")]
+)
+def test_a_signal_while_a_job_writes_ends_the_run_at_once(tmp_path, signum, line):
+    """Ctrl-C (SIGINT to the whole run) or SIGTERM while a job writes its file: the job
+    finishes the write with the signal deferred, removes its temporary file, ends with
+    one line, and Snakemake stops; nothing hangs, nothing else is lost.  A write of the
+    tiny run lasts milliseconds, so the job pauses inside it
+    (``io.netcdf.TEST_PAUSE_ENV``).  The job's own earlier output is gone: Snakemake
+    removes a job's outputs when it starts the job (checked below, before the signal)."""
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    target = "results/torque_delay/fig9.nc"
+    first = run_snakemake(target, work, "--cores", "1", timeout=600)
+    assert first.returncode == 0, first.stderr[-3000:]
+    chunk = work / "results/chunks/torque_delay/fig9/0-of-1.nc"
+    kept = chunk.read_bytes()
+    pause = 3.0
+    run = subprocess.Popen(
+        snakemake_command(target, work, "--cores", "1", "-f"),
+        start_new_session=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, "TENNIS_STROKE_TEST_WRITE_PAUSE": str(pause)},
+    )
+    deadline = time.monotonic() + 300
+    try:
+        while not list((work / "results").rglob("*.tmp")):
+            assert run.poll() is None, "the run ended before its job wrote"
+            assert time.monotonic() < deadline, "no write after 300 s"
+            time.sleep(0.01)
+        assert not (work / target).exists()  # removed by Snakemake when the job started
+        os.killpg(run.pid, signum)
+        start = time.monotonic()
+        _, stderr = run.communicate(timeout=60)
+    finally:
+        if run.poll() is None:
+            os.killpg(run.pid, signal.SIGKILL)
+    waited = time.monotonic() - start
+    assert pause / 2 < waited < pause + 10  # the write went on with the signal deferred
+    assert run.returncode != 0
+    assert "Traceback" not in stderr
+    assert f"tennis-stroke job {line}" in stderr
+    assert not list(work.rglob("*.tmp"))
+    assert chunk.read_bytes() == kept
+    left = subprocess.run(["pgrep", "-s", str(run.pid)], capture_output=True, text=True)
+    assert left.stdout.split() == []  # no job outlives the run
+
+
 @pytest.mark.parametrize("key", sorted(EXPERIMENTS))
 def test_every_row_of_the_table_is_wired_end_to_end(tiny_run, key):
     """Every row of the table of experiments has its rule, its job's log and benchmark,
