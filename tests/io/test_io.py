@@ -8,7 +8,14 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from tennis_stroke.io.netcdf import OutputError, check_writable, result_dataset, write_netcdf
+from tennis_stroke.io.errors import ResultError
+from tennis_stroke.io.netcdf import (
+    OutputError,
+    check_writable,
+    load_result,
+    result_dataset,
+    write_netcdf,
+)
 from tennis_stroke.model.params import resolve_params
 from tennis_stroke.solver.stroke import SolverSettings, strike_batch
 
@@ -73,3 +80,41 @@ def test_result_files_get_the_permissions_the_umask_gives_new_files(
 def test_check_writable_rejects_directories(tmp_path):
     with pytest.raises(OutputError, match="is a directory"):
         check_writable(tmp_path)
+
+
+def _map(values):
+    return xr.Dataset(
+        {"v_out": (("theta0",), values, {"units": "km/h", "long_name": "rebound speed"})},
+        coords={"theta0": ("theta0", np.arange(values.size, dtype=float), {"units": "degree"})},
+    )
+
+
+def test_every_array_is_written_with_a_checksum_and_read_back_the_same(tmp_path):
+    values = np.linspace(100.0, 150.0, 4096)
+    write_netcdf(_map(values), tmp_path / "map.nc")
+    ds = load_result(tmp_path / "map.nc")
+    assert all(ds[name].encoding.get("fletcher32") for name in ds.variables)
+    np.testing.assert_array_equal(ds["v_out"].values, values)
+
+
+def test_a_damaged_byte_inside_a_result_is_refused_naming_the_file(tmp_path):
+    """The superblock check cannot see a byte changed among the data; without the
+    checksum the file reads back with one wrong number and no error."""
+    values = np.linspace(100.0, 150.0, 4096)
+    path = tmp_path / "map.nc"
+    write_netcdf(_map(values), path)
+    data = bytearray(path.read_bytes())
+    at = data.find(values[2000:2008].tobytes())
+    assert at > 0  # the array's bytes, uncompressed
+    data[at + 3] ^= 0x10
+    path.write_bytes(bytes(data))
+    with pytest.raises(ResultError, match=r"map\.nc.*cannot be read.*checksum"):
+        load_result(path)
+
+
+def test_a_missing_or_foreign_result_is_refused_naming_it(tmp_path):
+    with pytest.raises(ResultError, match=r"nothing\.nc.*missing"):
+        load_result(tmp_path / "nothing.nc")
+    (tmp_path / "text.nc").write_text("not a result")
+    with pytest.raises(ResultError, match=r"text\.nc.*no HDF5 signature"):
+        load_result(tmp_path / "text.nc")

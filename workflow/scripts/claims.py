@@ -3,10 +3,9 @@ targeted evaluation of the default reading (its optima and threshold by a search
 workflow's maps as map_value, with its robustness across the consistent readings and each
 deviation's evidence."""
 
-import xarray as xr
-
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.targeted import searched_files
+from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.pipeline.jobs import logged, settings
 from tennis_stroke.replication.claims import evaluate
 from tennis_stroke.replication.robustness import annotate
@@ -14,11 +13,11 @@ from tennis_stroke.replication.robustness import annotate
 p = snakemake.params
 with logged(snakemake.log[0]):
     claims, space = claims_and_readings(snakemake.input.claims, snakemake.input.readings)
-    maps = {k: xr.load_dataset(v) for k, v in p.files.items()}
+    maps = {k: load_result(v) for k, v in p.files.items()}
     config = {**p.experiments, "model": p.common["model"]}
     found = searched_files(config, p.common["model"], settings(p.common), None, snakemake.threads)
     table = evaluate(claims, {**maps, **found}, space.fit_of_claim(), maps)
-    robustness = xr.load_dataset(snakemake.input.robustness)
+    robustness = load_result(snakemake.input.robustness)
     table = annotate(table, robustness, space, claims, maps)
     table.to_csv(snakemake.output[0], index=False)
     print(table[["id", "reproduced_value", "map_value", "status", "robustness"]].to_string())

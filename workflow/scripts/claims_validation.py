@@ -1,17 +1,16 @@
 """The targeted evaluation of the claims checked against the full maps on kept readings
 (config/readings.yaml, multiverse.validation), for one group of searched files."""
 
-import xarray as xr
-
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.validation import validate
+from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):
     clock = Timer()
     claims, space = claims_and_readings(snakemake.input.claims, snakemake.input.readings)
-    kept = xr.load_dataset(snakemake.input.kept)
+    kept = load_result(snakemake.input.kept)
     config = {**p.experiments, "model": p.common["model"]}
     group = snakemake.wildcards.group
     ds = validate(claims, space, kept, config, settings(p.common), snakemake.threads, group)

@@ -1,17 +1,16 @@
 """The robustness analysis, step 1: the declared Sobol candidates screened against both
 fit sets, and the consistent readings kept (config/readings.yaml, multiverse)."""
 
-import xarray as xr
-
 from tennis_stroke.inference.multiverse import best_fits, readings_dataset, screen
 from tennis_stroke.inference.reading_space import claims_and_readings
+from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.pipeline.jobs import Timer, logged, save, settings
 
 p = snakemake.params
 with logged(snakemake.log[0]):
     clock = Timer()
     claims, space = claims_and_readings(snakemake.input.claims, snakemake.input.readings)
-    fits = {n: xr.load_dataset(snakemake.input[f"{n}_fits"]) for n in space.fits}
+    fits = {n: load_result(snakemake.input[f"{n}_fits"]) for n in space.fits}
     screened = screen(
         space,
         claims,

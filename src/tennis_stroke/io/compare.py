@@ -82,7 +82,6 @@ def _change(va: xr.Variable, vb: xr.Variable) -> str:
         return f"; {n} of {x.size} values (NaN or inf in one only)"
     d = np.abs(x[finite] - y[finite])
     rel = d / np.maximum(np.abs(x[finite]), np.abs(y[finite]))
-    return (
-        f"; {n} of {x.size} values, by at most {d.max():.3g} (relative {rel.max():.3g})"
-        + ("" if finite.sum() == n else f", {n - int(finite.sum())} NaN or inf in one only")
+    return f"; {n} of {x.size} values, by at most {d.max():.3g} (relative {rel.max():.3g})" + (
+        "" if finite.sum() == n else f", {n - int(finite.sum())} NaN or inf in one only"
     )

@@ -29,7 +29,7 @@ from .._version import __version__
 from ..model.params import PARAMETERS, READINGS, scalar_params
 from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
-from .errors import OutputError
+from .errors import OutputError, ResultError
 from .interrupts import deferred_signals
 from .units import VARIABLES, cf_attrs
 
@@ -229,8 +229,15 @@ def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
       it; xarray reads the character array back as the same strings and index.
     - ``flag_values`` has the type of its variable (CF 3.5), when that type holds the
       flag values exactly.
+    - Every array carries HDF5's Fletcher-32 checksum (``fletcher32``): a damaged byte
+      inside the file, which the superblock check (:func:`damage`) cannot see and which
+      would otherwise be read as a wrong number, makes reading fail
+      (:func:`load_result` names the file).
     """
     out = ds.copy(deep=False)
+    for var in out.variables.values():
+        if var.ndim > 0:
+            var.encoding = {**var.encoding, "fletcher32": True}
     for name in out.dims:
         if name not in out.variables:
             continue
@@ -319,6 +326,24 @@ def _reason(exc: OSError) -> str:
     if exc.errno == errno.ENOSPC:
         return "no space left on the device (disk full)"
     return str(exc)
+
+
+def load_result(path: str | os.PathLike) -> xr.Dataset:
+    """The result file ``path`` read into memory (every array, so every checksum is
+    verified); a missing, truncated, damaged or foreign file raises :class:`ResultError`
+    naming it and the way out."""
+    problem = damage(path) if Path(path).exists() else "missing"
+    if problem is None:
+        try:
+            return xr.load_dataset(path)
+        except (OSError, ValueError, RuntimeError) as exc:
+            problem = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            if "HDF error" in problem:
+                problem = f"{problem}: a checksum or structure does not match"
+    raise ResultError(
+        f"result file {str(path)!r} cannot be read ({problem}): remove it and run "
+        "make report to rebuild it"
+    )
 
 
 #: The signature that starts every HDF5 file (netCDF-4 is HDF5).

@@ -12,6 +12,7 @@ import pandas as pd
 import xarray as xr
 
 from ..inference.claims import cause, difference, grid_half_step, measure, within
+from ..io.netcdf import load_result
 
 COLUMNS = [
     "id",
@@ -32,7 +33,7 @@ COLUMNS = [
 
 
 def _datasets(files: Mapping[str, str | Path | xr.Dataset]) -> dict[str, xr.Dataset]:
-    return {k: v if isinstance(v, xr.Dataset) else xr.load_dataset(v) for k, v in files.items()}
+    return {k: v if isinstance(v, xr.Dataset) else load_result(v) for k, v in files.items()}
 
 
 def evaluate(

@@ -18,6 +18,7 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 from ..inference.measures import measure_delay_threshold, valid_v_out  # noqa: E402
+from ..io.netcdf import load_result
 from .registry import FIGURES  # noqa: E402
 
 DPI = 110
@@ -321,7 +322,7 @@ DRAWERS: dict[str, Callable[..., plt.Figure]] = {
 def draw(name: str, inputs: Sequence[str | Path], output: str | Path) -> None:
     """Draw figure ``name`` from its result files into ``output`` (PNG)."""
     figure = FIGURES[name]
-    datasets = [xr.load_dataset(p) for p in inputs]
+    datasets = [load_result(p) for p in inputs]
     fig = DRAWERS[figure.draw](datasets, title(figure.title, datasets[0]), *figure.args)
     fig.tight_layout()
     fig.savefig(output, dpi=DPI)

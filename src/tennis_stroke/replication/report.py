@@ -35,7 +35,7 @@ from .._version import __version__
 from ..inference.claims import load_claims
 from ..io.config_files import load_yaml
 from ..io.failures import failure_counts
-from ..io.netcdf import git_commit
+from ..io.netcdf import git_commit, load_result
 from ..model.params import READINGS
 from .claims import ClaimsTableError, consistency_errors, read_table
 from .registry import FIGURES
@@ -264,8 +264,8 @@ def _fit_tables(inference: Mapping[str, str], rows: int = 6) -> list[dict]:
     registry's keys ``{fit}_fits`` and ``{fit}_loo`` -> paths)."""
     out = []
     for key in sorted(k for k in inference if k.endswith("_fits")):
-        fits = xr.load_dataset(inference[key])
-        loo = xr.load_dataset(inference[key.removesuffix("_fits") + "_loo"])
+        fits = load_result(inference[key])
+        loo = load_result(inference[key.removesuffix("_fits") + "_loo"])
         columns = [v for v in fits.data_vars if fits[v].dims == ("combination",)]
         table = fits[columns].to_dataframe().head(rows)
         default = {
@@ -288,8 +288,8 @@ def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
     """The robustness section: the consistent set, the classes and the evidence."""
     if "robustness" not in inference or "robustness" not in claims:
         return {}
-    screen = xr.load_dataset(inference["robustness_screen"])
-    kept = xr.load_dataset(inference["robustness"])
+    screen = load_result(inference["robustness_screen"])
+    kept = load_result(inference["robustness"])
     combos = sorted(
         {
             ", ".join(
@@ -372,7 +372,7 @@ def _validation(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
     paths = [v for k, v in inference.items() if k.startswith("validation_")]
     if not paths or "map_cause" not in claims:
         return {}
-    ds = xr.concat([xr.load_dataset(p) for p in paths], dim="claim", data_vars="all")
+    ds = xr.concat([load_result(p) for p in paths], dim="claim", data_vars="all")
     table = validation_table(claims, ds)
     return {
         "readings": ds.sizes["reading"],

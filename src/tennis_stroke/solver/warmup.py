@@ -31,5 +31,6 @@ def warm_up(group: str) -> None:
         cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
         solve_contact(cf_row, np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0]), 0.01, settings)
 
+
 if __name__ == "__main__":
     warm_up(sys.argv[1])
