@@ -7,7 +7,10 @@ the free swing and in the contact, for 8 different strokes evaluated over and ov
 * scalar: :func:`tennis_stroke.model.dynamics.rhs_trig` on tuples, as the solver calls
   it, one stroke after the other (independent evaluations, so the CPU overlaps them);
 * lanes: the same arithmetic in a structure-of-arrays layout, a loop over 8 lanes that
-  LLVM may vectorize.
+  LLVM may vectorize;
+
+and nanoseconds per DOP853 step (the generated kernel, fixed step) of one stroke, against
+steps of two strokes taken one after the other in the same loop.
 
 Compare with the solver's cost per evaluation inside a stroke (``make bench``: µs per
 stroke over evaluations per stroke), where each stage waits for the one before.
@@ -24,7 +27,7 @@ from numba import njit
 from tennis_stroke.model import dynamics as D
 from tennis_stroke.model.dynamics import coefficients, rhs_trig
 from tennis_stroke.model.params import resolve_params
-from tennis_stroke.solver._kernels import coefficient_tuple
+from tennis_stroke.solver._kernels import coefficient_tuple, step_dop853
 
 FAST = {"cache": False, "error_model": "numpy", "fastmath": {"contract", "arcp"}}
 
@@ -134,3 +137,49 @@ for contact in (0.0, 1.0):
     scalar_ns, lanes_ns = (min(x) / (n * L) * 1e9 for x in (ts, tl))
     phase = "contact" if contact else "swing"
     print(f"{phase}: scalar {scalar_ns:.1f} ns per evaluation, {L} lanes {lanes_ns:.1f} ns")
+
+
+Y0 = (1.0, 0.0, 0.5, 0.8, 0.0, 0.0, 1.5, 0.8, 0.0, 0.0)
+
+
+@njit(**FAST)
+def one_stroke(cfa, n, h):
+    ya, t = Y0, 0.0
+    fa = rhs_trig(0.0, ya, cfa, 0.0, False)
+    for _ in range(n):
+        ya, fa, _ = step_dop853(t, ya, fa, h, cfa, 0.0, 1e-8, 1e-8, False)
+        t += h
+        if t > 0.2:
+            ya, t = Y0, 0.0
+            fa = rhs_trig(0.0, ya, cfa, 0.0, False)
+    return ya[4]
+
+
+@njit(**FAST)
+def two_strokes(cfa, cfb, n, h):
+    ya, yb, t = Y0, Y0, 0.0
+    fa, fb = rhs_trig(0.0, ya, cfa, 0.0, False), rhs_trig(0.0, yb, cfb, 0.0, False)
+    for _ in range(n):
+        ya, fa, _ = step_dop853(t, ya, fa, h, cfa, 0.0, 1e-8, 1e-8, False)
+        yb, fb, _ = step_dop853(t, yb, fb, h, cfb, 0.0, 1e-8, 1e-8, False)
+        t += h
+        if t > 0.2:
+            ya, yb, t = Y0, Y0, 0.0
+            fa, fb = rhs_trig(0.0, ya, cfa, 0.0, False), rhs_trig(0.0, yb, cfb, 0.0, False)
+    return ya[4] + yb[4]
+
+
+cfa, cfb = coefficient_tuple(rows[0]), coefficient_tuple(rows[1])
+one_stroke(cfa, 10, 0.01)
+two_strokes(cfa, cfb, 10, 0.01)
+n = 200000
+t1, t2 = [], []
+for _ in range(3):
+    t = time.perf_counter()
+    one_stroke(cfa, n, 0.01)
+    t1.append(time.perf_counter() - t)
+    t = time.perf_counter()
+    two_strokes(cfa, cfb, n, 0.01)
+    t2.append(time.perf_counter() - t)
+one_ns, two_ns = min(t1) / n * 1e9, min(t2) / n * 1e9
+print(f"DOP853 step: one stroke {one_ns:.0f} ns; two strokes in one loop {two_ns:.0f} ns")
