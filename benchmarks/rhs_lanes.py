@@ -9,8 +9,9 @@ the free swing and in the contact, for 8 different strokes evaluated over and ov
 * lanes: the same arithmetic in a structure-of-arrays layout, a loop over 8 lanes that
   LLVM may vectorize;
 
-and nanoseconds per DOP853 step (the generated kernel, fixed step) of one stroke, against
-steps of two strokes taken one after the other in the same loop.
+and nanoseconds per DOP853 step (the generated kernel, fixed step, the contact flag a
+run-time value as in the solver) of one stroke, against steps of two strokes taken one
+after the other in the same loop.
 
 Compare with the solver's cost per evaluation inside a stroke (``make bench``: µs per
 stroke over evaluations per stroke), where each stage waits for the one before.
@@ -143,11 +144,11 @@ Y0 = (1.0, 0.0, 0.5, 0.8, 0.0, 0.0, 1.5, 0.8, 0.0, 0.0)
 
 
 @njit(**FAST)
-def one_stroke(cfa, n, h):
+def one_stroke(cfa, n, h, contact):
     ya, t = Y0, 0.0
     fa = rhs_trig(0.0, ya, cfa, 0.0, False)
     for _ in range(n):
-        ya, fa, _ = step_dop853(t, ya, fa, h, cfa, 0.0, 1e-8, 1e-8, False)
+        ya, fa, _ = step_dop853(t, ya, fa, h, cfa, 0.0, 1e-8, 1e-8, contact)
         t += h
         if t > 0.2:
             ya, t = Y0, 0.0
@@ -156,12 +157,12 @@ def one_stroke(cfa, n, h):
 
 
 @njit(**FAST)
-def two_strokes(cfa, cfb, n, h):
+def two_strokes(cfa, cfb, n, h, contact):
     ya, yb, t = Y0, Y0, 0.0
     fa, fb = rhs_trig(0.0, ya, cfa, 0.0, False), rhs_trig(0.0, yb, cfb, 0.0, False)
     for _ in range(n):
-        ya, fa, _ = step_dop853(t, ya, fa, h, cfa, 0.0, 1e-8, 1e-8, False)
-        yb, fb, _ = step_dop853(t, yb, fb, h, cfb, 0.0, 1e-8, 1e-8, False)
+        ya, fa, _ = step_dop853(t, ya, fa, h, cfa, 0.0, 1e-8, 1e-8, contact)
+        yb, fb, _ = step_dop853(t, yb, fb, h, cfb, 0.0, 1e-8, 1e-8, contact)
         t += h
         if t > 0.2:
             ya, yb, t = Y0, Y0, 0.0
@@ -170,16 +171,16 @@ def two_strokes(cfa, cfb, n, h):
 
 
 cfa, cfb = coefficient_tuple(rows[0]), coefficient_tuple(rows[1])
-one_stroke(cfa, 10, 0.01)
-two_strokes(cfa, cfb, 10, 0.01)
+one_stroke(cfa, 10, 0.01, False)
+two_strokes(cfa, cfb, 10, 0.01, False)
 n = 200000
 t1, t2 = [], []
 for _ in range(3):
     t = time.perf_counter()
-    one_stroke(cfa, n, 0.01)
+    one_stroke(cfa, n, 0.01, False)
     t1.append(time.perf_counter() - t)
     t = time.perf_counter()
-    two_strokes(cfa, cfb, n, 0.01)
+    two_strokes(cfa, cfb, n, 0.01, False)
     t2.append(time.perf_counter() - t)
 one_ns, two_ns = min(t1) / n * 1e9, min(t2) / n * 1e9
 print(f"DOP853 step: one stroke {one_ns:.0f} ns; two strokes in one loop {two_ns:.0f} ns")

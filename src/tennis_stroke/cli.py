@@ -361,14 +361,14 @@ def main(argv: Sequence[str] | None = None) -> int:
     terminate_raises()
     try:
         args = build_parser().parse_args(argv)
-        from .io.errors import OutputError
+        from .io.errors import OutputError, ResultError
         from .model.params import ParameterError
         from .solver.compiled import CompileCacheError
 
         commands = {"strike": _strike, "sweep": _sweep, "claims": _claims, "identify": _identify}
         try:
             return commands[args.command](args)
-        except (ParameterError, OutputError, CompileCacheError, ValueError) as exc:
+        except (ParameterError, OutputError, ResultError, CompileCacheError, ValueError) as exc:
             _fail(str(exc))
         except MemoryError:
             _fail("out of memory (give sweep a lower --max-memory or TENNIS_STROKE_MAX_MEMORY)")

@@ -113,8 +113,11 @@ def test_a_damaged_byte_inside_a_result_is_refused_naming_the_file(tmp_path):
 
 
 def test_a_missing_or_foreign_result_is_refused_naming_it(tmp_path):
-    with pytest.raises(ResultError, match=r"nothing\.nc.*missing"):
+    with pytest.raises(ResultError, match=r"nothing\.nc.*missing: run make report"):
         load_result(tmp_path / "nothing.nc")
+    (tmp_path / "folder.nc").mkdir()
+    with pytest.raises(ResultError, match=r"folder\.nc.*not a file"):
+        load_result(tmp_path / "folder.nc")
     (tmp_path / "text.nc").write_text("not a result")
     with pytest.raises(ResultError, match=r"text\.nc.*no HDF5 signature"):
         load_result(tmp_path / "text.nc")

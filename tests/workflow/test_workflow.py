@@ -22,6 +22,7 @@ from conftest import (
 from tiny import MAPS, ROBUSTNESS_CHUNKS, TINY, TINY_READINGS
 
 from tennis_stroke.experiments.specs import EXPERIMENTS, RESULT_FILES
+from tennis_stroke.io.netcdf import TEST_PAUSE_ENV
 from tennis_stroke.replication.claims import COLUMNS
 from tennis_stroke.replication.registry import FIGURES
 from tennis_stroke.replication.robustness import COLUMNS as ROBUSTNESS_COLUMNS
@@ -197,7 +198,7 @@ def test_a_signal_while_a_job_writes_ends_the_run_at_once(tmp_path, signum, line
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
-        env={**os.environ, "TENNIS_STROKE_TEST_WRITE_PAUSE": str(pause)},
+        env={**os.environ, TEST_PAUSE_ENV: str(pause)},
     )
     deadline = time.monotonic() + 300
     try:
@@ -218,7 +219,7 @@ def test_a_signal_while_a_job_writes_ends_the_run_at_once(tmp_path, signum, line
     assert "Traceback" not in stderr
     assert f"tennis-stroke job {line}" in stderr
     assert not list(work.rglob("*.tmp"))
-    assert chunk.read_bytes() == kept
+    assert chunk.read_bytes() == kept  # the input of the interrupted job is untouched
     left = subprocess.run(["pgrep", "-s", str(run.pid)], capture_output=True, text=True)
     assert left.stdout.split() == []  # no job outlives the run
 

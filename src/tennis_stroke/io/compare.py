@@ -9,14 +9,13 @@ from collections.abc import Sequence
 import numpy as np
 import xarray as xr
 
-from .netcdf import RUN_ATTRS
+from .netcdf import RUN_ATTRS, load_result
 
 
 def _loaded(source) -> xr.Dataset:
     if isinstance(source, xr.Dataset):
         return source
-    with xr.open_dataset(source) as ds:
-        return ds.load()
+    return load_result(source)
 
 
 def result_differences(a, b, also_differ: Sequence[str] = ()) -> list[str]:

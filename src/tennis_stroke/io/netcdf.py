@@ -229,7 +229,8 @@ def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
       it; xarray reads the character array back as the same strings and index.
     - ``flag_values`` has the type of its variable (CF 3.5), when that type holds the
       flag values exactly.
-    - Every array carries HDF5's Fletcher-32 checksum (``fletcher32``): a damaged byte
+    - Every variable that is not a scalar (HDF5 filters no scalars) carries HDF5's
+      Fletcher-32 checksum (``fletcher32``): a damaged byte
       inside the file, which the superblock check (:func:`damage`) cannot see and which
       would otherwise be read as a wrong number, makes reading fail
       (:func:`load_result` names the file).
@@ -305,7 +306,10 @@ TEST_PAUSE_ENV = "TENNIS_STROKE_TEST_WRITE_PAUSE"
 def _test_pause() -> None:
     pause = os.environ.get(TEST_PAUSE_ENV)
     if pause:
-        time.sleep(float(pause))
+        try:
+            time.sleep(float(pause))
+        except ValueError:
+            raise OutputError(f"{TEST_PAUSE_ENV}={pause!r} is not a number of seconds") from None
 
 
 #: Free bytes below which a failed write is put down to a full disk (the netCDF library
@@ -332,18 +336,38 @@ def load_result(path: str | os.PathLike) -> xr.Dataset:
     """The result file ``path`` read into memory (every array, so every checksum is
     verified); a missing, truncated, damaged or foreign file raises :class:`ResultError`
     naming it and the way out."""
-    problem = damage(path) if Path(path).exists() else "missing"
+    try:
+        kind = "file" if Path(path).is_file() else "missing" if not Path(path).exists() else ""
+    except OSError as exc:
+        kind = f"cannot be read ({exc.strerror})"
+    if kind != "file":
+        problem = kind or "not a file"
+        rebuild = "run make report" if kind == "missing" else "remove it and run make report"
+        raise ResultError(f"result file {str(path)!r}: {problem}: {rebuild} to rebuild it")
+    problem = damage(path)
     if problem is None:
         try:
-            return xr.load_dataset(path)
+            ds = xr.open_dataset(path)
         except (OSError, ValueError, RuntimeError) as exc:
-            problem = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
-            if "HDF error" in problem:
-                problem = f"{problem}: a checksum or structure does not match"
+            problem = _first_line(exc)
+            if "HDF error" in problem:  # also a file lock refused on a shared file system
+                problem += (
+                    " while opening it (on a shared file system, try HDF5_USE_FILE_LOCKING=FALSE)"
+                )
+        else:
+            try:
+                with ds:
+                    return ds.load()
+            except (OSError, ValueError, RuntimeError) as exc:
+                problem = f"{_first_line(exc)} while reading its data: a checksum does not match"
     raise ResultError(
-        f"result file {str(path)!r} cannot be read ({problem}): remove it and run "
-        "make report to rebuild it"
+        f"result file {str(path)!r} cannot be read ({problem}): remove it and run make "
+        "report to rebuild it"
     )
+
+
+def _first_line(exc: BaseException) -> str:
+    return str(exc).splitlines()[0] if str(exc) else type(exc).__name__
 
 
 #: The signature that starts every HDF5 file (netCDF-4 is HDF5).

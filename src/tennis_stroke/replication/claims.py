@@ -217,13 +217,13 @@ def _unexplained_in_validation(folder: Path) -> list[str]:
     any) whose searched value differs from the map's without a cause."""
     out = []
     for path in sorted(folder.glob("*.nc")):
-        with xr.open_dataset(path) as ds:
-            bad = np.argwhere(ds["cause"].values == "unexplained")
-            for r, c in bad:
-                out.append(
-                    f"UNEXPLAINED {ds['claim'].values[c]} "
-                    f"(reading {int(ds['reading'].values[r])}): "
-                    f"searched {float(ds['targeted_value'].values[r, c]):.6g}, "
-                    f"map {float(ds['map_value'].values[r, c]):.6g} ({path.name})"
-                )
+        ds = load_result(path)
+        bad = np.argwhere(ds["cause"].values == "unexplained")
+        for r, c in bad:
+            out.append(
+                f"UNEXPLAINED {ds['claim'].values[c]} "
+                f"(reading {int(ds['reading'].values[r])}): "
+                f"searched {float(ds['targeted_value'].values[r, c]):.6g}, "
+                f"map {float(ds['map_value'].values[r, c]):.6g} ({path.name})"
+            )
     return out

@@ -405,8 +405,7 @@ def _failures(results: Sequence[str]) -> pd.DataFrame:
     """Strokes, failed strokes and the failing statuses of every result file."""
     rows = []
     for path in results:
-        with xr.open_dataset(path) as ds:
-            counts = failure_counts(ds)
+        counts = failure_counts(load_result(path))
         if counts:
             rows.append({"file": str(path), **counts})
     return pd.DataFrame(rows).convert_dtypes()
@@ -427,35 +426,35 @@ def _studies(studies: Sequence[str]) -> tuple[float | None, list[dict]]:
     optimum-search studies."""
     ladder_error, tables = None, []
     for path in studies:
-        with xr.open_dataset(path) as ds:
-            if "max_error_impact_kmh" in ds.attrs:
-                ladder_error = float(ds.attrs["max_error_impact_kmh"])
-            elif "outcome" in ds:
-                names = ds["outcome"].attrs["flag_meanings"].split()
-                counts = pd.DataFrame(
-                    [
-                        [int((row == i).sum()) for i in range(len(names))]
-                        for row in ds["outcome"].values
-                    ],
-                    index=[str(c) for c in ds["case"].values],
-                    columns=names,
-                )
-                tables.append(
-                    {
-                        "title": "Stability: outcomes of the isolated contact over k = "
-                        f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
-                        "html": _table(counts),
-                    }
-                )
-            else:
-                tables.append(
-                    {
-                        "title": "The optimum of Figs. 5-6: nested grids (coarse grid, fine "
-                        "grid, parabola) and searches (bracket, compass search) against a "
-                        "finer reference grid",
-                        "html": _table(ds.to_dataframe().round(4)),
-                    }
-                )
+        ds = load_result(path)
+        if "max_error_impact_kmh" in ds.attrs:
+            ladder_error = float(ds.attrs["max_error_impact_kmh"])
+        elif "outcome" in ds:
+            names = ds["outcome"].attrs["flag_meanings"].split()
+            counts = pd.DataFrame(
+                [
+                    [int((row == i).sum()) for i in range(len(names))]
+                    for row in ds["outcome"].values
+                ],
+                index=[str(c) for c in ds["case"].values],
+                columns=names,
+            )
+            tables.append(
+                {
+                    "title": "Stability: outcomes of the isolated contact over k = "
+                    f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
+                    "html": _table(counts),
+                }
+            )
+        else:
+            tables.append(
+                {
+                    "title": "The optimum of Figs. 5-6: nested grids (coarse grid, fine "
+                    "grid, parabola) and searches (bracket, compass search) against a "
+                    "finer reference grid",
+                    "html": _table(ds.to_dataframe().round(4)),
+                }
+            )
     return ladder_error, tables
 
 

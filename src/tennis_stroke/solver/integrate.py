@@ -10,8 +10,9 @@ Two methods, both explicit, adaptive, with local extrapolation and scipy's error
 The tableaux are data (scipy's ``RK45``/``DOP853`` coefficients), turned into
 straight-line kernels by ``tools/generate_kernels.py`` (:mod:`tennis_stroke.solver._kernels`).
 This module holds the dispatch to those kernels, the step-size controller and event
-location.  The method is a compile-time constant: every compiled function that takes it
-calls ``literally(method)``, so an entry point is compiled (and cached) once per method,
+location.  The method is a compile-time constant: the compiled functions that take it
+call ``literally(method)`` (or are inlined into one that does), so an entry point is
+compiled (and cached) once per method,
 and the overloads :func:`method_step`, :func:`method_dense` and :func:`method_dense_eval`
 pick that method's kernels while compiling: a run of DOP853 never compiles DP54.  The
 phase (swing or contact) is a run-time flag of one kernel per method.  Not closures:
@@ -34,6 +35,7 @@ phase: the caller ends a phase at every switch and starts a new one.
 
 from __future__ import annotations
 
+import functools
 import inspect
 import math
 
@@ -192,12 +194,15 @@ def _dense_eval_impl(dense_eval):
 def _overload_kernel(stub, column, make_impl):
     """Compile ``stub`` as a call of the kernel in ``column`` of the method's row of
     :data:`_kernels.KERNELS_BY_ID`, inlined into the caller (no function of its own
-    between the driver and the kernels).  A run-time ``method`` gets None: numba then
-    retries with its literal value (``literally``)."""
+    between the driver and the kernels).  ``method`` must be a literal: a caller that
+    takes it as an argument calls ``literally(method)`` first (or is inlined into one
+    that does)."""
 
     def typer(method, *args):
         if not isinstance(method, types.IntegerLiteral):
-            return None
+            return None  # numba tries the literal type next, if the caller has one
+        if not 0 <= method.literal_value < len(_kernels.KERNELS_BY_ID):
+            raise numba.core.errors.TypingError(f"no method with id {method.literal_value}")
         return make_impl(_kernels.KERNELS_BY_ID[method.literal_value][column])
 
     typer.__signature__ = inspect.signature(stub)  # numba matches it with the impl's
@@ -212,10 +217,11 @@ _overload_kernel(method_dense_eval, 2, _dense_eval_impl)
 def specialised(dispatcher, method, *args):
     """The machine code of the compiled ``dispatcher`` for the literal ``method`` and the
     types of ``args`` (the arguments after ``method``), loaded or compiled the first
-    time, to call from Python as ``(method, *args)``.  Calling the dispatcher itself
-    works too, but goes through numba's literal dispatch every time: about 6 ms a call
-    (measured 2026-12-02), where this costs microseconds."""
-    return dispatcher.compile((types.literal(method), *(numba.typeof(a) for a in args)))
+    time, to call from Python with arguments of those types (``method`` bound).  Calling
+    the dispatcher itself works too, but goes through numba's literal dispatch every
+    time: about 6 ms a call (measured 2026-12-02), where this costs microseconds."""
+    entry = dispatcher.compile((types.literal(method), *(numba.typeof(a) for a in args)))
+    return functools.partial(entry, method)
 
 
 @njit(**JIT)
@@ -308,10 +314,10 @@ def integrate_phase(
     Parameters
     ----------
     method : int
-        ``METHOD_DP54`` or ``METHOD_DOP853``.
+        ``METHOD_DP54`` or ``METHOD_DOP853``, a compile-time literal (``literally``).
     contact : bool
-        Phase kind: free swing (8 integrated components, event ``phi = 0``) or contact
-        (10 components, event separation).
+        Phase kind: free swing (8 components in the error norm, the ball's state carried
+        over; event ``phi = 0``) or contact (10 components, event separation).
     t : float
         Start time (s).
     y, f : tuple of 10 float

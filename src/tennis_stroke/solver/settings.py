@@ -9,7 +9,7 @@ import numpy as np
 
 from ..model.params import ParameterError
 
-#: Method ids (runtime integers of the compiled code) and orders of the solution.
+#: Method ids (compile-time literals of the compiled code) and orders of the solution.
 METHOD_DP54, METHOD_DOP853 = 0, 1
 METHOD_IDS = {"DP54": METHOD_DP54, "DOP853": METHOD_DOP853}
 ORDERS = {"DP54": 5, "DOP853": 8}

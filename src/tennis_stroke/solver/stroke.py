@@ -116,7 +116,7 @@ from .settings import (
 @njit(**JIT)
 def run_phases(method, contact, t, y, t_stop, h, h_max, cf, event_on, st, stats, history):
     """Integrate one phase kind through the torque switches until an event or ``t_stop``."""
-    method = literally(method)  # compiled per method (integrate.rk_step)
+    method = literally(method)  # compiled per method (solver/integrate.py)
     while True:
         t_seg = next_switch(t, cf, t_stop)
         c2 = wrist_torque(t, t_seg, cf)
@@ -199,7 +199,7 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
 @njit(**JIT)
 def solve_stroke(method, cf_row, st, out, history, stats):
     """Simulate one stroke (coefficient row ``cf_row``); write the ``O_*`` columns of ``out``."""
-    method = literally(method)  # compiled per method (integrate.rk_step)
+    method = literally(method)  # compiled per method (solver/integrate.py)
     cf = coefficient_tuple(cf_row)
     out[:] = np.nan
     stats[:] = 0.0
@@ -238,7 +238,7 @@ def solve_stroke(method, cf_row, st, out, history, stats):
 def solve_rows(method, cf_rows, st, out, start, stop, history_capacity):
     """Solve the strokes ``start:stop`` of ``cf_rows`` into the same rows of ``out``
     (releases the GIL: threads run such ranges side by side)."""
-    method = literally(method)  # compiled per method (integrate.rk_step)
+    method = literally(method)  # compiled per method (solver/integrate.py)
     history = np.zeros((history_capacity + 1, HISTORY_COLS))
     stats = np.zeros(N_STATS)
     for i in range(start, stop):
@@ -267,9 +267,9 @@ def _solve_block(method, cf_rows, st, out, history, n_threads, pool):
     solve = specialised(solve_rows, method, cf_rows, st, out, 0, n, history)
     if pool is None:
         for a, b in bounds:
-            solve(method, cf_rows, st, out, a, b, history)
+            solve(cf_rows, st, out, a, b, history)
         return
-    jobs = [pool.submit(solve, method, cf_rows, st, out, a, b, history) for a, b in bounds]
+    jobs = [pool.submit(solve, cf_rows, st, out, a, b, history) for a, b in bounds]
     for job in jobs:
         job.result()
 
@@ -406,5 +406,5 @@ def solve_contact(
     args = (True, 0.0, y, t_end, min(settings.first_step, h_max), h_max, cf, True, st)
     args += (np.zeros(N_STATS), np.zeros((1, HISTORY_COLS)))
     method = METHOD_IDS[settings.method]
-    status, t, y, _ = specialised(run_phases, method, *args)(method, *args)
+    status, t, y, _ = specialised(run_phases, method, *args)(*args)
     return status == PHASE_EVENT, t, to_angles(y)
