@@ -20,6 +20,7 @@ from pathlib import Path
 import pandas as pd
 
 from tennis_stroke.io.compare import result_differences
+from tennis_stroke.io.errors import ResultError
 
 
 def compare(old: Path, new: Path, also_differ: list[str]) -> int:
@@ -36,7 +37,10 @@ def compare(old: Path, new: Path, also_differ: list[str]) -> int:
             bad += 1
             continue
         if name.endswith(".nc"):
-            problems = result_differences(a, b, also_differ)
+            try:
+                problems = result_differences(a, b, also_differ)
+            except ResultError as exc:  # a damaged file differs from anything
+                problems = [str(exc)]
         elif name.endswith(".csv"):
             same = pd.read_csv(a, keep_default_na=False).equals(
                 pd.read_csv(b, keep_default_na=False)
