@@ -17,6 +17,7 @@ def _names(paths):
 def test_the_compiled_modules_are_those_importing_numba():
     assert set(compiled_modules()) == {
         "model.dynamics",
+        "model.impact",
         "solver._kernels",
         "solver.integrate",
         "solver.stroke",

@@ -6,8 +6,9 @@ Public API
     One stroke or many (compiled path, parallel).
 :class:`SolverSettings`
     Method and tolerances of the compiled solver.
-:func:`resolve_params`, :data:`PARAMETERS`, :data:`READINGS`
-    Model parameters with units, and the readings of the paper's ambiguities.
+:func:`resolve_params`, :data:`PARAMETERS`, :data:`READINGS`, :data:`MODEL_OPTIONS`
+    Model parameters with units, the readings of the paper's ambiguities, and the model
+    options (the rungs of the model ladder: ``contact_model``).
 :mod:`tennis_stroke.solver.reference`
     The independent scipy ``solve_ivp`` path on the same equations.
 """
@@ -23,6 +24,7 @@ configure_numba_cache()
 #: a job that only reads result files (a figure, the claims, the report) does not load
 #: numba and the compiled solver.
 _API = {
+    "MODEL_OPTIONS": ".model.params",
     "PARAMETERS": ".model.params",
     "READINGS": ".model.params",
     "ParameterError": ".model.params",
@@ -47,6 +49,7 @@ def __dir__() -> list[str]:
 
 
 __all__ = [
+    "MODEL_OPTIONS",
     "PARAMETERS",
     "READINGS",
     "STATUS_NAMES",

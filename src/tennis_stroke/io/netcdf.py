@@ -26,7 +26,7 @@ import numpy as np
 import xarray as xr
 
 from .._version import __version__
-from ..model.params import PARAMETERS, READINGS, scalar_params
+from ..model.params import MODEL_OPTIONS, PARAMETERS, READINGS, scalar_params
 from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
 from .errors import OutputError, ResultError
@@ -42,7 +42,7 @@ RUN_ATTRS = (
     "wall_time_s",
     "chunk_wall_times_s",
     "us_per_stroke_spring",
-    "us_per_stroke_impact_python",
+    "us_per_stroke_impact",
 )
 
 
@@ -97,6 +97,8 @@ def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[s
     for name, value in scalar_params(params).items():
         if name in READINGS:
             attrs[f"reading_{name}"] = str(value)
+        elif name in MODEL_OPTIONS:
+            attrs[f"option_{name}"] = str(value)
         else:
             attrs[f"param_{name}"] = float(value)
             attrs[f"param_{name}_units"] = PARAMETERS[name].unit

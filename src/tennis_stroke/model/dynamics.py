@@ -82,8 +82,18 @@ A_THETA, A_PHI, A_OMEGA1, A_OMEGA2, A_BALL_S, A_BALL_W = range(6)
     CF_THETA0,
     CF_PHI0,
     CF_FORCE_ON,
-) = range(33)
-N_CF = 33
+    CF_CONTACT_MODEL,
+    CF_DAMP,
+) = range(35)
+N_CF = 35
+
+#: The rungs of the model ladder (``contact_model``, :data:`tennis_stroke.model.params.
+#: MODEL_OPTIONS`) by their id in ``cf[CF_CONTACT_MODEL]``: the paper's spring contact
+#: (with the damping of a ball that loses energy when ``restitution < 1``), the
+#: instantaneous impact at ``phi = 0`` and the two swing-only criteria
+#: (:mod:`tennis_stroke.model.impact`).
+CONTACT_MODEL_IDS = {"spring": 0, "impact": 1, "swing_speed": 2, "swing_omega2": 3}
+SPRING = 0
 
 _COUPLING_FACTOR = {"newton": 1.0, "paper_eq8": 2.0}
 #: m/s -> km/h (the paper quotes rebound speeds in km/h).
@@ -155,11 +165,32 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
         CF_THETA0: th0,
         CF_PHI0: ph0,
         CF_FORCE_ON: (g["F0"] != 0.0).astype(float),
+        CF_CONTACT_MODEL: float(CONTACT_MODEL_IDS[params["contact_model"]]),
+        CF_DAMP: contact_damping(g["restitution"], g["ball_mass"], g["M2"], g["k_contact"]),
     }
     out = np.empty((*shape, N_CF))
     for col, val in cols.items():
         out[..., col] = val
     return out.reshape(-1, N_CF)
+
+
+def damping_ratio(restitution):
+    """Damping ratio ``zeta`` of a linear spring-dashpot whose two free bodies part with
+    the coefficient of restitution ``restitution`` (separation at zero compression):
+    ``e = exp(-pi zeta / sqrt(1 - zeta^2))``, so ``zeta = -ln e / sqrt(pi^2 + ln^2 e)``
+    (0 for ``e = 1``)."""
+    log_e = np.log(np.asarray(restitution, dtype=float))
+    return -log_e / np.sqrt(np.pi**2 + log_e**2)
+
+
+def contact_damping(restitution, ball_mass, racket_mass, k_contact):
+    """Dashpot constant ``c = 2 zeta sqrt(k mu)`` (N s/m) of the contact (Eq. 12's
+    two-body oscillator of the ball and a free racket: ``mu = m_b M2/(m_b + M2)``) that
+    gives the coefficient of restitution ``restitution`` (:func:`damping_ratio`); exactly
+    0 for an elastic ball (``restitution = 1``)."""
+    mb, m2 = np.asarray(ball_mass, dtype=float), np.asarray(racket_mass, dtype=float)
+    mu = mb * m2 / (mb + m2)
+    return 2.0 * damping_ratio(restitution) * np.sqrt(np.asarray(k_contact, dtype=float) * mu)
 
 
 @njit(**JIT_INNER)
@@ -270,7 +301,10 @@ def rhs_trig(t, y, cf, c2, contact):
     (h2+h_H) cos(phi)``.  Solving gives Eq. 6 with ``S_1, S_2`` equal to half of Eq. 8
     as printed (``docs/equations.md``; ``collision_coupling="paper_eq8"`` doubles
     ``F_r``).  The spring force on the ball is ``-k (x_b - x_H)`` (Eqs. 9-11); the ball
-    also feels the fictitious force ``-m_b a_E`` of the elbow frame.
+    also feels the fictitious force ``-m_b a_E`` of the elbow frame.  A ball that loses
+    energy (``restitution < 1``) adds the dashpot force ``-c d(x_b - x_H)/dt``
+    (:func:`contact_damping`; ``c = 0`` for the paper's elastic ball, and the term is
+    then skipped, so the paper's model is computed exactly as before).
 
     The elbow acceleration is written out here rather than calling
     :func:`elbow_acceleration`: a numba call costs as much as this whole function
@@ -292,6 +326,8 @@ def rhs_trig(t, y, cf, c2, contact):
     dw = 0.0
     if contact:
         force_on_ball = -cf[CF_K] * (s - (cf[CF_L1] * st + cf[CF_LH] * sp))
+        if cf[CF_DAMP] != 0.0:  # a ball that loses energy: the dashpot of ``restitution``
+            force_on_ball -= cf[CF_DAMP] * (w + cf[CF_L1] * w1 * ct + cf[CF_LH] * w2 * cp)
         force_on_racket = -force_on_ball * cf[CF_COUPLING]
         p -= force_on_racket * cf[CF_L1] * ct
         q -= force_on_racket * cf[CF_LH] * cp
@@ -478,6 +514,32 @@ def mechanical_energy(t, y, cf, contact):
 
 
 @njit(**JIT)
+def compression_rate_angles(y, cf):
+    """``d(x_b - x_H)/dt`` (m/s) in the angle layout (contact state)."""
+    th, ph = y[A_THETA], y[A_PHI]
+    return (
+        y[A_BALL_W]
+        + cf[CF_L1] * y[A_OMEGA1] * math.cos(th)
+        + cf[CF_LH] * y[A_OMEGA2] * (math.cos(ph))
+    )
+
+
+@njit(**JIT)
+def contact_force_angles(y, cf):
+    """Force of the ball on the racket along +x (N), angle layout: the spring's
+    ``k (x_b - x_H)`` plus the dashpot's ``c d(x_b - x_H)/dt`` (Newton's third law)."""
+    return cf[CF_K] * compression_angles(y, cf) + cf[CF_DAMP] * compression_rate_angles(y, cf)
+
+
+@njit(**JIT)
+def dissipated_power(y, cf):
+    """Power the dashpot of a lossy ball takes out of the contact (W), angle layout:
+    ``c (d(x_b - x_H)/dt)^2`` (0 for the elastic ball)."""
+    rate = compression_rate_angles(y, cf)
+    return cf[CF_DAMP] * rate * rate
+
+
+@njit(**JIT)
 def input_power(t, y, cf, c2, contact):
     """Power delivered by the joint torques and by the elbow drive (W), angle layout.
 
@@ -502,5 +564,5 @@ def input_power(t, y, cf, c2, contact):
     fex = cf[CF_M1] * a1x + cf[CF_M2] * a2x
     fey = cf[CF_M1] * a1y + cf[CF_M2] * a2y
     if contact:
-        fex -= cf[CF_K] * compression_angles(y, cf) * cf[CF_COUPLING]
+        fex -= contact_force_angles(y, cf) * cf[CF_COUPLING]
     return cf[CF_C1] * w1 + c2 * (w2 - w1) + fex * vex + fey * vey

@@ -1,40 +1,113 @@
-"""The cheapest rung of the model ladder: an instantaneous elastic impact.
+"""The cheap rungs of the model ladder: the ball meets the racket at ``phi = 0`` (the
+paper's ``t0``) in no time, so only the swing is integrated.
 
-Instead of the spring contact (Eqs. 9-12), the ball meets the racket at ``phi = 0`` (the
-paper's ``t0``) in a perfectly elastic collision with the racket's effective mass at the
-hitting point (:func:`~tennis_stroke.model.dynamics.effective_mass`, from the inertia
-matrix), which moves with the hitting point's velocity along x.  Only the swing is
-needed.
+* ``impact``: an instantaneous collision with the racket's effective mass at the hitting
+  point (:func:`~tennis_stroke.model.dynamics.effective_mass`, from the inertia matrix),
+  which moves with the hitting point's velocity along x; the relative velocity reverses
+  with the coefficient of restitution ``e`` the spring contact's dashpot gives at that
+  mass (:func:`impact_restitution`; 1 for the elastic ball), so that the impact is the
+  spring contact's limit of a stiff spring; the impulse changes the rods' angular
+  velocities (so the follow-through goes on from them).
+* ``swing_speed``: no ball at all; the swing is scored by the speed of the hitting point
+  at ``phi = 0``, written as the speed of a ball that rebounds elastically from a racket
+  too heavy to slow down: ``v_out = 2 |v_H| + v_ball`` (the ``m -> infinity`` limit of
+  the impact).
+* ``swing_omega2``: no ball; the swing is scored by the racket's angular velocity
+  ``omega2`` at ``phi = 0`` (Cross's criterion, the paper's ref. [9]), written as the same
+  rebound from a heavy racket turning about a fixed wrist: ``v_out = 2 (h2 + h_H)
+  omega2 + v_ball``.
+
+The two swing rungs give speeds only to share the claims' measurements: any increasing
+function of their criterion has the same optima, thresholds and trends.  Conventions as
+in :mod:`tennis_stroke.model.dynamics`.
 """
 
 from __future__ import annotations
 
 import math
 
-from .dynamics import CF_L1, CF_LH, CF_MB, CF_VBALL, MS_TO_KMH, effective_mass, elbow_velocity
+from numba import njit
+
+from .dynamics import (
+    CF_CONTACT_MODEL,
+    CF_DAMP,
+    CF_K,
+    CF_L1,
+    CF_LH,
+    CF_M11,
+    CF_M12,
+    CF_M22,
+    CF_MB,
+    CF_VBALL,
+    COS_PH,
+    COS_TH,
+    JIT,
+    MS_TO_KMH,
+    OMEGA1,
+    OMEGA2,
+    SIN_PH,
+    SIN_TH,
+    effective_mass,
+    elbow_velocity,
+)
+
+IMPACT, SWING_SPEED, SWING_OMEGA2 = 1, 2, 3
 
 
-def impact_rebound_kmh(theta_rad: float, omega1: float, omega2: float, t0: float, cf) -> float:
-    """Rebound speed towards ``-x`` (km/h) of the elastic impact at ``phi = 0``.
+@njit(**JIT)
+def impact_restitution(mu, cf):
+    """Coefficient of restitution of the contact's dashpot (``c = cf[CF_DAMP]``, spring
+    ``k``) between the ball and a body of reduced mass ``mu`` (kg): ``exp(-pi zeta /
+    sqrt(1 - zeta^2))`` with ``zeta = c / (2 sqrt(k mu))``, 0 if overdamped (the ball does
+    not come back off the strings), exactly 1 without a dashpot.  The restitution a user
+    sets (``restitution``) is this at Eq. 12's reduced mass of the ball and a free racket
+    (:func:`tennis_stroke.model.dynamics.contact_damping`); at the racket's effective mass it
+    differs (the ball's losses do not depend on the racket, its restitution does)."""
+    zeta = cf[CF_DAMP] / (2.0 * math.sqrt(cf[CF_K] * mu))
+    if zeta >= 1.0:
+        return 0.0
+    return math.exp(-math.pi * zeta / math.sqrt(1.0 - zeta * zeta))
 
-    Parameters
-    ----------
-    theta_rad : float
-        Rod-1 angle at ``phi = 0`` (rad).
-    omega1, omega2 : float
-        Angular velocities there (rad/s, clockwise positive).
-    t0 : float
-        Time of ``phi = 0`` (s).
-    cf : ndarray
-        Stroke coefficients.
+
+@njit(**JIT)
+def instant_contact(t, y, cf):
+    """The cheap rungs' collision at ``t`` (s) in the state ``y`` (trig layout, at
+    ``phi = 0``): ``(v_out_kmh, omega1, omega2)``, the ball's speed towards ``-x`` (km/h)
+    and the rods' angular velocities (rad/s) after it.
 
     Notes
     -----
-    With the effective mass ``m``, the hitting point's velocity ``v_H`` and the ball's
-    ``v_b`` (both along x), the ball leaves with ``((m_b - m) v_b + 2 m v_H) / (m_b + m)``.
+    With the hitting point's Jacobian ``j = (L1 cos(theta), (h2+h_H) cos(phi))`` (its
+    velocity along x is ``V_x^E - j . omega``), the effective mass ``m = 1/(j M^-1 j^T)``,
+    ``mu = m_b m/(m_b + m)`` and the closing speed ``u = v_b - v_H``, the ball takes the
+    impulse ``J = -(1 + e) mu u`` and the racket ``-J`` at the hitting point, which
+    changes the angular velocities by ``M^-1 j^T J`` (``M``: the rods' inertia matrix of
+    Eq. 6).  The relative velocity after is ``-e u``; momentum along x at the hitting
+    point is kept.
     """
-    st, ct = math.sin(theta_rad), math.cos(theta_rad)
-    m = effective_mass(st, ct, 0.0, 1.0, cf)
-    v_hit = elbow_velocity(t0, cf)[0] - cf[CF_L1] * omega1 * ct - cf[CF_LH] * omega2
+    model = cf[CF_CONTACT_MODEL]
+    st, ct, sp, cp = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH]
+    w1, w2 = y[OMEGA1], y[OMEGA2]
+    v_ball = cf[CF_VBALL]
+    if model == SWING_OMEGA2:
+        return MS_TO_KMH * (2.0 * cf[CF_LH] * w2 + v_ball), w1, w2
+    j1, j2 = cf[CF_L1] * ct, cf[CF_LH] * cp
+    v_hit = elbow_velocity(t, cf)[0] - j1 * w1 - j2 * w2
+    if model == SWING_SPEED:
+        return MS_TO_KMH * (v_ball - 2.0 * v_hit), w1, w2
+    m = effective_mass(st, ct, sp, cp, cf)
     mb = cf[CF_MB]
-    return -MS_TO_KMH * ((mb - m) * cf[CF_VBALL] + 2.0 * m * v_hit) / (mb + m)
+    mu = mb * m / (mb + m)
+    impulse = -(1.0 + impact_restitution(mu, cf)) * mu * (v_ball - v_hit)  # on the ball, x
+    # M dw = j J (the racket's impulse -J acts against the hitting point's -j . omega)
+    mc = cf[CF_M12] * (cp * ct + sp * st)
+    m11, m22 = cf[CF_M11], cf[CF_M22]
+    det = m11 * m22 - mc * mc
+    dw1 = (m22 * j1 - mc * j2) * impulse / det
+    dw2 = (m11 * j2 - mc * j1) * impulse / det
+    return -MS_TO_KMH * (v_ball + impulse / mb), w1 + dw1, w2 + dw2
+
+
+def is_instant(contact_model: str) -> bool:
+    """Whether the rung ``contact_model`` meets the ball in no time (no contact phase)."""
+    return contact_model != "spring"

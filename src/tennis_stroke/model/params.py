@@ -84,6 +84,16 @@ PARAMETERS: dict[str, ParamSpec] = {
         _p("ball_speed", 5.0, "m/s", "incoming ball speed along +x", 0, 100),
         _p("k_contact", 7800.0, "N/m", "ball-racket spring constant (fitted)", 0, 1e12, True),
         _p(
+            "restitution",
+            1.0,
+            "1",
+            "coefficient of restitution of the ball on the strings of a free racket of mass "
+            "M2 (1: the paper's elastic ball; below 1: a dashpot in the contact)",
+            0,
+            1,
+            True,
+        ),
+        _p(
             "contact_lead",
             None,
             "s",
@@ -155,6 +165,28 @@ READINGS: dict[str, Reading] = {
 }
 
 
+#: Model options that are not ambiguities of the paper: the rungs of the model ladder
+#: (:mod:`tennis_stroke.model.impact`; ``docs/solver.md``, "The model ladder").  Set
+#: like a reading (``--set contact_model=impact``, ``{"contact_model": "impact"}``); the
+#: default is the paper's model.
+MODEL_OPTIONS: dict[str, Reading] = {
+    r.name: r
+    for r in [
+        Reading(
+            "contact_model",
+            ("spring", "impact", "swing_speed", "swing_omega2"),
+            "spring",
+            "spring",
+            "how the ball meets the racket: the spring contact (Sec. II), an instantaneous "
+            "impact at phi = 0 with the racket's effective mass, or no ball, the swing "
+            "scored by the hitting point's speed or by omega2 at phi = 0",
+        ),
+    ]
+}
+#: Every named choice :func:`resolve_params` accepts: the readings and the model options.
+CHOICES: dict[str, Reading] = {**READINGS, **MODEL_OPTIONS}
+
+
 def _as_float_array(name: str, value: object) -> np.ndarray:
     try:
         arr = np.asarray(value, dtype=float)
@@ -167,15 +199,14 @@ def _as_float_array(name: str, value: object) -> np.ndarray:
 
 def _check_bounds(spec: ParamSpec, arr: np.ndarray) -> None:
     lo, hi = spec.lower, spec.upper
+    unit = "" if spec.unit == "1" else f" {spec.unit}"  # a dimensionless bound reads bare
     if lo is not None and (np.any(arr <= lo) if spec.strict else np.any(arr < lo)):
         rel = ">" if spec.strict else ">="
         raise ParameterError(
-            f"parameter {spec.name!r} must be {rel} {lo:g} {spec.unit}, got {_show(arr)}"
+            f"parameter {spec.name!r} must be {rel} {lo:g}{unit}, got {_show(arr)}"
         )
     if hi is not None and np.any(arr > hi):
-        raise ParameterError(
-            f"parameter {spec.name!r} must be <= {hi:g} {spec.unit}, got {_show(arr)}"
-        )
+        raise ParameterError(f"parameter {spec.name!r} must be <= {hi:g}{unit}, got {_show(arr)}")
 
 
 def _show(arr: np.ndarray) -> str:
@@ -184,7 +215,7 @@ def _show(arr: np.ndarray) -> str:
 
 def parse_value(name: str, text: str) -> float | str:
     """Parse a ``--set KEY=VALUE`` value: a float for parameters, a choice for readings."""
-    if name in READINGS:
+    if name in CHOICES:
         return text
     if name not in PARAMETERS:
         raise ParameterError(f"unknown parameter {name!r} (known: {', '.join(known_names())})")
@@ -197,7 +228,7 @@ def parse_value(name: str, text: str) -> float | str:
 
 def known_names() -> list[str]:
     """All names accepted by :func:`resolve_params`."""
-    return [*PARAMETERS, *READINGS]
+    return [*PARAMETERS, *CHOICES]
 
 
 def two_body_period(ball_mass, racket_mass, k_contact):
@@ -226,25 +257,32 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
     -------
     dict
         Every parameter of :data:`PARAMETERS` (float or ndarray, SI units) and every
-        reading of :data:`READINGS` (str).  Derived values: ``I1_cm = f M1 L1^2`` and
-        ``I2_cm = f M2 L2^2`` with ``f = 1/12`` (``uniform_rod``) or ``1/2``
+        reading and model option of :data:`CHOICES` (str).  Derived values: ``I1_cm =
+        f M1 L1^2`` and ``I2_cm = f M2 L2^2`` with ``f = 1/12`` (``uniform_rod``) or ``1/2``
         (``paper_text``); ``contact_lead`` = the fraction of ``T`` (Eq. 12) set by
         ``contact_lead_rule``.
 
     Raises
     ------
     ParameterError
-        Unknown name, non-numeric, non-finite or out-of-bounds value, unknown choice.
+        Unknown name, non-numeric, non-finite or out-of-bounds value, unknown choice, a
+        cheap rung of the model ladder with the ``paper_eq8`` coupling.
     """
     overrides = dict(overrides or {})
     out: dict[str, object] = {}
-    for name, reading in READINGS.items():
+    for name, reading in CHOICES.items():
         choice = overrides.pop(name, reading.default)
         if choice not in reading.choices:
+            kind = "reading" if name in READINGS else "model option"
             raise ParameterError(
-                f"reading {name!r} must be one of {', '.join(reading.choices)}, got {choice!r}"
+                f"{kind} {name!r} must be one of {', '.join(reading.choices)}, got {choice!r}"
             )
         out[name] = choice
+    if out["contact_model"] != "spring" and out["collision_coupling"] != "newton":
+        raise ParameterError(
+            f"contact_model {out['contact_model']!r} keeps momentum at the impact: it needs "
+            "collision_coupling 'newton'"
+        )
     unknown = [k for k in overrides if k not in PARAMETERS]
     if unknown:
         raise ParameterError(

@@ -16,7 +16,7 @@ ERROR_ORDER_BY_ID = (4, 7)
 @njit(**JIT_FAST)
 def coefficient_tuple(row):
     """A row of stroke coefficients as a tuple (passed by value, no reference count)."""
-    return (row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7], row[8], row[9], row[10], row[11], row[12], row[13], row[14], row[15], row[16], row[17], row[18], row[19], row[20], row[21], row[22], row[23], row[24], row[25], row[26], row[27], row[28], row[29], row[30], row[31], row[32])
+    return (row[0], row[1], row[2], row[3], row[4], row[5], row[6], row[7], row[8], row[9], row[10], row[11], row[12], row[13], row[14], row[15], row[16], row[17], row[18], row[19], row[20], row[21], row[22], row[23], row[24], row[25], row[26], row[27], row[28], row[29], row[30], row[31], row[32], row[33], row[34])
 
 
 @njit(**JIT_FAST_INNER)

@@ -25,6 +25,7 @@ from ..model.dynamics import (
     A_OMEGA2,
     A_PHI,
     A_THETA,
+    CF_CONTACT_MODEL,
     CF_LEAD,
     CF_PHI0,
     CF_THETA0,
@@ -36,8 +37,10 @@ from ..model.dynamics import (
     incoming_ball,
     next_switch,
     rebound_speed_kmh,
+    to_trig,
     wrist_torque,
 )
+from ..model.impact import instant_contact
 from ..model.params import resolve_params
 from .compiled import ensure_compiled
 from .results import (
@@ -210,7 +213,8 @@ def solve_stroke(
     res.update(
         t_phi0=t0, theta_deg_at_phi0=y[A_THETA], omega1_phi0=y[A_OMEGA1], omega2_phi0=y[A_OMEGA2]
     )
-    t_c = t0 - cf[CF_LEAD]
+    instant = cf[CF_CONTACT_MODEL] != 0.0  # a cheap rung of the model ladder: no contact phase
+    t_c = t0 if instant else t0 - cf[CF_LEAD]
     if t_c < 0.0:
         return finish(EARLY_CONTACT)
     seg = next(s for s in swing if s.t0 <= t_c <= s.t1)
@@ -232,6 +236,13 @@ def solve_stroke(
     s_ball, w = incoming_ball(t_c, st, sp, cf)
     if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
         return finish(NO_APPROACH)
+    if instant:
+        res["v_out_kmh"], w1, w2 = instant_contact(t_c, to_trig(yc), cf)
+        res["t_separation"] = t_c
+        y_after = np.array([yc[A_THETA], yc[A_PHI], w1, w2])
+        if not _follow(t_c, y_after, follow_through, cf, method, rtol, atol, res, ref):
+            return finish(STEP_FAILURE)
+        return finish(OK)
     max_step = contact_duration(st, ct, sp, cp, cf) / contact_min_steps
 
     def separation(t, y):
@@ -249,21 +260,17 @@ def solve_stroke(
         return finish(NO_RELEASE)
     res["t_separation"] = t_sep
     res["v_out_kmh"] = rebound_speed_kmh(t_sep, y[A_BALL_W], cf)
-    if follow_through > 0.0:
-        _, _, _, nfev, ok = _run(
-            t_sep,
-            y[:4],
-            t_sep + follow_through,
-            cf,
-            False,
-            None,
-            method,
-            rtol,
-            atol,
-            np.inf,
-            ref.segments,
-        )
-        res["rhs_evals"] += nfev
-        if not ok:
-            return finish(STEP_FAILURE)
+    if not _follow(t_sep, y[:4], follow_through, cf, method, rtol, atol, res, ref):
+        return finish(STEP_FAILURE)
     return finish(OK)
+
+
+def _follow(t, y, duration, cf, method, rtol, atol, res, ref) -> bool:
+    """The free swing for ``duration`` (s) after the ball has left; False on a failure."""
+    if duration <= 0.0:
+        return True
+    _, _, _, nfev, ok = _run(
+        t, y, t + duration, cf, False, None, method, rtol, atol, np.inf, ref.segments
+    )
+    res["rhs_evals"] += nfev
+    return ok

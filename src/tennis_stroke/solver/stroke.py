@@ -10,6 +10,10 @@ A stroke follows the paper's procedure (Sec. II):
    the hitting point (zero compression) with velocity ``+ball_speed``.
 3. *Contact*: integrate pendulum and ball with the spring until the compression falls
    through 0 (separation event).  ``v_out`` is the ball's speed towards ``-x`` then.
+   The cheap rungs of the model ladder (``contact_model`` other than ``spring``) skip
+   steps 2-3: the ball meets the racket at ``t0`` in no time
+   (:func:`tennis_stroke.model.impact.instant_contact`), so the contact start and the
+   separation are both ``t0``.
 4. *Follow-through* (optional): the free swing continues for ``follow_through`` seconds so
    that ``omega2_max`` covers the whole stroke.
 
@@ -28,7 +32,9 @@ import numpy as np
 from numba import literally, njit
 
 from ..model.dynamics import (
+    BALL_S,
     BALL_W,
+    CF_CONTACT_MODEL,
     CF_LEAD,
     CF_PHI0,
     CF_THETA0,
@@ -41,6 +47,7 @@ from ..model.dynamics import (
     PHI,
     SIN_PH,
     SIN_TH,
+    SPRING,
     THETA,
     approach_rate,
     coefficients,
@@ -53,6 +60,7 @@ from ..model.dynamics import (
     to_trig,
     wrist_torque,
 )
+from ..model.impact import instant_contact
 from ..model.params import ParameterError, resolve_params
 from ._kernels import N_STAGES_BY_ID, coefficient_tuple
 from .compiled import ensure_compiled
@@ -161,8 +169,10 @@ def restart_at(method, t_c, row, cf, st, stats):
 
 
 @njit(inline="always", **JIT_INNER)
-def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
-    """Ball contact from ``t_c`` to separation, then the follow-through; returns a status."""
+def contact_start(t_c, y, cf, out):
+    """Record the swing's state at the contact start ``t_c`` and put the ball at the
+    hitting point: ``(approaches, s, w)``, whether the racket closes in on the ball and
+    the ball's state."""
     s_th, c_th, s_ph, c_ph = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH]
     w1, w2 = y[OMEGA1], y[OMEGA2]
     out[O_T_CONTACT] = t_c
@@ -170,9 +180,17 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
     out[O_W1_CONTACT] = w1
     out[O_W2_CONTACT] = w2
     s, w = incoming_ball(t_c, s_th, s_ph, cf)
-    if approach_rate(s_th, c_th, s_ph, c_ph, w1, w2, w, cf) <= 0.0:
+    return approach_rate(s_th, c_th, s_ph, c_ph, w1, w2, w, cf) > 0.0, s, w
+
+
+@njit(inline="always", **JIT_INNER)
+def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
+    """Ball contact from ``t_c`` to separation, then the follow-through; returns a status."""
+    approaches, s, w = contact_start(t_c, y, cf, out)
+    if not approaches:
         return NO_APPROACH
-    y = (s_th, c_th, s_ph, c_ph, w1, w2, y[THETA], y[PHI], s, w)
+    s_th, c_th, s_ph, c_ph = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH]
+    y = (s_th, c_th, s_ph, c_ph, y[OMEGA1], y[OMEGA2], y[THETA], y[PHI], s, w)
     h_max = contact_duration(s_th, c_th, s_ph, c_ph, cf) / st[S_CONTACT_STEPS]
     no_history = history[:1]
     h = min(h, h_max)
@@ -185,6 +203,12 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
         return NO_RELEASE
     out[O_T_SEP] = t
     out[O_VOUT] = rebound_speed_kmh(t, y[BALL_W], cf)
+    return follow_through(method, t, y, h, cf, st, out, stats, no_history)
+
+
+@njit(inline="always", **JIT_INNER)
+def follow_through(method, t, y, h, cf, st, out, stats, no_history):
+    """The free swing after the ball has left, for ``omega2_max``; returns a status."""
     if st[S_FOLLOW] > 0.0:
         t_stop = t + st[S_FOLLOW]
         status, t, y, h = run_phases(
@@ -194,6 +218,20 @@ def contact_phase(method, t_c, y, h, cf, st, out, stats, history):
             return STEP_FAILURE
     out[O_W2_MAX] = stats[ST_W2MAX]
     return OK
+
+
+@njit(inline="always", **JIT_INNER)
+def instant_phase(method, t, y, h, cf, st, out, stats, history):
+    """The cheap rungs' collision at ``phi = 0`` (time ``t``, state ``y``), then the
+    follow-through from the rods' new angular velocities; returns a status."""
+    if not contact_start(t, y, cf, out)[0]:
+        return NO_APPROACH
+    v_out, w1, w2 = instant_contact(t, y, cf)
+    out[O_T_SEP] = t
+    out[O_VOUT] = v_out
+    s_th, c_th, s_ph, c_ph = y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH]
+    y = (s_th, c_th, s_ph, c_ph, w1, w2, y[THETA], y[PHI], y[BALL_S], y[BALL_W])
+    return follow_through(method, t, y, h, cf, st, out, stats, history[:1])
 
 
 @njit(**JIT)
@@ -221,9 +259,13 @@ def solve_stroke(method, cf_row, st, out, history, stats):
         out[O_W1_PHI0] = y[OMEGA1]
         out[O_W2_PHI0] = y[OMEGA2]
         t_c = t - cf[CF_LEAD]
+        if cf[CF_CONTACT_MODEL] != SPRING:
+            t_c = t
         row = history_find(history, t_c)
         if t_c < 0.0:
             code = EARLY_CONTACT
+        elif cf[CF_CONTACT_MODEL] != SPRING:
+            code = instant_phase(method, t, y, h, cf, st, out, stats, history)
         elif row < 0:
             code = LEAD_TOO_LONG
         else:
@@ -243,6 +285,18 @@ def solve_rows(method, cf_rows, st, out, start, stop, history_capacity):
     stats = np.zeros(N_STATS)
     for i in range(start, stop):
         solve_stroke(method, cf_rows[i], st, out[i], history, stats)
+
+
+#: Right-hand-side evaluations of every stroke this process has run through
+#: :func:`solve_coefficients` (:func:`rhs_evaluations`).
+_EVALUATIONS = [0]
+
+
+def rhs_evaluations() -> int:
+    """Right-hand-side evaluations of the compiled solver in this process so far: the
+    cost of a computation that does not depend on the machine (the difference before and
+    after it)."""
+    return _EVALUATIONS[0]
 
 
 #: Ranges per thread: a thread that finishes early takes another range, so strokes of
@@ -311,6 +365,7 @@ def solve_coefficients(
             pool = stack.enter_context(ThreadPoolExecutor(n_threads))
         if not progress or n <= PROGRESS_BLOCK:
             _solve_block(method, cf_rows, st, out, settings.history, n_threads, pool)
+            _EVALUATIONS[0] += int(out[:, O_NFEV].sum())
             return out
         from tqdm import tqdm
 
@@ -319,6 +374,7 @@ def solve_coefficients(
             b = min(a + PROGRESS_BLOCK, n)
             _solve_block(method, cf_rows[a:b], st, out[a:b], settings.history, n_threads, pool)
             bar.update(b - a)
+    _EVALUATIONS[0] += int(out[:, O_NFEV].sum())
     return out
 
 
