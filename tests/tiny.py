@@ -59,6 +59,17 @@ TINY = {
         "table1_psi": [180.0, 275.0, 76.0],
         "table1_tau_F": -0.027,
     },
+    "model_ladder": {
+        "rungs": [
+            {"name": "swing_omega2", "contact_model": "swing_omega2"},
+            {"name": "impact", "contact_model": "impact"},
+            {"name": "spring", "contact_model": "spring"},
+            {"name": "lossy", "contact_model": "spring", "restitution": 0.8},
+            {"name": "dp54", "contact_model": "spring", "solver": {"method": "DP54"}},
+        ],
+        "reference": "spring",
+        "adoption_agreement": 0.1,
+    },
     "search": {
         "angle_step": 30.0,
         "tau_step": 0.1,

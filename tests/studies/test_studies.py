@@ -5,9 +5,10 @@ import numpy as np
 import pytest
 
 from tennis_stroke.solver.rk4 import fixed_step_stroke
-from tennis_stroke.solver.stroke import strike, strike_batch
+from tennis_stroke.solver.stroke import strike
+from tennis_stroke.studies.ladder import ladder
 from tennis_stroke.studies.methods import parse_method
-from tennis_stroke.studies.sampling import REFERENCE, sample_strokes
+from tennis_stroke.studies.sampling import sample_strokes
 from tennis_stroke.studies.stability import (
     OUTCOMES,
     check_case,
@@ -55,13 +56,12 @@ def test_fixed_step_rk4_converges_to_the_compiled_stroke():
 
 
 def test_impact_model_is_close_to_but_not_the_spring_contact():
-    s = sample_strokes(6, seed=5)
-    params = {k: s[k] for k in ("L1", "M2", "C2", "tau")}
-
-    full = strike_batch(s["theta0"], s["delta0"], params, REFERENCE)["v_out_kmh"]
-    impact = strike_batch(s["theta0"], s["delta0"], {**params, "contact_model": "impact"})
-    err = np.abs(impact["v_out_kmh"] - full)
-    assert 0.05 < err.max() < 5.0
+    """The random-stroke ladder: the impact rung, timed as the spring contact is."""
+    ds = ladder(sample_strokes(6, seed=5), repeats=1)
+    err = np.abs(ds["v_out_impact"] - ds["v_out_spring"])
+    assert 0.05 < float(err.max()) < 5.0
+    assert ds.attrs["max_error_impact_kmh"] == float(err.max())
+    assert 0 < ds.attrs["us_per_stroke_impact"] < ds.attrs["us_per_stroke_spring"] * 10
 
 
 def test_work_precision_table_shape_and_order():

@@ -95,6 +95,35 @@ BAD = [  # (path, value, fragment of the message)
         [["fixed.RK4", 0.0]],
         "'solver_study.stability.cases.0.1': 0.0 is less than or equal to the minimum",
     ),
+    # the model ladder: checked by the code that will run its rungs
+    (("model_ladder", "reference"), "paper", "model_ladder.reference 'paper' is not a rung"),
+    (
+        ("model_ladder", "rungs", 1, "name"),
+        "swing_omega2",
+        "rung name 'swing_omega2' is used twice",
+    ),
+    (
+        ("model_ladder", "rungs", 0, "contact_model"),
+        "hertz",
+        "'model_ladder.rungs.0.contact_model': 'hertz' is not one of",
+    ),
+    (
+        ("model_ladder", "rungs", 4, "restitution"),
+        1.5,
+        "'model_ladder.rungs.4.restitution': 1.5 is greater than the maximum of 1",
+    ),
+    (
+        ("model_ladder", "rungs", 5, "solver", "rtol"),
+        0.01,
+        "'model_ladder.rungs.5.solver.rtol': solver setting 'rtol' must be <= 0.0001",
+    ),
+    (("model_ladder", "rungs", 0, "colour"), "red", "'colour' was unexpected"),
+    (("model_ladder",), _DELETE, "config key 'model_ladder' is missing (required)"),
+    (
+        ("model",),
+        {"collision_coupling": "paper_eq8"},
+        "'model_ladder.rungs.0': contact_model 'swing_omega2' keeps momentum",
+    ),
     # memory, estimated from the grid sizes (the job failed with MemoryError 179 GiB)
     (
         ("angle_maps", "theta0", "step"),

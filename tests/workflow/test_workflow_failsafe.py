@@ -290,7 +290,13 @@ def test_a_yaml_syntax_error_in_the_config_names_file_and_line(tmp_path):
 
 #: The chunked rows of the table (their chunk jobs are the costly simulations).
 MAP_RULES = {e.rule for e in EXPERIMENTS.values() if e.chunks}
-INFERENCE_RULES = {"identification", "robustness_screen", "robustness_chunk", "claims_validation"}
+INFERENCE_RULES = {
+    "identification",
+    "robustness_screen",
+    "robustness_chunk",
+    "claims_validation",
+    "model_ladder",
+}
 
 
 def planned_after_edit(moved, module: str, old: str | None = None, new: str = "") -> set:

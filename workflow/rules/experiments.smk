@@ -145,3 +145,24 @@ rule claims_validation:
         experiments=lambda w: group_config(config, w.group),
     script:
         "../scripts/claims_validation.py"
+
+
+rule model_ladder:
+    input:
+        code=code_inputs("model_ladder.py"),
+        claims="config/claims.yaml",
+        readings="config/readings.yaml",
+    output:
+        RESULT_FILES["model_ladder"],
+    log:
+        "logs/model_ladder.log",
+    benchmark:
+        "benchmarks/workflow/model_ladder.tsv"
+    threads: 1
+    params:
+        common=common_params(),
+        experiments=paper_experiments(),
+        figure_curves=config["figure_curves"],
+        ladder=plain(config["model_ladder"]),
+    script:
+        "../scripts/model_ladder.py"

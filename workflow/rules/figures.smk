@@ -14,6 +14,6 @@ rule figure:
     log:
         "logs/figure_{name}.log",
     wildcard_constraints:
-        name="(fig|study|inference)[0-9][0-9]_[A-Za-z0-9_.]+",
+        name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
     script:
         "../scripts/figure.py"

@@ -508,8 +508,13 @@ ROBUSTNESS_FILES |= {
 }
 
 
-#: The inference's files (identification and robustness), by key.
-INFERENCE_RESULTS = {**IDENTIFICATION_FILES, **ROBUSTNESS_FILES}
+#: The model ladder claim by claim (tennis_stroke.inference.ladder): every claim under
+#: each rung of the config's ``model_ladder``.
+LADDER_FILES = {"model_ladder": "results/ladder/claims_by_rung.nc"}
+
+
+#: The inference's files (identification, robustness, the model ladder), by key.
+INFERENCE_RESULTS = {**IDENTIFICATION_FILES, **ROBUSTNESS_FILES, **LADDER_FILES}
 
 
 RESULT_FILES = {**PAPER_RESULTS, **STUDY_RESULTS, **INFERENCE_RESULTS}

@@ -104,6 +104,7 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
         yield f"config key 'model': {exc}"
     yield from _bound_errors(config)
     yield from _solver_errors(config)
+    yield from _ladder_errors(config, model)
 
 
 def _values(value) -> list:
@@ -273,6 +274,31 @@ def numbers_from_strings(node):
     if isinstance(node, list):
         return [numbers_from_strings(value) for value in node]
     return _number(node) if isinstance(node, str) else node
+
+
+def _ladder_errors(config: Mapping, model: Mapping) -> Iterator[str]:
+    """The model ladder's rungs, checked by the code that will run them: names, the
+    reference, each rung's model over the config's and its solver settings."""
+    from ..inference.ladder import LadderError, check_ladder, rung_model, rung_settings
+
+    ladder = config.get("model_ladder")
+    if not ladder:
+        return
+    try:
+        check_ladder(ladder)
+    except LadderError as exc:
+        yield f"{exc} (rule: unique rungs)"
+    for i, rung in enumerate(ladder["rungs"]):
+        try:
+            rung_settings(config.get("solver") or {}, rung)
+            resolve_params(rung_model(model, rung))
+        except SolverSettingError as exc:  # a kind of ParameterError: first
+            yield (
+                f"config key 'model_ladder.rungs.{i}.solver.{exc.setting}': {exc} "
+                "(rule: solver settings)"
+            )
+        except ParameterError as exc:
+            yield f"config key 'model_ladder.rungs.{i}': {exc} (rule: a model the solver runs)"
 
 
 def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:

@@ -289,6 +289,86 @@ def claims_readings(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     return fig
 
 
+def ladder_claims(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """The model ladder: each claim (row) under each rung (column), green within the
+    paper's tolerance, red outside, grey where the rung cannot answer it; fit claims marked
+    '*', the value written in each cell."""
+    d = ds[0]
+    state = np.where(d["comparable"].values == 0, 0.5, d["within"].values.astype(float)).T
+    fig, ax = plt.subplots(figsize=(1.15 * d.sizes["rung"] + 3.8, 0.2 * d.sizes["claim"] + 1.8))
+    colours = matplotlib.colors.ListedColormap(["#e8a8a0", "#d9d9d9", "#a8d8a0"])
+    ax.pcolormesh(
+        np.arange(d.sizes["rung"] + 1),
+        np.arange(d.sizes["claim"] + 1),
+        state,
+        cmap=colours,
+        vmin=0,
+        vmax=1,
+        edgecolors="white",
+        linewidth=0.5,
+    )
+    for j, column in enumerate(d["value"].values):
+        for i, value in enumerate(column):
+            if np.isfinite(value):
+                ax.text(j + 0.5, i + 0.5, f"{value:.4g}", ha="center", va="center", fontsize=5)
+    fit = d["fit_set"].values
+    labels = [f"{c}{' *' if f else ''}" for c, f in zip(d["claim"].values, fit, strict=True)]
+    ax.set_yticks(np.arange(d.sizes["claim"]) + 0.5, labels, fontsize=6)
+    ax.set_xticks(np.arange(d.sizes["rung"]) + 0.5, d["rung"].values, fontsize=7, rotation=30)
+    ax.invert_yaxis()
+    ax.set_ylabel("claim (* used for fit)")
+    ax.set_xlabel("rung (cheapest model first); green: within tolerance, grey: no answer")
+    ax.set_title(title, fontsize=10)
+    fig.tight_layout()
+    return fig
+
+
+def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
+    """Speed against accuracy per scene: for each result file the claims read (a panel),
+    each rung's right-hand-side evaluations against the reference rung's (x) and the
+    largest distance of the file's claims from the reference rung's values, in
+    tolerances (y; a claim the rung cannot answer counts as infinitely far: drawn at the
+    top)."""
+    d = ds[0]
+    files = [str(f).split(",") for f in d["claim_files"].values]
+    keys = [k for k in d["file"].values if any(k in f for f in files)]
+    ref = list(d["rung"].values).index(d.attrs["reference_rung"])
+    cols = 4
+    rows = -(-len(keys) // cols)
+    fig, axes = plt.subplots(rows, cols, figsize=(3.1 * cols, 2.6 * rows), squeeze=False)
+    # a claim the rung cannot answer, or without a value, is infinitely far
+    distance = d["from_reference"].values
+    distance = np.where((d["comparable"].values == 1) & np.isfinite(distance), distance, np.inf)
+    ceiling = 30.0
+    markers = "os^vDPX*"
+    for ax, key in zip(axes.flat, keys, strict=False):
+        reads = np.array([key in f for f in files])
+        cost = d["rhs_evals"].sel(file=key).values / d["rhs_evals"].sel(file=key).values[ref]
+        worst = np.minimum(distance[:, reads].max(axis=1), ceiling)
+        for i, rung in enumerate(d["rung"].values):
+            y = max(worst[i], 1e-6)  # the reference itself, and exact agreement
+            ax.scatter(cost[i], y, marker=markers[i % len(markers)], label=rung)
+        ax.axhline(d.attrs["adoption_agreement"], color="grey", lw=0.8, ls="--")
+        ax.set_yscale("log")
+        ax.set_ylim(1e-6, ceiling * 2)
+        ax.set_title(f"{key} ({int(reads.sum())} claims)", fontsize=8)
+        ax.set_xlabel("evaluations / reference", fontsize=7)
+        ax.set_ylabel("distance (tolerances)", fontsize=7)
+        ax.tick_params(labelsize=7)
+    for ax in list(axes.flat)[len(keys) :]:
+        ax.axis("off")
+    handles, labels = axes.flat[0].get_legend_handles_labels()
+    fig.legend(handles, labels, loc="lower right", fontsize=7)
+    fig.suptitle(
+        f"{title}\nx: right-hand-side evaluations / the reference rung's; y: largest distance "
+        f"of the file's claims from the reference, in tolerances (top: no answer, >= "
+        f"{ceiling:g}); dashed: the adoption rule",
+        fontsize=9,
+    )
+    fig.tight_layout()
+    return fig
+
+
 def title(template: str, ds: xr.Dataset) -> str:
     """A figure's title from its registry template and the values its file records:
     the resolved parameters (``{L1}`` for ``param_L1``) and the other scalar global
@@ -315,6 +395,8 @@ DRAWERS: dict[str, Callable[..., plt.Figure]] = {
         ladder,
         score_profiles,
         claims_readings,
+        ladder_claims,
+        ladder_cost,
     )
 }
 

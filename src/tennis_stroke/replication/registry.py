@@ -21,10 +21,10 @@ from ..experiments.specs import RESULT_FILES
 @dataclass(frozen=True)
 class Figure:
     """One figure: file name (without ``.png``), section of the paper (``III`` ... ``VI``,
-    ``inference`` or ``study``), result files (keys of :data:`RESULT_FILES`), drawing function of
-    :mod:`tennis_stroke.replication.figures` and its extra arguments, and its title: a
-    template filled from the first file's attributes (``{L1}`` is ``param_L1``), so a
-    title never states a value the file does not hold."""
+    ``inference``, ``ladder`` or ``study``), result files (keys of :data:`RESULT_FILES`),
+    drawing function of :mod:`tennis_stroke.replication.figures` and its extra arguments,
+    and its title: a template filled from the first file's attributes (``{L1}`` is
+    ``param_L1``), so a title never states a value the file does not hold."""
 
     name: str
     section: str
@@ -140,6 +140,20 @@ FIGURES: dict[str, Figure] = {
             ("robustness",),
             "claims_readings",
             "Robustness: each claim under each consistent reading",
+        ),
+        Figure(
+            "ladder01_claims_by_rung",
+            "ladder",
+            ("model_ladder",),
+            "ladder_claims",
+            "Model ladder: every claim under every rung",
+        ),
+        Figure(
+            "ladder02_cost_per_scene",
+            "ladder",
+            ("model_ladder",),
+            "ladder_cost",
+            "Model ladder: cost against distance from the paper's model, per result file",
         ),
         Figure(
             "study01_work_precision",

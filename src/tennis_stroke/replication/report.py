@@ -38,6 +38,7 @@ from ..io.failures import failure_counts
 from ..io.netcdf import git_commit, load_result
 from ..model.params import READINGS
 from .claims import ClaimsTableError, consistency_errors, read_table
+from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
 from .registry import FIGURES
 from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING
 
@@ -458,6 +459,25 @@ def _studies(studies: Sequence[str]) -> tuple[float | None, list[dict]]:
     return ladder_error, tables
 
 
+def _model_ladder(inference: Mapping[str, str]) -> dict:
+    """The model ladder section: the thesis tested, each rung's findings, the cheapest
+    rung per experiment and the claims-by-rungs table (empty without the ladder's file)."""
+    if "model_ladder" not in inference:
+        return {}
+    ds = load_result(inference["model_ladder"])
+    seconds = float(ds["seconds"].sel(rung=ds.attrs["reference_rung"]).sum())
+    return {
+        "verdict": verdict(ds),
+        "findings": findings(ds),
+        "reference": ds.attrs["reference_rung"],
+        "agreement": f"{float(ds.attrs['adoption_agreement']):g}",
+        "reference_seconds": f"{seconds:.2f}",
+        "rungs": ", ".join(str(r) for r in ds["rung"].values),
+        "experiments": _table(experiments_by_rung(ds).round(3), na_rep="-"),
+        "claims": _table(claims_by_rung(ds)),
+    }
+
+
 class ReportInputError(ValueError):
     """An input of the report is not one the workflow wrote (one line)."""
 
@@ -551,6 +571,7 @@ def build_report(
         {"anchor": "deviations", "label": "What does not reproduce, and why"},
         *({"anchor": s["anchor"], "label": s["heading"]} for s in page_sections),
         {"anchor": "inference", "label": "The paper's unstated readings: fits and robustness"},
+        {"anchor": "model-ladder", "label": "Model no more than a scene needs: the ladder"},
         {"anchor": "studies", "label": "Speed against accuracy"},
         {"anchor": "ledger", "label": "Assumption ledger"},
         {"anchor": "run", "label": "Configuration, provenance and timings"},
@@ -571,6 +592,10 @@ def build_report(
         toc=toc,
         sections=page_sections,
         inference={"figures": [e for n, e in entries.items() if n.startswith("inference")]},
+        model_ladder={
+            **_model_ladder(inference),
+            "figures": [e for n, e in entries.items() if n.startswith("ladder")],
+        },
         fits=_fit_tables(inference),
         robustness=robustness,
         validation=validation,

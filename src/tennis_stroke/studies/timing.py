@@ -32,7 +32,7 @@ def median_time(fn: Callable[[], object], repeats: int) -> tuple[float, object]:
 def compiled_cost(
     theta0: np.ndarray,
     delta0: np.ndarray,
-    params: Mapping[str, np.ndarray],
+    params: Mapping[str, object],
     settings: SolverSettings | None,
     repeats: int,
 ) -> tuple[float, dict[str, np.ndarray]]:
@@ -44,7 +44,7 @@ def compiled_cost(
     """
     n = theta0.size
     reps = max(1, TIMING_STROKES // n)
-    big = {k: np.tile(v, reps) for k, v in params.items()}
+    big = {k: np.tile(v, reps) if np.ndim(v) else v for k, v in params.items()}  # options
     th, de = np.tile(theta0, reps), np.tile(delta0, reps)
     wall, res = median_time(lambda: strike_batch(th, de, big, settings, threads=1), repeats)
     return wall / th.size * 1e6, {k: v[:n] for k, v in res.items()}

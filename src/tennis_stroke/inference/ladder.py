@@ -1,0 +1,278 @@
+"""The model ladder claim by claim: every claim of ``config/claims.yaml`` evaluated under
+each rung of the ladder (``model_ladder`` of the workflow config), with the cost of each
+result file under each rung.
+
+A rung is a contact model (the model option ``contact_model``: no ball and the swing
+scored by omega2 or by the hitting point's speed, an instantaneous impact, the paper's
+spring contact), a ball (``restitution``) and optionally other solver settings.  Under
+each rung the files the claims read are computed by the targeted evaluation at the
+default reading (:func:`tennis_stroke.inference.targeted.targeted_files`: each optimum
+and threshold by its search) and every claim is measured as ``results/claims.csv``
+measures it (its measure of ``config/claims.yaml``, the curves of the config's
+``figure_curves``).  The cost of a file is the right-hand-side evaluations of the
+compiled solver (machine-independent) and the wall time of its computation.
+
+A claim a rung cannot answer is marked not comparable (``comparable`` 0, its value kept
+but never counted as reproduced): under a rung without the spring, the claims about the
+spring constant (they read :data:`SPRING_FILES`); under a rung without a ball (the swing
+rungs), the claims that quote a ball speed (unit :data:`BALL_SPEED_UNIT`), since these
+rungs give a score in km/h, not a speed.  Optima, thresholds, trends, ratios, times and
+angles are comparable under every rung.
+
+What follows from the values (which rung reproduces a claim, which rung keeps an
+experiment's claims, the thesis) is read off the file by
+:mod:`tennis_stroke.replication.ladder`.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Mapping, Sequence
+
+import numpy as np
+import xarray as xr
+
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS
+from ..io.netcdf import labelled, provenance
+from ..model.params import resolve_params
+from ..solver.compiled import ensure_compiled
+from ..solver.settings import SolverSettings
+from ..solver.stroke import rhs_evaluations
+from .claims import difference, measure, within
+from .multiverse import CURVE_FILES, paper_results
+from .robustness import files_of_reading
+from .targeted import NUMBERS_ONLY, SEARCHED, searched_files, table1_numbers
+
+#: The files whose claims are about the spring constant (no answer without the spring).
+SPRING_FILES = ("k_sensitivity",)
+#: The unit of a claim that quotes the ball's speed (no answer without a ball).
+BALL_SPEED_UNIT = "km/h"
+#: The contact models without a ball (:mod:`tennis_stroke.model.impact`).
+NO_BALL = ("swing_speed", "swing_omega2")
+
+
+class LadderError(ValueError):
+    """The ladder section of the config is inconsistent (one line)."""
+
+
+def claim_files(claim: Mapping) -> list[str]:
+    """The result files a claim reads (keys of :data:`PAPER_RESULTS`)."""
+    names = claim["measure"]["file"]
+    return list(names) if isinstance(names, list) else [names]
+
+
+def check_ladder(ladder: Mapping) -> None:
+    """Refuse a ladder whose rung names repeat or whose reference is not a rung."""
+    names = [r["name"] for r in ladder["rungs"]]
+    repeated = sorted({n for n in names if names.count(n) > 1})
+    if repeated:
+        raise LadderError(f"model_ladder: rung name {repeated[0]!r} is used twice")
+    if ladder["reference"] not in names:
+        raise LadderError(
+            f"model_ladder.reference {ladder['reference']!r} is not a rung "
+            f"(rungs: {', '.join(names)})"
+        )
+
+
+def comparable(claim: Mapping, contact_model: str) -> bool:
+    """Whether a rung of ``contact_model`` can answer ``claim`` (module docstring)."""
+    if contact_model != "spring" and set(claim_files(claim)) & set(SPRING_FILES):
+        return False
+    return not (contact_model in NO_BALL and claim["unit"] == BALL_SPEED_UNIT)
+
+
+def rung_model(model: Mapping[str, object], rung: Mapping) -> dict[str, object]:
+    """The model overrides of ``rung`` over the config's ``model``."""
+    return {
+        **model,
+        "contact_model": rung["contact_model"],
+        "restitution": float(rung.get("restitution", 1.0)),
+    }
+
+
+def rung_settings(solver: Mapping[str, object], rung: Mapping) -> SolverSettings:
+    """The solver settings of ``rung`` over the config's ``solver`` section."""
+    return SolverSettings(**{**solver, **rung.get("solver", {})})
+
+
+def _file_computers(config, model, settings, threads):
+    """key -> a function computing that result file of the targeted evaluation (as
+    :func:`~tennis_stroke.inference.targeted.targeted_files` does, one file at a time)."""
+    curves = config["figure_curves"]
+    out = {}
+    for key in PAPER_RESULTS:
+        if key in SEARCHED:
+            out[key] = lambda k=key: searched_files(config, model, settings, None, threads, (k,))
+        elif key in NUMBERS_ONLY:
+            args = EXPERIMENTS[key].arguments({**config, "figure_curves": curves})
+            out[key] = lambda k=key, a=args: {k: table1_numbers(a, model, settings)}
+        else:
+            skip = tuple(k for k in PAPER_RESULTS if k != key)
+            out[key] = lambda s=skip: paper_results(config, model, settings, (curves,), threads, s)
+    return out
+
+
+def rung_files(
+    config: Mapping, model: Mapping, settings: SolverSettings, threads: int | None = 1
+) -> tuple[dict[str, xr.Dataset], dict[str, float], dict[str, float]]:
+    """The files the claims read under one rung, and per file the right-hand-side
+    evaluations and the wall time (s) of its computation."""
+    ensure_compiled(f"batch:{settings.method}")  # compile outside the timings
+    ensure_compiled("reference")
+    files, evaluations, seconds = {}, {}, {}
+    for key, compute in _file_computers(config, model, settings, threads).items():
+        start, n0 = time.perf_counter(), rhs_evaluations()
+        files.update(compute())
+        seconds[key] = time.perf_counter() - start
+        evaluations[key] = float(rhs_evaluations() - n0)
+    return files, evaluations, seconds
+
+
+def claim_values(
+    claims: Sequence[Mapping], files: Mapping[str, xr.Dataset], curves: str
+) -> np.ndarray:
+    """Every claim measured on the files of one rung (the curves of ``curves``)."""
+    plain = files_of_reading(files, curves, None)
+    return np.array([measure(c["measure"], plain) for c in claims], dtype=float)
+
+
+def evaluate_ladder(
+    claims: Sequence[Mapping],
+    config: Mapping,
+    threads: int | None = 1,
+    fit_of_claim: Mapping[str, str] | None = None,
+) -> xr.Dataset:
+    """Every claim under every rung of ``config["model_ladder"]`` (the workflow config
+    with its ``model``, ``solver``, ``figure_curves``, ``search`` and the paper's
+    sections); see :func:`ladder_dataset`."""
+    ladder = config["model_ladder"]
+    check_ladder(ladder)
+    model = dict(config.get("model") or {})
+    keys = list(PAPER_RESULTS)
+    values, evaluations, seconds = [], [], []
+    for rung in ladder["rungs"]:
+        files, evals, secs = rung_files(
+            config, rung_model(model, rung), rung_settings(config["solver"], rung), threads
+        )
+        values.append(claim_values(claims, files, config["figure_curves"]))
+        evaluations.append([evals[k] for k in keys])
+        seconds.append([secs[k] for k in keys])
+    ds = ladder_dataset(
+        claims,
+        ladder,
+        np.array(values),
+        np.array(evaluations),
+        np.array(seconds),
+        keys,
+        config["solver"],
+        fit_of_claim or {},
+    )
+    # provenance: the config's model and solver (each rung's own are variables)
+    ds.attrs.update(provenance(resolve_params(model), SolverSettings(**config["solver"])))
+    return ds
+
+
+def ladder_dataset(
+    claims: Sequence[Mapping],
+    ladder: Mapping,
+    values: np.ndarray,
+    evaluations: np.ndarray,
+    seconds: np.ndarray,
+    keys: Sequence[str],
+    solver: Mapping[str, object],
+    fit_of_claim: Mapping[str, str],
+) -> xr.Dataset:
+    """The claims x rungs file: ``value``, ``comparable`` (:func:`comparable`),
+    ``within`` (the paper's tolerance; 0 where not comparable) and ``from_reference``
+    (distance from the reference rung's value in tolerances; a qualitative claim 0 or 1)
+    over ``(rung, claim)``, the cost of each ``(rung, file)``, and each rung's model and
+    solver."""
+    rungs = ladder["rungs"]
+    answers = np.array(
+        [[comparable(c, r["contact_model"]) for c in claims] for r in rungs], dtype=bool
+    )
+    ref = [r["name"] for r in rungs].index(ladder["reference"])
+    paper = np.array([c["paper_value"] for c in claims], dtype=float)
+    tol = np.array([c["tolerance"] for c in claims], dtype=float)
+    settings = [{**solver, **r.get("solver", {})} for r in rungs]
+    ds = xr.Dataset(
+        {
+            "value": (
+                ("rung", "claim"),
+                values,
+                {"long_name": "value of the claim under the rung (its unit: claim_unit)"},
+            ),
+            "comparable": (
+                ("rung", "claim"),
+                answers.astype(np.int8),
+                {"long_name": "1 if the rung can answer the claim", "units": "1"},
+            ),
+            "within": (
+                ("rung", "claim"),
+                (within(values, paper, tol) & answers).astype(np.int8),
+                {
+                    "long_name": "1 if comparable and within the claim's declared tolerance",
+                    "units": "1",
+                },
+            ),
+            "from_reference": (
+                ("rung", "claim"),
+                difference(values, values[ref], tol),
+                {
+                    "long_name": "distance from the reference rung's value in tolerances",
+                    "units": "1",
+                },
+            ),
+            "rhs_evals": (
+                ("rung", "file"),
+                evaluations,
+                {"long_name": "right-hand-side evaluations of the compiled solver", "units": "1"},
+            ),
+            "seconds": (
+                ("rung", "file"),
+                seconds,
+                {"long_name": "wall time of the file's computation", "units": "s", "timing": 1},
+            ),
+            "contact_model": ("rung", [r["contact_model"] for r in rungs], {"long_name": "model"}),
+            "restitution": (
+                "rung",
+                [float(r.get("restitution", 1.0)) for r in rungs],
+                {"long_name": "coefficient of restitution of the ball", "units": "1"},
+            ),
+            "method": ("rung", [s["method"] for s in settings], {"long_name": "integrator"}),
+            "rtol": (
+                "rung",
+                [float(s["rtol"]) for s in settings],
+                {"long_name": "relative tolerance", "units": "1"},
+            ),
+            "paper_value": ("claim", paper, {"long_name": "paper's value"}),
+            "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),
+            "claim_unit": ("claim", [c["unit"] for c in claims], {"long_name": "unit"}),
+            "claim_files": (
+                "claim",
+                [",".join(claim_files(c)) for c in claims],
+                {"long_name": "the result files the claim reads (keys, comma-separated)"},
+            ),
+            "expectation": (
+                "claim",
+                [c["expectation"] for c in claims],
+                {"long_name": "expectation of config/claims.yaml"},
+            ),
+            "fit_set": (
+                "claim",
+                [fit_of_claim.get(c["id"], "") for c in claims],
+                {"long_name": "fit set that uses the claim (empty: held out)"},
+            ),
+        },
+        coords={
+            "rung": ("rung", [r["name"] for r in rungs], {"long_name": "rung of the ladder"}),
+            "claim": ("claim", [c["id"] for c in claims], {"long_name": "claim id"}),
+            "file": ("file", list(keys), {"long_name": "result file (key)"}),
+        },
+        attrs={
+            "reference_rung": ladder["reference"],
+            "adoption_agreement": float(ladder["adoption_agreement"]),
+            "curve_files": ",".join(CURVE_FILES),
+        },
+    )
+    return labelled(ds)
