@@ -1,6 +1,7 @@
 """The model ladder read claim by claim (tennis_stroke.replication.ladder), on a small
-made-up ladder whose answers are known: cheapest rungs by measured cost, the verdicts an
-experiment keeps, the declared adoption rule, the thesis and its wording."""
+made-up ladder whose answers are known: cheapest rungs by measured cost, the groups of
+files claims read together, the verdicts a group keeps, the declared adoption rule, the
+ball-independent claims, the thesis and its wording."""
 
 import numpy as np
 import pytest
@@ -8,7 +9,7 @@ import pytest
 from tennis_stroke.inference.ladder import ladder_dataset
 from tennis_stroke.replication import ladder as rl
 
-CLAIMS = [  # two files: "a" (an optimum, a speed), "b" (a trend), and a fit claim
+CLAIMS = [  # files "a" (an optimum, a speed), "b" (a trend, with a), "c" (a swing time)
     {"id": "opt", "unit": "degree", "paper_value": 20.0, "tolerance": 1.0,
      "expectation": "reproduce", "measure": {"file": "a"}},
     {"id": "speed", "unit": "km/h", "paper_value": 150.0, "tolerance": 1.0,
@@ -17,6 +18,8 @@ CLAIMS = [  # two files: "a" (an optimum, a speed), "b" (a trend), and a fit cla
      "expectation": "reproduce", "measure": {"file": ["b", "a"]}},
     {"id": "fitted", "unit": "degree", "paper_value": 5.0, "tolerance": 1.0,
      "expectation": "reproduce", "measure": {"file": "b"}},
+    {"id": "t0", "unit": "s", "paper_value": 0.2, "tolerance": 0.002,
+     "expectation": "reproduce", "measure": {"file": "c"}},
 ]  # fmt: skip
 RUNGS = [
     {"name": "cross", "contact_model": "swing_omega2"},
@@ -24,18 +27,29 @@ RUNGS = [
     {"name": "impact", "contact_model": "impact"},
     {"name": "spring", "contact_model": "spring"},
     {"name": "lossy", "contact_model": "spring", "restitution": 0.75},
+    {"name": "loose", "contact_model": "spring", "solver": {"rtol": 1e-5}},
 ]
 VALUES = np.array(
-    [  # opt, speed, trend, fitted
-        [40.0, 300.0, 0.0, 5.0],  # cross: loses the optimum and the trend
-        [20.05, 290.0, 1.0, 5.0],  # speed: no ball speed, keeps the rest
-        [20.5, 150.3, 1.0, 5.0],  # impact: all pass; the optimum 0.5 tolerances away
-        [20.0, 150.0, 1.0, 5.0],  # spring: the reference
-        [20.02, 128.0, 1.0, 9.0],  # lossy: only the speed (and a fit claim) move
+    [  # opt, speed, trend, fitted, t0
+        [40.0, 300.0, 0.0, 5.0, 0.2],  # cross: loses the optimum and the trend
+        [20.05, 290.0, 1.0, 5.0, 0.2],  # speed: no ball speed, keeps the rest
+        [20.5, 150.3, 1.0, 5.0, 0.2],  # impact: all pass; the optimum 0.5 tolerances away
+        [20.0, 150.0, 1.0, 5.0, 0.2],  # spring: the reference
+        [20.02, 128.0, 1.0, 9.0, 0.2],  # lossy: the speed (and a fit claim) fail
+        [20.0, 150.0, 1.0, 5.0, 0.2001],  # loose: another integrator moves the swing time
     ]
 )
 # evaluations per (rung, file): the impact is the cheapest for "a", cross for "b"
-EVALS = np.array([[50.0, 10.0], [60.0, 20.0], [40.0, 30.0], [100.0, 100.0], [105.0, 100.0]])
+EVALS = np.array(
+    [
+        [50.0, 10.0, 5.0],
+        [60.0, 20.0, 5.0],
+        [40.0, 30.0, 5.0],
+        [100.0, 100.0, 10.0],
+        [105.0, 100.0, 10.0],
+        [60.0, 60.0, 6.0],
+    ]
+)
 
 
 def _ladder(values=VALUES):
@@ -46,8 +60,8 @@ def _ladder(values=VALUES):
         values,
         EVALS,
         np.ones_like(EVALS),
-        ["a", "b"],
-        {"method": "DOP853", "rtol": 5e-8},
+        ["a", "b", "c"],
+        {"method": "DOP853", "rtol": 5e-8, "atol": 5e-8},
         {"fitted": "model"},
     )
 
@@ -57,49 +71,70 @@ def test_claims_by_rung_marks_no_answer_and_picks_the_cheapest_that_reproduces()
     assert table.loc["speed", "speed"] == "n/a" and table.loc["speed", "cross"] == "n/a"
     assert table.loc["opt", "impact"] == "20.5 *" and table.loc["opt", "cross"] == "40"
     cheapest = table["cheapest rung that reproduces it"]
-    # "opt" passes under speed (cost 60), impact (40), spring, lossy: impact is cheapest
+    # "opt" passes under speed (cost 60), impact (40), spring, lossy, loose (60)
     assert cheapest["opt"] == "impact"
-    # "trend" reads a and b: impact 40 + 30 = 70 < speed 60 + 20 = 80
+    # "trend" reads a and b: cross fails it; impact 40 + 30 = 70 < speed 60 + 20 = 80
     assert cheapest["trend"] == "impact"
-    # the speed claim: impact (40) beats the spring (100); lossy fails it
-    assert cheapest["speed"] == "impact"
+    # "t0": every rung gives it, cross, speed and impact at the same cost: the later one
+    assert cheapest["t0"] == "impact"
+    assert list(table["ball model"]) == ["matters"] * 4 + ["no effect"]
 
 
-def test_experiments_keep_verdicts_and_follow_the_declared_rule():
-    table = rl.experiments_by_rung(_ladder())
-    # file a: impact keeps every verdict (all pass) but its optimum is 0.5 tolerances
-    # from the spring's: the rule (0.1) allows only the spring there
-    assert table.loc["a", "cheapest rung keeping every verdict"] == "impact"
-    assert table.loc["a", "cheapest rung the adoption rule allows"] == "spring"
-    assert table.loc["a", "its cost / the reference's"] == 1.0
-    # file b: the trend and the fit claim; cross loses the trend, speed keeps both
-    assert table.loc["b", "cheapest rung keeping every verdict"] == "speed"
-    assert table.loc["b", "claims"] == 2
+def test_files_read_together_are_one_group_and_groups_follow_the_rule():
+    ds = _ladder()
+    assert rl.experiment_groups(ds) == [["a", "b"], ["c"]]
+    table = rl.experiments_by_rung(ds)
+    ab = table.loc["a + b"]
+    assert ab["claims"] == 4
+    # a + b: speed cannot answer the speed claim, cross loses the trend; impact keeps
+    # every verdict, but its optimum is 0.5 tolerances from the spring's: the rule (0.1)
+    # allows only the loose integrator (cost 120 of 200) among all rungs, the spring
+    # among the model rungs
+    assert ab["cheapest rung keeping every verdict"] == "impact"
+    assert ab["cheapest rung the adoption rule allows"] == "loose"
+    assert ab["its cost / the reference's"] == pytest.approx(120 / 200)
+    assert ab["cheapest model rung the rule allows"] == "spring"
+    # c: the swing time, the same under every model rung: the cheapest of equal cost
+    assert table.loc["c", "cheapest model rung the rule allows"] == "impact"
 
 
-def test_the_thesis_counts_the_conclusions_each_rung_keeps():
+def test_the_thesis_counts_the_ball_dependent_conclusions_each_rung_keeps():
     by_rung = {t["rung"]: t for t in rl.thesis(_ladder())}
-    # the conclusions: held-out claims the spring reproduces (opt, speed, trend)
-    assert by_rung["cross"]["conclusions"] == 3
-    assert by_rung["cross"]["lost"] == ["opt", "trend"]
-    assert by_rung["cross"]["unanswered"] == ["speed"]
+    # conclusions: held-out claims the spring reproduces (opt, speed, trend, t0); t0 is
+    # the same under every model rung
+    cross = by_rung["cross"]
+    assert (cross["conclusions"], cross["ball_independent"], cross["ball_dependent"]) == (4, 1, 3)
+    assert cross["lost"] == ["opt", "trend"] and cross["unanswered"] == ["speed"]
     assert by_rung["speed"]["survive"] == 2 and by_rung["speed"]["lost"] == []
     assert by_rung["lossy"]["lost"] == ["speed"]
     assert by_rung["lossy"]["largest_speed_change_kmh"] == pytest.approx(22.0)
     assert by_rung["lossy"]["mean_speed_change_percent"] == pytest.approx(-100 * 22 / 150)
-    assert by_rung["impact"]["evaluations_vs_reference"] == pytest.approx(70 / 200)
+    assert by_rung["impact"]["evaluations_vs_reference"] == pytest.approx(75 / 210)
+    assert not by_rung["loose"]["model_rung"] and by_rung["lossy"]["model_rung"]
 
 
 def test_the_verdict_follows_the_numbers():
     words = " ".join(rl.verdict(_ladder()))
-    assert "thesis holds against Cross's criterion" in words
-    assert "keeps all 2 of them" in words
-    assert "only the claimed speeds change (-14.7 % on average)" in words
+    assert "1 read the swing before the ball" in words
+    assert "thesis holds against Cross's criterion [cross]" in words
+    assert "loses 2 of the 2 ball-dependent conclusions it can answer" in words
+    assert "keeps every one" in words
+    assert "the conclusions that fail are the 1 that quote a ball speed" in words
     # Cross's criterion keeping everything, the lossy ball losing the optimum: said so
     values = VALUES.copy()
     values[0] = VALUES[3]
     values[4, 0] = 25.0
     words = " ".join(rl.verdict(_ladder(values)))
     assert "the paper's thesis is not borne out" in words
-    assert "changes conclusions beyond the claimed speeds: opt" in words
-    assert len(rl.findings(_ladder())) == 4
+    assert "changes conclusions beyond the quoted ball speeds: opt" in words
+    assert len(rl.findings(_ladder())) == 5
+
+
+def test_missing_values_are_no_answer_and_print_no_nan():
+    values = VALUES.copy()
+    values[2, 1] = np.nan  # the impact's stroke failed
+    ds = _ladder(values)
+    assert rl.claims_by_rung(ds).loc["speed", "impact"] == "nan"
+    impact = next(t for t in rl.thesis(ds) if t["rung"] == "impact")
+    assert impact["speed_claims"] == 0 and impact["largest_speed_change_kmh"] is None
+    assert "nan" not in " ".join(rl.findings(ds) + rl.verdict(ds))

@@ -15,9 +15,12 @@ compiled solver (machine-independent) and the wall time of its computation.
 A claim a rung cannot answer is marked not comparable (``comparable`` 0, its value kept
 but never counted as reproduced): under a rung without the spring, the claims about the
 spring constant (they read :data:`SPRING_FILES`); under a rung without a ball (the swing
-rungs), the claims that quote a ball speed (unit :data:`BALL_SPEED_UNIT`), since these
-rungs give a score in km/h, not a speed.  Optima, thresholds, trends, ratios, times and
-angles are comparable under every rung.
+rungs), the claims that quote a ball speed or a ratio of ball speeds (units
+:data:`BALL_SPEED_UNITS`), since these rungs give a score in km/h, not a speed, and only
+its order means something.  Optima, thresholds, trends, times and angles are comparable
+under every rung.  Under the cheap rungs the ball meets the racket at ``t0``, so their
+"contact" values (``t_contact_start``, ``omega*_contact``) are read at ``t0``, where
+their contact is, and the spring's at its contact start.
 
 What follows from the values (which rung reproduces a claim, which rung keeps an
 experiment's claims, the thesis) is read off the file by
@@ -45,8 +48,9 @@ from .targeted import NUMBERS_ONLY, SEARCHED, searched_files, table1_numbers
 
 #: The files whose claims are about the spring constant (no answer without the spring).
 SPRING_FILES = ("k_sensitivity",)
-#: The unit of a claim that quotes the ball's speed (no answer without a ball).
-BALL_SPEED_UNIT = "km/h"
+#: The units of a claim that quotes a ball speed or a ratio of them (no answer without
+#: a ball).
+BALL_SPEED_UNITS = ("km/h", "%")
 #: The contact models without a ball (:mod:`tennis_stroke.model.impact`).
 NO_BALL = ("swing_speed", "swing_omega2")
 
@@ -78,16 +82,16 @@ def comparable(claim: Mapping, contact_model: str) -> bool:
     """Whether a rung of ``contact_model`` can answer ``claim`` (module docstring)."""
     if contact_model != "spring" and set(claim_files(claim)) & set(SPRING_FILES):
         return False
-    return not (contact_model in NO_BALL and claim["unit"] == BALL_SPEED_UNIT)
+    return not (contact_model in NO_BALL and claim["unit"] in BALL_SPEED_UNITS)
 
 
 def rung_model(model: Mapping[str, object], rung: Mapping) -> dict[str, object]:
-    """The model overrides of ``rung`` over the config's ``model``."""
-    return {
-        **model,
-        "contact_model": rung["contact_model"],
-        "restitution": float(rung.get("restitution", 1.0)),
-    }
+    """The model overrides of ``rung`` over the config's ``model`` (a rung that names no
+    restitution keeps the config's ball)."""
+    out = {**model, "contact_model": rung["contact_model"]}
+    if "restitution" in rung:
+        out["restitution"] = float(rung["restitution"])
+    return out
 
 
 def rung_settings(solver: Mapping[str, object], rung: Mapping) -> SolverSettings:
@@ -149,17 +153,24 @@ def evaluate_ladder(
     check_ladder(ladder)
     model = dict(config.get("model") or {})
     keys = list(PAPER_RESULTS)
-    values, evaluations, seconds = [], [], []
+    values, evaluations, seconds, restitution = [], [], [], []
     for rung in ladder["rungs"]:
+        overrides = rung_model(model, rung)
+        restitution.append(float(resolve_params(overrides)["restitution"]))
         files, evals, secs = rung_files(
-            config, rung_model(model, rung), rung_settings(config["solver"], rung), threads
+            config, overrides, rung_settings(config["solver"], rung), threads
         )
         values.append(claim_values(claims, files, config["figure_curves"]))
         evaluations.append([evals[k] for k in keys])
         seconds.append([secs[k] for k in keys])
     ds = ladder_dataset(
         claims,
-        ladder,
+        {
+            **ladder,
+            "rungs": [
+                {**r, "restitution": e} for r, e in zip(ladder["rungs"], restitution, strict=True)
+            ],
+        },
         np.array(values),
         np.array(evaluations),
         np.array(seconds),
@@ -244,6 +255,11 @@ def ladder_dataset(
                 "rung",
                 [float(s["rtol"]) for s in settings],
                 {"long_name": "relative tolerance", "units": "1"},
+            ),
+            "atol": (
+                "rung",
+                [float(s["atol"]) for s in settings],
+                {"long_name": "absolute tolerance", "units": "1"},
             ),
             "paper_value": ("claim", paper, {"long_name": "paper's value"}),
             "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),

@@ -265,8 +265,7 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
     Raises
     ------
     ParameterError
-        Unknown name, non-numeric, non-finite or out-of-bounds value, unknown choice, a
-        cheap rung of the model ladder with the ``paper_eq8`` coupling.
+        Unknown name, non-numeric, non-finite or out-of-bounds value, unknown choice.
     """
     overrides = dict(overrides or {})
     out: dict[str, object] = {}
@@ -278,11 +277,7 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
                 f"{kind} {name!r} must be one of {', '.join(reading.choices)}, got {choice!r}"
             )
         out[name] = choice
-    if out["contact_model"] != "spring" and out["collision_coupling"] != "newton":
-        raise ParameterError(
-            f"contact_model {out['contact_model']!r} keeps momentum at the impact: it needs "
-            "collision_coupling 'newton'"
-        )
+
     unknown = [k for k in overrides if k not in PARAMETERS]
     if unknown:
         raise ParameterError(

@@ -317,7 +317,7 @@ def ladder_claims(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     ax.set_xticks(np.arange(d.sizes["rung"]) + 0.5, d["rung"].values, fontsize=7, rotation=30)
     ax.invert_yaxis()
     ax.set_ylabel("claim (* used for fit)")
-    ax.set_xlabel("rung (cheapest model first); green: within tolerance, grey: no answer")
+    ax.set_xlabel("rung (in order of model detail); green: within tolerance, grey: no answer")
     ax.set_title(title, fontsize=10)
     fig.tight_layout()
     return fig

@@ -4,17 +4,26 @@ experiment needs, and what the ladder says about the paper's thesis.
 
 * A rung *reproduces* a claim when it can answer it and its value is within the claim's
   tolerance of the paper's.
-* A rung *keeps* an experiment (a result file) when every claim that reads the file has
-  the same verdict under it as under the reference rung (the paper's model).
-* A rung *may replace* the reference for an experiment, by the rule declared in the
-  config (``model_ladder.adoption_agreement``), when every claim that reads the file is
-  within that share of its tolerance of the reference rung's value (a qualitative claim:
-  the same answer).
-* A rung's cost for a claim or a file is the right-hand-side evaluations of the compiled
-  solver spent on the files; "cheapest" is by that count, measured, not by the rungs'
-  order in the config.
+* The *model rungs* are those integrated as the reference rung is (same method and
+  tolerances): they differ in the model only.
+* A claim is *ball-independent* when every model rung gives it the same value: it reads
+  the swing before the ball (a time, an angle or an angular velocity of the free swing,
+  the free-swing curves), so no collision model can change it.  The others are
+  *ball-dependent*.
 * The paper's *conclusions*: the held-out claims (no fit set) the reference rung
-  reproduces.  A conclusion *survives* a rung when the rung reproduces it too.
+  reproduces.  A conclusion *survives* a rung when the rung reproduces it too; the thesis
+  is read on the ball-dependent conclusions, the ball-independent ones counted apart.
+* An *experiment group* is a set of result files that claims read together (a claim
+  reading two files ties them): a rung is chosen for a whole group, never file by file,
+  so no claim is evaluated on files of two rungs.  A rung *keeps* a group when every
+  claim that reads it has the verdict it has under the reference rung; it *may replace*
+  the reference, by the rule declared in the config (``model_ladder.adoption_agreement``),
+  when every such claim is within that share of its tolerance of the reference rung's
+  value (a qualitative claim: the same answer).
+* A rung's cost is the right-hand-side evaluations of the compiled solver spent on the
+  files; "cheapest" is by that count, measured, not by the rungs' order in the config.
+  Of rungs of equal cost (the cheap rungs run the same swing), the one with more model
+  detail (later in the config) is taken.
 """
 
 from __future__ import annotations
@@ -38,20 +47,42 @@ def reference_index(ds: xr.Dataset) -> int:
     return list(ds["rung"].values).index(ds.attrs["reference_rung"])
 
 
+def model_rungs(ds: xr.Dataset) -> np.ndarray:
+    """``(rung,)``: the rungs integrated as the reference rung is."""
+    ref = reference_index(ds)
+    same = np.ones(ds.sizes["rung"], dtype=bool)
+    for var in ("method", "rtol", "atol"):
+        same &= ds[var].values == ds[var].values[ref]
+    return same
+
+
+def ball_independent(ds: xr.Dataset) -> np.ndarray:
+    """``(claim,)``: the claims every model rung gives the same value (NaN counts as a
+    value of its own)."""
+    values = ds["value"].values[model_rungs(ds)]
+    first = values[0]
+    same = (values == first) | (np.isnan(values) & np.isnan(first))
+    return same.all(axis=0)
+
+
 def _cheapest(mask: np.ndarray, cost: np.ndarray, names: np.ndarray) -> list[str]:
-    """Per column of ``mask`` (``(rung, item)``), the rung of least ``cost`` where true
-    ("" where none)."""
+    """Per column of ``mask`` (``(rung, item)``), the rung of least ``cost`` where true,
+    the later one of equal cost ("" where none)."""
     out = []
     for j in range(mask.shape[1]):
         ok = np.flatnonzero(mask[:, j])
-        out.append(str(names[ok[np.argmin(cost[ok, j])]]) if ok.size else "")
+        if not ok.size:
+            out.append("")
+            continue
+        least = cost[ok, j].min()
+        out.append(str(names[ok[cost[ok, j] == least][-1]]))
     return out
 
 
 def claims_by_rung(ds: xr.Dataset) -> pd.DataFrame:
     """One row per claim: its value under each rung (``n/a`` where the rung cannot
     answer it; a trailing ``*`` where within tolerance), the paper's value and tolerance,
-    and the cheapest rung that reproduces it."""
+    whether the ball model can change it, and the cheapest rung that reproduces it."""
     names = ds["rung"].values
     within = ds["within"].values.astype(bool)
     table = pd.DataFrame(index=pd.Index(ds["claim"].values, name="claim"))
@@ -66,51 +97,76 @@ def claims_by_rung(ds: xr.Dataset) -> pd.DataFrame:
     table["paper"] = [f"{v:g}" for v in ds["paper_value"].values]
     table["tolerance"] = [f"{v:g}" for v in ds["tolerance"].values]
     table["unit"] = ds["claim_unit"].values
+    table["ball model"] = np.where(ball_independent(ds), "no effect", "matters")
     table["cheapest rung that reproduces it"] = _cheapest(within, claim_cost(ds), names)
     return table
 
 
+def experiment_groups(ds: xr.Dataset) -> list[list[str]]:
+    """The result files the claims read, in groups of files that claims read together
+    (connected by the claims that read several), in the order of the file coordinate."""
+    order = [str(k) for k in ds["file"].values]
+    parent = {k: k for k in order}
+
+    def root(k: str) -> str:
+        while parent[k] != k:
+            k = parent[k]
+        return k
+
+    read = set()
+    for files in _files(ds):
+        read.update(files)
+        for other in files[1:]:
+            parent[root(other)] = root(files[0])
+    groups: dict[str, list[str]] = {}
+    for k in order:
+        if k in read:
+            groups.setdefault(root(k), []).append(k)
+    return list(groups.values())
+
+
 def experiments_by_rung(ds: xr.Dataset) -> pd.DataFrame:
-    """One row per result file the claims read: its claims, the cheapest rung that keeps
-    all their verdicts, the cheapest rung the adoption rule allows, and that rung's cost
-    against the reference rung's."""
+    """One row per experiment group (:func:`experiment_groups`): its claims, the cheapest
+    rung that keeps all their verdicts, the cheapest rung and the cheapest model rung the
+    adoption rule allows, with their cost against the reference rung's."""
     names = ds["rung"].values
     ref = reference_index(ds)
     within = ds["within"].values.astype(bool)
     answers = ds["comparable"].values.astype(bool)
-    close = answers & (ds["from_reference"].values <= ds.attrs["adoption_agreement"] + 1e-12)
+    distance = ds["from_reference"].values
+    with np.errstate(invalid="ignore"):
+        close = answers & (distance <= ds.attrs["adoption_agreement"] + 1e-12)
+    # the reference agrees with itself, also where its value is missing
+    close[ref] = True
     same = answers & (within == within[ref])
     evals = ds["rhs_evals"].to_pandas()
-    # the model rungs: those with the reference rung's integrator and tolerance
-    model_rungs = (ds["method"].values == ds["method"].values[ref]) & (
-        ds["rtol"].values == ds["rtol"].values[ref]
-    )
+    models = model_rungs(ds)
     rows = []
-    for key in ds["file"].values:
-        reads = np.array([key in files for files in _files(ds)])
-        if not reads.any():
-            continue
-        cost = evals[key].values[:, None]
-        keeps = _cheapest(same[:, reads].all(axis=1)[:, None], cost, names)[0]
+    for group in experiment_groups(ds):
+        reads = np.array([bool(set(group) & set(files)) for files in _files(ds)])
+        cost = evals[group].sum(axis=1).values[:, None]
         rule = close[:, reads].all(axis=1)
+        keeps = _cheapest(same[:, reads].all(axis=1)[:, None], cost, names)[0]
         allowed = _cheapest(rule[:, None], cost, names)[0]
-        model = _cheapest((rule & model_rungs)[:, None], cost, names)[0]
+        model = _cheapest((rule & models)[:, None], cost, names)[0]
+
         rows.append(
             {
-                "file": str(key),
+                "files": " + ".join(group),
                 "claims": int(reads.sum()),
                 "cheapest rung keeping every verdict": keeps,
                 "cheapest rung the adoption rule allows": allowed,
-                "its cost / the reference's": _ratio(evals, allowed, names[ref], key),
+                "its cost / the reference's": _ratio(cost[:, 0], names, allowed, ref),
                 "cheapest model rung the rule allows": model,
-                "its cost / the reference's ": _ratio(evals, model, names[ref], key),
+                "its cost / the reference's ": _ratio(cost[:, 0], names, model, ref),
             }
         )
-    return pd.DataFrame(rows).set_index("file")
+    return pd.DataFrame(rows).set_index("files")
 
 
-def _ratio(evals: pd.DataFrame, rung: str, reference: str, key: str) -> float:
-    return float(evals.loc[rung, key] / evals.loc[reference, key]) if rung else np.nan
+def _ratio(cost: np.ndarray, names: np.ndarray, rung: str, ref: int) -> float:
+    """``rung``'s cost over the reference rung's (NaN without a rung)."""
+    return float(cost[list(names).index(rung)] / cost[ref]) if rung else np.nan
 
 
 def conclusions(ds: xr.Dataset) -> np.ndarray:
@@ -119,13 +175,20 @@ def conclusions(ds: xr.Dataset) -> np.ndarray:
     return held_out & ds["within"].values[reference_index(ds)].astype(bool)
 
 
+def _finite(values: np.ndarray) -> np.ndarray:
+    return values[np.isfinite(values)]
+
+
 def thesis(ds: xr.Dataset) -> list[dict]:
-    """Per rung other than the reference: how many of the paper's conclusions survive
-    it, which are lost and which it cannot answer, and how far the claimed ball speeds
-    move (the largest change in km/h and the mean change in %, over the speed claims it
-    can answer)."""
+    """Per rung other than the reference: of the paper's ball-dependent conclusions, how
+    many survive it, which are lost and which it cannot answer (the ball-independent ones
+    counted apart); how far the claimed ball speeds move (the largest change in km/h and
+    the mean change in %, over the speed claims it can answer and both rungs give); its
+    cost against the reference's."""
     ref = reference_index(ds)
     kept = conclusions(ds)
+    fixed = ball_independent(ds)
+    dependent = kept & ~fixed
     ids = ds["claim"].values
     speeds = ds["claim_unit"].values == "km/h"
     out = []
@@ -135,8 +198,11 @@ def thesis(ds: xr.Dataset) -> list[dict]:
         answers = ds["comparable"].values[i].astype(bool)
         within = ds["within"].values[i].astype(bool)
         moved = speeds & answers
-        change = ds["value"].values[i, moved] - ds["value"].values[ref, moved]
-        relative = change / ds["value"].values[ref, moved]
+        change = _finite(ds["value"].values[i, moved] - ds["value"].values[ref, moved])
+        relative = _finite(
+            (ds["value"].values[i, moved] - ds["value"].values[ref, moved])
+            / ds["value"].values[ref, moved]
+        )
         out.append(
             {
                 "rung": str(rung),
@@ -144,11 +210,14 @@ def thesis(ds: xr.Dataset) -> list[dict]:
                 "restitution": float(ds["restitution"].values[i]),
                 "method": str(ds["method"].values[i]),
                 "rtol": float(ds["rtol"].values[i]),
+                "model_rung": bool(model_rungs(ds)[i]),
                 "conclusions": int(kept.sum()),
-                "survive": int((kept & within).sum()),
-                "lost": [str(c) for c in ids[kept & answers & ~within]],
-                "unanswered": [str(c) for c in ids[kept & ~answers]],
-                "speed_claims": int(moved.sum()),
+                "ball_independent": int((kept & fixed).sum()),
+                "ball_dependent": int(dependent.sum()),
+                "survive": int((dependent & within).sum()),
+                "lost": [str(c) for c in ids[dependent & answers & ~within]],
+                "unanswered": [str(c) for c in ids[dependent & ~answers]],
+                "speed_claims": int(change.size),
                 "largest_speed_change_kmh": float(np.max(np.abs(change))) if change.size else None,
                 "mean_speed_change_percent": (
                     float(100 * np.mean(relative)) if relative.size else None
@@ -169,31 +238,28 @@ def _label(t: dict, reference: dict) -> str:
         return "The hitting point's speed (no ball: the swing scored by it at phi = 0)"
     if t["contact_model"] == "impact":
         return "An instantaneous impact at phi = 0"
-    if t["restitution"] < 1.0:
-        return f"A ball that loses energy (coefficient of restitution {t['restitution']:g})"
-    if (t["method"], t["rtol"]) != (reference["method"], reference["rtol"]):
+    if not t["model_rung"]:
         return f"The paper's model integrated by {t['method']} at rtol {t['rtol']:g}"
+    if t["restitution"] != reference["restitution"]:
+        return f"A ball of coefficient of restitution {t['restitution']:g}"
     return "Another rung"
 
 
 def findings(ds: xr.Dataset) -> list[str]:
-    """The ladder's statements about the paper's thesis, in words, each with the
-    numbers behind it (from :func:`thesis`); the wording follows the numbers."""
+    """Each rung's statement about the paper's conclusions, in words, with the numbers
+    behind it (from :func:`thesis`); the wording follows the numbers."""
     ref = reference_index(ds)
-    reference = {
-        "method": str(ds["method"].values[ref]),
-        "rtol": float(ds["rtol"].values[ref]),
-    }
+    reference = {"restitution": float(ds["restitution"].values[ref])}
     out = []
     for t in thesis(ds):
         text = (
             f"{_label(t, reference)} [{t['rung']}]: {t['survive']} of the paper's "
-            f"{t['conclusions']} conclusions survive"
+            f"{t['ball_dependent']} ball-dependent conclusions survive"
         )
         if t["lost"]:
             text += f"; {len(t['lost'])} are lost ({', '.join(t['lost'])})"
         if t["unanswered"]:
-            text += f"; {len(t['unanswered'])} it cannot answer ({', '.join(t['unanswered'])})"
+            text += f"; it cannot answer {len(t['unanswered'])} ({', '.join(t['unanswered'])})"
         if t["largest_speed_change_kmh"] is not None:
             text += (
                 f"; the claimed ball speeds move by up to {t['largest_speed_change_kmh']:.3g} "
@@ -208,53 +274,65 @@ def findings(ds: xr.Dataset) -> list[str]:
 
 
 def verdict(ds: xr.Dataset) -> list[str]:
-    """The thesis, tested: one sentence per question the ladder answers, or none where
-    the ladder lacks the rung that asks it."""
-    by_model = {t["contact_model"]: t for t in thesis(ds)}
-    lossy = [t for t in thesis(ds) if t["contact_model"] == "spring" and t["restitution"] < 1]
+    """The thesis, tested: one sentence per question a rung of the ladder asks (none
+    where the ladder lacks that rung), written from the numbers."""
+    rungs = thesis(ds)
     speed_ids = set(ds["claim"].values[ds["claim_unit"].values == "km/h"])
     out = []
-    cross = by_model.get("swing_omega2")
-    if cross:
-        if cross["lost"]:
-            out.append(
-                f"The paper's thesis holds against Cross's criterion: choosing the stroke by "
-                f"omega2 at phi = 0 loses {len(cross['lost'])} of the "
-                f"{cross['conclusions']} conclusions (listed below): the fastest racket "
-                "rotation is not the fastest ball."
-            )
-        else:
-            out.append(
-                "Cross's criterion keeps every conclusion it can answer: on these claims "
-                "the paper's thesis is not borne out."
-            )
-    speed = by_model.get("swing_speed")
-    if speed:
-        answered = speed["conclusions"] - len(speed["unanswered"])
-        if not speed["lost"]:
-            out.append(
-                f"But no collision model is needed for any conclusion the swing can answer: "
-                f"scoring the swing by the hitting point's speed at phi = 0 keeps all "
-                f"{answered} of them; only the claimed ball speeds themselves need a ball."
-            )
-        else:
-            out.append(
-                f"The hitting point's speed alone keeps {speed['survive']} of the "
-                f"{answered} conclusions it can answer: the collision model matters for "
-                f"{', '.join(speed['lost'])}."
-            )
-    for t in lossy:
-        if set(t["lost"]) <= speed_ids:
-            out.append(
-                f"The conclusions are about the stroke, not about the elastic ball: with "
-                f"a coefficient of restitution of {t['restitution']:g} only the claimed "
-                f"speeds change ({t['mean_speed_change_percent']:+.3g} % on average), and "
-                "every optimum, trend, threshold and ratio holds."
-            )
-        else:
-            other = sorted(set(t["lost"]) - speed_ids)
-            out.append(
-                f"A ball that loses energy (e = {t['restitution']:g}) changes conclusions "
-                f"beyond the claimed speeds: {', '.join(other)}."
-            )
+    if rungs:
+        t = rungs[0]
+        out.append(
+            f"Of the paper's {t['conclusions']} conclusions (held-out claims its model "
+            f"reproduces), {t['ball_independent']} read the swing before the ball and are "
+            f"the same under every model; the other {t['ball_dependent']} test the thesis."
+        )
+    for t in rungs:
+        answered = t["ball_dependent"] - len(t["unanswered"])
+        if t["contact_model"] == "swing_omega2":
+            if t["lost"]:
+                out.append(
+                    f"The paper's thesis holds against Cross's criterion [{t['rung']}]: "
+                    f"choosing the stroke by omega2 at phi = 0 loses {len(t['lost'])} of "
+                    f"the {answered} ball-dependent conclusions it can answer: the fastest "
+                    "racket rotation is not the fastest ball."
+                )
+            else:
+                out.append(
+                    f"Cross's criterion [{t['rung']}] keeps every ball-dependent conclusion "
+                    f"it can answer ({answered}): on these claims the paper's thesis is not "
+                    "borne out."
+                )
+        elif t["contact_model"] == "swing_speed":
+            if not t["lost"]:
+                out.append(
+                    f"But no collision model is needed for the {answered} ball-dependent "
+                    f"conclusions the swing can answer: scoring it by the hitting point's "
+                    f"speed at phi = 0 [{t['rung']}] keeps every one; the "
+                    f"{len(t['unanswered'])} it cannot answer quote ball speeds, their "
+                    "ratio or the spring constant."
+                )
+            else:
+                out.append(
+                    f"The hitting point's speed alone [{t['rung']}] keeps {t['survive']} of "
+                    f"the {answered} ball-dependent conclusions it can answer: the collision "
+                    f"model matters for {', '.join(t['lost'])}."
+                )
+        elif t["contact_model"] == "spring" and t["model_rung"] and t["restitution"] < 1.0:
+            speed_lost = [c for c in t["lost"] if c in speed_ids]
+            other = [c for c in t["lost"] if c not in speed_ids]
+            if not other:
+                mean = t["mean_speed_change_percent"]
+                change = f" ({mean:+.3g} % on average)" if mean is not None else ""
+                out.append(
+                    f"The conclusions are about the stroke, not about an elastic ball: with "
+                    f"a coefficient of restitution of {t['restitution']:g} [{t['rung']}] the "
+                    f"conclusions that fail are the {len(speed_lost)} that quote a ball "
+                    f"speed, the speeds falling{change}; every other conclusion holds."
+                )
+            else:
+                out.append(
+                    f"A ball of coefficient of restitution {t['restitution']:g} "
+                    f"[{t['rung']}] changes conclusions beyond the quoted ball speeds: "
+                    f"{', '.join(other)}."
+                )
     return out
