@@ -347,7 +347,16 @@ def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
         worst = np.minimum(distance[:, reads].max(axis=1), ceiling)
         for i, rung in enumerate(d["rung"].values):
             y = max(worst[i], 1e-6)  # the reference itself, and exact agreement
-            ax.scatter(cost[i], y, marker=markers[i % len(markers)], label=rung)
+            ax.scatter(  # hollow, smaller for later rungs: rungs on one point all show
+                cost[i],
+                y,
+                s=110 - 12 * i,
+                marker=markers[i % len(markers)],
+                facecolors="none",
+                edgecolors=f"C{i}",
+                linewidths=1.3,
+                label=rung,
+            )
         ax.axhline(d.attrs["adoption_agreement"], color="grey", lw=0.8, ls="--")
         ax.set_yscale("log")
         ax.set_ylim(1e-6, ceiling * 2)
