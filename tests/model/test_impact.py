@@ -11,6 +11,7 @@ from scipy.integrate import solve_ivp
 
 from tennis_stroke import strike, strike_batch
 from tennis_stroke.model.dynamics import (
+    CF_COUPLING,
     CF_DAMP,
     CF_L1,
     CF_LH,
@@ -70,13 +71,17 @@ def _state(theta_deg=-11.5, w1=11.3, w2=38.0):
     return to_trig(np.array([math.radians(theta_deg), 0.0, w1, w2]))
 
 
-@pytest.mark.parametrize("e", [1.0, 0.8])
-def test_impact_reverses_the_closing_speed_and_keeps_momentum(e):
+@pytest.mark.parametrize(
+    ("e", "coupling"), [(1.0, "newton"), (0.8, "newton"), (1.0, "paper_eq8"), (0.8, "paper_eq8")]
+)
+def test_impact_reverses_the_closing_speed_and_keeps_momentum(e, coupling):
     """The closing speed at the hitting point reverses with the restitution of the
-    dashpot at the effective mass; the ball's momentum change is the racket's, through the
-    effective mass; the elastic impact keeps the kinetic energy of rods and ball in the
-    elbow's frame."""
-    cf = tuple(coefficient_row(restitution=e, contact_model="impact"))
+    dashpot for the relative motion; the racket's momentum change at the hitting point
+    (through the effective mass) is the ball's times the coupling factor (Newton's third
+    law: momentum kept); the elastic impact under Newton's law keeps the kinetic energy of
+    rods and ball in the elbow's frame."""
+    cf = tuple(coefficient_row(restitution=e, contact_model="impact", collision_coupling=coupling))
+    g = cf[CF_COUPLING]
     t, y = 0.2, _state()
     st, ct, sp, cp = y[:4]
     m = effective_mass(st, ct, sp, cp, cf)
@@ -88,9 +93,10 @@ def test_impact_reverses_the_closing_speed_and_keeps_momentum(e):
     v_out, w1, w2 = instant_contact(t, y, cf)
     vb0, vb1 = cf[CF_VBALL], -v_out / 3.6
     u0, u1 = vb0 - v_hit(y[4], y[5]), vb1 - v_hit(w1, w2)
-    mu = 0.058 * m / (0.058 + m)
+    mu = 0.058 * m / (m + g * 0.058)
     assert u1 / u0 == pytest.approx(-impact_restitution(mu, cf), rel=1e-12)
-    assert 0.058 * (vb1 - vb0) == pytest.approx(-m * (v_hit(w1, w2) - v_hit(y[4], y[5])))
+    racket = m * (v_hit(w1, w2) - v_hit(y[4], y[5]))
+    assert racket == pytest.approx(-g * 0.058 * (vb1 - vb0), rel=1e-12)
     # kinetic energy in the elbow's frame (the driven elbow's impulse does work in the lab)
     mc = cf[CF_M12] * (cp * ct + sp * st)
 
@@ -99,10 +105,12 @@ def test_impact_reverses_the_closing_speed_and_keeps_momentum(e):
         return 0.5 * rods + 0.5 * 0.058 * (vb - vex) ** 2
 
     energy0, energy1 = energy(y[4], y[5], vb0), energy(w1, w2, vb1)
-    if e == 1.0:
+    if e == 1.0 and g == 1.0:
         assert energy1 == pytest.approx(energy0, rel=1e-12)
-    else:
+    elif g == 1.0:
         assert energy1 < energy0 * (1 - 1e-3)
+    else:  # Eq. 8 as printed does not keep energy, as its spring contact does not
+        assert abs(energy1 - energy0) > 1e-3 * energy0
 
 
 def test_swing_rungs_score_the_swing_by_their_closed_forms():

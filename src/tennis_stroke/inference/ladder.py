@@ -48,6 +48,9 @@ from .targeted import NUMBERS_ONLY, SEARCHED, searched_files, table1_numbers
 
 #: The files whose claims are about the spring constant (no answer without the spring).
 SPRING_FILES = ("k_sensitivity",)
+#: Measurements of files of single strokes that read the ball's speed (the others read
+#: the swing: times, angles, angular velocities, the curves).
+BALL_MEASURES = ("table1_minimum", "k_spread")
 #: The units of a claim that quotes a ball speed or a ratio of them (no answer without
 #: a ball).
 BALL_SPEED_UNITS = ("km/h", "%")
@@ -83,6 +86,18 @@ def comparable(claim: Mapping, contact_model: str) -> bool:
     if contact_model != "spring" and set(claim_files(claim)) & set(SPRING_FILES):
         return False
     return not (contact_model in NO_BALL and claim["unit"] in BALL_SPEED_UNITS)
+
+
+def scored_by_ball(claim: Mapping) -> bool:
+    """Whether a claim reads the ball's rebound speed: the speed itself (``v_out``), an
+    optimum, threshold or trend of it (the files found by a search), or its change with
+    the spring constant.  The other claims describe the swing (times, angles, angular
+    velocities, the curves), which a collision model changes only through the instant
+    of the contact."""
+    spec = claim["measure"]
+    if set(claim_files(claim)) & {*SEARCHED, *SPRING_FILES}:
+        return True
+    return spec.get("var") == "v_out" or spec.get("function") in BALL_MEASURES
 
 
 def rung_model(model: Mapping[str, object], rung: Mapping) -> dict[str, object]:
@@ -268,6 +283,11 @@ def ladder_dataset(
                 "claim",
                 [",".join(claim_files(c)) for c in claims],
                 {"long_name": "the result files the claim reads (keys, comma-separated)"},
+            ),
+            "scored_by_ball": (
+                "claim",
+                np.array([scored_by_ball(c) for c in claims], dtype=np.int8),
+                {"long_name": "1 if the claim reads the ball's rebound speed", "units": "1"},
             ),
             "expectation": (
                 "claim",

@@ -18,7 +18,8 @@ import numpy as np  # noqa: E402
 import xarray as xr  # noqa: E402
 
 from ..inference.measures import measure_delay_threshold, valid_v_out  # noqa: E402
-from ..io.netcdf import load_result
+from ..io.netcdf import load_result  # noqa: E402
+from .ladder import experiment_groups  # noqa: E402
 from .registry import FIGURES  # noqa: E402
 
 DPI = 110
@@ -324,33 +325,35 @@ def ladder_claims(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
 
 
 def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
-    """Speed against accuracy per scene: for each result file the claims read (a panel),
-    each rung's right-hand-side evaluations against the reference rung's (x) and the
-    largest distance of the file's claims from the reference rung's values, in
+    """Speed against accuracy per scene: for each group of result files that claims read
+    together (a panel; :func:`tennis_stroke.replication.ladder.experiment_groups`), each
+    rung's right-hand-side evaluations on the group against the reference rung's (x) and
+    the largest distance of the group's claims from the reference rung's values, in
     tolerances (y; a claim the rung cannot answer counts as infinitely far: drawn at the
     top)."""
     d = ds[0]
     files = [str(f).split(",") for f in d["claim_files"].values]
-    keys = [k for k in d["file"].values if any(k in f for f in files)]
+    groups = experiment_groups(d)
     ref = list(d["rung"].values).index(d.attrs["reference_rung"])
     cols = 4
-    rows = -(-len(keys) // cols)
+    rows = -(-len(groups) // cols)
     fig, axes = plt.subplots(rows, cols, figsize=(3.1 * cols, 2.6 * rows), squeeze=False)
     # a claim the rung cannot answer, or without a value, is infinitely far
     distance = d["from_reference"].values
     distance = np.where((d["comparable"].values == 1) & np.isfinite(distance), distance, np.inf)
     ceiling = 30.0
     markers = "os^vDPX*"
-    for ax, key in zip(axes.flat, keys, strict=False):
-        reads = np.array([key in f for f in files])
-        cost = d["rhs_evals"].sel(file=key).values / d["rhs_evals"].sel(file=key).values[ref]
+    for ax, group in zip(axes.flat, groups, strict=False):
+        reads = np.array([bool(set(group) & set(f)) for f in files])
+        evals = d["rhs_evals"].sel(file=group).sum("file").values
+        cost = evals / evals[ref]
         worst = np.minimum(distance[:, reads].max(axis=1), ceiling)
         for i, rung in enumerate(d["rung"].values):
             y = max(worst[i], 1e-6)  # the reference itself, and exact agreement
             ax.scatter(  # hollow, smaller for later rungs: rungs on one point all show
                 cost[i],
                 y,
-                s=110 - 12 * i,
+                s=max(110 - 12 * i, 20),
                 marker=markers[i % len(markers)],
                 facecolors="none",
                 edgecolors=f"C{i}",
@@ -360,11 +363,11 @@ def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
         ax.axhline(d.attrs["adoption_agreement"], color="grey", lw=0.8, ls="--")
         ax.set_yscale("log")
         ax.set_ylim(1e-6, ceiling * 2)
-        ax.set_title(f"{key} ({int(reads.sum())} claims)", fontsize=8)
+        ax.set_title(f"{' + '.join(group)} ({int(reads.sum())} claims)", fontsize=8)
         ax.set_xlabel("evaluations / reference", fontsize=7)
         ax.set_ylabel("distance (tolerances)", fontsize=7)
         ax.tick_params(labelsize=7)
-    for ax in list(axes.flat)[len(keys) :]:
+    for ax in list(axes.flat)[len(groups) :]:
         ax.axis("off")
     handles, labels = axes.flat[0].get_legend_handles_labels()
     fig.legend(handles, labels, loc="lower right", fontsize=7)

@@ -6,13 +6,15 @@ experiment needs, and what the ladder says about the paper's thesis.
   tolerance of the paper's.
 * The *model rungs* are those integrated as the reference rung is (same method and
   tolerances): they differ in the model only.
-* A claim is *ball-independent* when every model rung gives it the same value: it reads
-  the swing before the ball (a time, an angle or an angular velocity of the free swing,
-  the free-swing curves), so no collision model can change it.  The others are
-  *ball-dependent*.
+* A claim is *scored by the ball* when it reads the ball's rebound speed: the speed, an
+  optimum, threshold or trend of it, or its change with the spring constant
+  (:func:`tennis_stroke.inference.ladder.scored_by_ball`, declared from the measurement,
+  not from the values).  The others describe the swing.
 * The paper's *conclusions*: the held-out claims (no fit set) the reference rung
   reproduces.  A conclusion *survives* a rung when the rung reproduces it too; the thesis
-  is read on the ball-dependent conclusions, the ball-independent ones counted apart.
+  (which stroke the ball's speed picks) is read on the conclusions scored by the ball,
+  those that describe the swing counted apart.  A stroke that fails under a rung that
+  could answer is counted as failed, neither lost nor kept.
 * An *experiment group* is a set of result files that claims read together (a claim
   reading two files ties them): a rung is chosen for a whole group, never file by file,
   so no claim is evaluated on files of two rungs.  A rung *keeps* a group when every
@@ -22,8 +24,8 @@ experiment needs, and what the ladder says about the paper's thesis.
   value (a qualitative claim: the same answer).
 * A rung's cost is the right-hand-side evaluations of the compiled solver spent on the
   files; "cheapest" is by that count, measured, not by the rungs' order in the config.
-  Of rungs of equal cost (the cheap rungs run the same swing), the one with more model
-  detail (later in the config) is taken.
+  Of rungs of equal cost (the cheap rungs run the same swing), the later in the config
+  is taken (the config lists the rungs in order of model detail, other integrators last).
 """
 
 from __future__ import annotations
@@ -56,15 +58,6 @@ def model_rungs(ds: xr.Dataset) -> np.ndarray:
     return same
 
 
-def ball_independent(ds: xr.Dataset) -> np.ndarray:
-    """``(claim,)``: the claims every model rung gives the same value (NaN counts as a
-    value of its own)."""
-    values = ds["value"].values[model_rungs(ds)]
-    first = values[0]
-    same = (values == first) | (np.isnan(values) & np.isnan(first))
-    return same.all(axis=0)
-
-
 def _cheapest(mask: np.ndarray, cost: np.ndarray, names: np.ndarray) -> list[str]:
     """Per column of ``mask`` (``(rung, item)``), the rung of least ``cost`` where true,
     the later one of equal cost ("" where none)."""
@@ -92,12 +85,17 @@ def claims_by_rung(ds: xr.Dataset) -> pd.DataFrame:
         for value, ok, answers in zip(
             ds["value"].values[i], within[i], ds["comparable"].values[i], strict=True
         ):
-            cells.append("n/a" if not answers else f"{value:.4g}{' *' if ok else ''}")
+            if not answers:
+                cells.append("n/a")
+            elif not np.isfinite(value):
+                cells.append("failed")
+            else:
+                cells.append(f"{value:.4g}{' *' if ok else ''}")
         table[str(rung)] = cells
     table["paper"] = [f"{v:g}" for v in ds["paper_value"].values]
     table["tolerance"] = [f"{v:g}" for v in ds["tolerance"].values]
     table["unit"] = ds["claim_unit"].values
-    table["ball model"] = np.where(ball_independent(ds), "no effect", "matters")
+    table["reads"] = np.where(ds["scored_by_ball"].values == 1, "ball speed", "swing")
     table["cheapest rung that reproduces it"] = _cheapest(within, claim_cost(ds), names)
     return table
 
@@ -180,14 +178,14 @@ def _finite(values: np.ndarray) -> np.ndarray:
 
 
 def thesis(ds: xr.Dataset) -> list[dict]:
-    """Per rung other than the reference: of the paper's ball-dependent conclusions, how
-    many survive it, which are lost and which it cannot answer (the ball-independent ones
-    counted apart); how far the claimed ball speeds move (the largest change in km/h and
-    the mean change in %, over the speed claims it can answer and both rungs give); its
-    cost against the reference's."""
+    """Per rung other than the reference: of the paper's conclusions scored by the ball,
+    how many survive it, which are lost, which it cannot answer and which strokes failed
+    (those that describe the swing counted apart); how far the claimed ball speeds move
+    (the largest change in km/h and the mean change in %, over the speed claims it can
+    answer and both rungs give); its cost against the reference's."""
     ref = reference_index(ds)
     kept = conclusions(ds)
-    fixed = ball_independent(ds)
+    fixed = ds["scored_by_ball"].values == 0
     dependent = kept & ~fixed
     ids = ds["claim"].values
     speeds = ds["claim_unit"].values == "km/h"
@@ -197,6 +195,7 @@ def thesis(ds: xr.Dataset) -> list[dict]:
             continue
         answers = ds["comparable"].values[i].astype(bool)
         within = ds["within"].values[i].astype(bool)
+        failed = answers & ~np.isfinite(ds["value"].values[i])
         moved = speeds & answers
         change = _finite(ds["value"].values[i, moved] - ds["value"].values[ref, moved])
         relative = _finite(
@@ -212,11 +211,12 @@ def thesis(ds: xr.Dataset) -> list[dict]:
                 "rtol": float(ds["rtol"].values[i]),
                 "model_rung": bool(model_rungs(ds)[i]),
                 "conclusions": int(kept.sum()),
-                "ball_independent": int((kept & fixed).sum()),
-                "ball_dependent": int(dependent.sum()),
+                "swing": int((kept & fixed).sum()),
+                "scored": int(dependent.sum()),
                 "survive": int((dependent & within).sum()),
-                "lost": [str(c) for c in ids[dependent & answers & ~within]],
+                "lost": [str(c) for c in ids[dependent & answers & ~failed & ~within]],
                 "unanswered": [str(c) for c in ids[dependent & ~answers]],
+                "failed": [str(c) for c in ids[dependent & failed]],
                 "speed_claims": int(change.size),
                 "largest_speed_change_kmh": float(np.max(np.abs(change))) if change.size else None,
                 "mean_speed_change_percent": (
@@ -240,26 +240,40 @@ def _label(t: dict, reference: dict) -> str:
         return "An instantaneous impact at phi = 0"
     if not t["model_rung"]:
         return f"The paper's model integrated by {t['method']} at rtol {t['rtol']:g}"
-    if t["restitution"] != reference["restitution"]:
+    if _lossier(t, reference):
         return f"A ball of coefficient of restitution {t['restitution']:g}"
     return "Another rung"
+
+
+def _lossier(t: dict, reference: dict) -> bool:
+    """Whether rung ``t`` is the reference's model with a ball that loses more energy."""
+    return (
+        t["contact_model"] == "spring"
+        and t["model_rung"]
+        and t["restitution"] < reference["restitution"]
+    )
+
+
+def _reference(ds: xr.Dataset) -> dict:
+    return {"restitution": float(ds["restitution"].values[reference_index(ds)])}
 
 
 def findings(ds: xr.Dataset) -> list[str]:
     """Each rung's statement about the paper's conclusions, in words, with the numbers
     behind it (from :func:`thesis`); the wording follows the numbers."""
-    ref = reference_index(ds)
-    reference = {"restitution": float(ds["restitution"].values[ref])}
+    reference = _reference(ds)
     out = []
     for t in thesis(ds):
         text = (
             f"{_label(t, reference)} [{t['rung']}]: {t['survive']} of the paper's "
-            f"{t['ball_dependent']} ball-dependent conclusions survive"
+            f"{t['scored']} conclusions scored by the ball survive"
         )
         if t["lost"]:
-            text += f"; {len(t['lost'])} are lost ({', '.join(t['lost'])})"
+            text += f"; lost: {len(t['lost'])} ({', '.join(t['lost'])})"
         if t["unanswered"]:
-            text += f"; it cannot answer {len(t['unanswered'])} ({', '.join(t['unanswered'])})"
+            text += f"; no answer: {len(t['unanswered'])} ({', '.join(t['unanswered'])})"
+        if t["failed"]:
+            text += f"; failed strokes: {len(t['failed'])} ({', '.join(t['failed'])})"
         if t["largest_speed_change_kmh"] is not None:
             text += (
                 f"; the claimed ball speeds move by up to {t['largest_speed_change_kmh']:.3g} "
@@ -277,57 +291,57 @@ def verdict(ds: xr.Dataset) -> list[str]:
     """The thesis, tested: one sentence per question a rung of the ladder asks (none
     where the ladder lacks that rung), written from the numbers."""
     rungs = thesis(ds)
+    reference = _reference(ds)
     speed_ids = set(ds["claim"].values[ds["claim_unit"].values == "km/h"])
     out = []
     if rungs:
         t = rungs[0]
         out.append(
             f"Of the paper's {t['conclusions']} conclusions (held-out claims its model "
-            f"reproduces), {t['ball_independent']} read the swing before the ball and are "
-            f"the same under every model; the other {t['ball_dependent']} test the thesis."
+            f"reproduces), {t['scored']} read the ball's rebound speed (the speed, or an "
+            f"optimum, threshold or trend of it) and test the thesis; {t['swing']} "
+            "describe the swing."
         )
     for t in rungs:
-        answered = t["ball_dependent"] - len(t["unanswered"])
+        answered = t["scored"] - len(t["unanswered"]) - len(t["failed"])
         if t["contact_model"] == "swing_omega2":
             if t["lost"]:
+                kept = answered - len(t["lost"])
                 out.append(
                     f"The paper's thesis holds against Cross's criterion [{t['rung']}]: "
                     f"choosing the stroke by omega2 at phi = 0 loses {len(t['lost'])} of "
-                    f"the {answered} ball-dependent conclusions it can answer: the fastest "
-                    "racket rotation is not the fastest ball."
+                    f"the {answered} of these conclusions it can answer (and keeps {kept}):"
+                    " the fastest racket rotation is not the fastest ball."
                 )
             else:
                 out.append(
-                    f"Cross's criterion [{t['rung']}] keeps every ball-dependent conclusion "
+                    f"Cross's criterion [{t['rung']}] keeps every one of these conclusions "
                     f"it can answer ({answered}): on these claims the paper's thesis is not "
                     "borne out."
                 )
         elif t["contact_model"] == "swing_speed":
             if not t["lost"]:
                 out.append(
-                    f"But no collision model is needed for the {answered} ball-dependent "
-                    f"conclusions the swing can answer: scoring it by the hitting point's "
-                    f"speed at phi = 0 [{t['rung']}] keeps every one; the "
-                    f"{len(t['unanswered'])} it cannot answer quote ball speeds, their "
-                    "ratio or the spring constant."
+                    f"But no collision model is needed to reproduce the {answered} of them "
+                    f"a swing can answer: scoring it by the hitting point's speed at phi = 0"
+                    f" [{t['rung']}] reproduces every one; the {len(t['unanswered'])} it "
+                    "cannot answer quote ball speeds, their ratio or the spring constant."
                 )
             else:
                 out.append(
-                    f"The hitting point's speed alone [{t['rung']}] keeps {t['survive']} of "
-                    f"the {answered} ball-dependent conclusions it can answer: the collision "
-                    f"model matters for {', '.join(t['lost'])}."
+                    f"The hitting point's speed alone [{t['rung']}] reproduces {t['survive']}"
+                    f" of the {answered} of them it can answer: the collision model matters "
+                    f"for {', '.join(t['lost'])}."
                 )
-        elif t["contact_model"] == "spring" and t["model_rung"] and t["restitution"] < 1.0:
+        elif _lossier(t, reference):
             speed_lost = [c for c in t["lost"] if c in speed_ids]
             other = [c for c in t["lost"] if c not in speed_ids]
             if not other:
-                mean = t["mean_speed_change_percent"]
-                change = f" ({mean:+.3g} % on average)" if mean is not None else ""
                 out.append(
                     f"The conclusions are about the stroke, not about an elastic ball: with "
-                    f"a coefficient of restitution of {t['restitution']:g} [{t['rung']}] the "
-                    f"conclusions that fail are the {len(speed_lost)} that quote a ball "
-                    f"speed, the speeds falling{change}; every other conclusion holds."
+                    f"a coefficient of restitution of {t['restitution']:g} [{t['rung']}] "
+                    f"the conclusions that fail are the {len(speed_lost)} that quote a ball "
+                    "speed; every other conclusion holds."
                 )
             else:
                 out.append(

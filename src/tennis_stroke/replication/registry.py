@@ -153,7 +153,7 @@ FIGURES: dict[str, Figure] = {
             "ladder",
             ("model_ladder",),
             "ladder_cost",
-            "Model ladder: cost against distance from the paper's model, per result file",
+            "Model ladder: cost against distance from the paper's model, per experiment",
         ),
         Figure(
             "study01_work_precision",
