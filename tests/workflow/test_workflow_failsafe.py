@@ -334,6 +334,11 @@ def test_an_edit_of_the_figures_reruns_the_figures_and_the_report_only(moved):
     assert planned_after_edit(moved, "replication/figures.py") == {"figure", "report"}
 
 
+def test_an_edit_of_the_report_template_reruns_the_report(moved):
+    """The page's template is the report's code although no module imports it."""
+    assert planned_after_edit(moved, "replication/templates/report.html.j2") == {"report"}
+
+
 def test_a_new_long_name_reruns_no_map_chunk_and_no_inference_job(moved):
     """The chunks of a map leave their labels to gather_map; the rows that write their
     file in one job write the labels themselves and rerun."""

@@ -31,6 +31,8 @@ rule report:
         inference=list(INFERENCE_RESULTS.values()),
         results=list(PAPER_RESULTS.values()),
         code=code_inputs("report.py"),
+        # the page's template is code of the report too (not a module: no import edge)
+        template=checkout_path(PACKAGE_DIR / "replication" / "templates" / "report.html.j2"),
         assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
         studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],
     output:
