@@ -32,7 +32,9 @@ rule report:
         results=list(PAPER_RESULTS.values()),
         code=code_inputs("report.py"),
         # the page's template is code of the report too (not a module: no import edge)
-        template=checkout_path(PACKAGE_DIR / "replication" / "templates" / "report.html.j2"),
+        template=checkout_path(
+            PACKAGE_DIR / "replication" / "templates" / "report.html.j2"
+        ),
         assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
         studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],
     output:
