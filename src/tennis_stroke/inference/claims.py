@@ -54,6 +54,12 @@ class ClaimError(ValueError):
     """A claim definition is malformed (message is one line)."""
 
 
+def claim_files(claim: Mapping) -> list[str]:
+    """The result files a claim reads (keys of :data:`PAPER_RESULTS`), in its order."""
+    names = claim["measure"]["file"]
+    return list(names) if isinstance(names, list) else [names]
+
+
 def within(value, paper, tolerance):
     """True where ``value`` is finite and within ``tolerance`` of ``paper`` (the rule of
     every claim; a rounding margin of 1e-12)."""

@@ -35,16 +35,16 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS
+from ..experiments.specs import PAPER_RESULTS
 from ..io.netcdf import labelled, provenance
 from ..model.params import resolve_params
 from ..solver.compiled import ensure_compiled
 from ..solver.settings import SolverSettings
 from ..solver.stroke import rhs_evaluations
-from .claims import difference, measure, within
-from .multiverse import CURVE_FILES, paper_results
+from .claims import claim_files, difference, measure, within
+from .multiverse import CURVE_FILES
 from .robustness import files_of_reading
-from .targeted import NUMBERS_ONLY, SEARCHED, searched_files, table1_numbers
+from .targeted import SEARCHED, targeted_files
 
 #: The files whose claims are about the spring constant (no answer without the spring).
 SPRING_FILES = ("k_sensitivity",)
@@ -60,12 +60,6 @@ NO_BALL = ("swing_speed", "swing_omega2")
 
 class LadderError(ValueError):
     """The ladder section of the config is inconsistent (one line)."""
-
-
-def claim_files(claim: Mapping) -> list[str]:
-    """The result files a claim reads (keys of :data:`PAPER_RESULTS`)."""
-    names = claim["measure"]["file"]
-    return list(names) if isinstance(names, list) else [names]
 
 
 def check_ladder(ladder: Mapping) -> None:
@@ -114,23 +108,6 @@ def rung_settings(solver: Mapping[str, object], rung: Mapping) -> SolverSettings
     return SolverSettings(**{**solver, **rung.get("solver", {})})
 
 
-def _file_computers(config, model, settings, threads):
-    """key -> a function computing that result file of the targeted evaluation (as
-    :func:`~tennis_stroke.inference.targeted.targeted_files` does, one file at a time)."""
-    curves = config["figure_curves"]
-    out = {}
-    for key in PAPER_RESULTS:
-        if key in SEARCHED:
-            out[key] = lambda k=key: searched_files(config, model, settings, None, threads, (k,))
-        elif key in NUMBERS_ONLY:
-            args = EXPERIMENTS[key].arguments({**config, "figure_curves": curves})
-            out[key] = lambda k=key, a=args: {k: table1_numbers(a, model, settings)}
-        else:
-            skip = tuple(k for k in PAPER_RESULTS if k != key)
-            out[key] = lambda s=skip: paper_results(config, model, settings, (curves,), threads, s)
-    return out
-
-
 def rung_files(
     config: Mapping, model: Mapping, settings: SolverSettings, threads: int | None = 1
 ) -> tuple[dict[str, xr.Dataset], dict[str, float], dict[str, float]]:
@@ -139,9 +116,10 @@ def rung_files(
     ensure_compiled(f"batch:{settings.method}")  # compile outside the timings
     ensure_compiled("reference")
     files, evaluations, seconds = {}, {}, {}
-    for key, compute in _file_computers(config, model, settings, threads).items():
+    curves = (config["figure_curves"],)
+    for key in PAPER_RESULTS:
         start, n0 = time.perf_counter(), rhs_evaluations()
-        files.update(compute())
+        files.update(targeted_files(config, model, settings, curves, None, threads, (key,)))
         seconds[key] = time.perf_counter() - start
         evaluations[key] = float(rhs_evaluations() - n0)
     return files, evaluations, seconds
@@ -198,6 +176,30 @@ def evaluate_ladder(
     return ds
 
 
+def experiment_groups(claims: Sequence[Mapping], keys: Sequence[str]) -> list[list[str]]:
+    """The result files the claims read, in groups of files that claims read together
+    (connected by the claims that read several; a rung is chosen for a whole group), in
+    the order of ``keys``."""
+    parent = {k: k for k in keys}
+
+    def root(k: str) -> str:
+        while parent[k] != k:
+            k = parent[k]
+        return k
+
+    read = set()
+    for claim in claims:
+        files = claim_files(claim)
+        read.update(files)
+        for other in files[1:]:
+            parent[root(other)] = root(files[0])
+    groups: dict[str, list[str]] = {}
+    for k in keys:
+        if k in read:
+            groups.setdefault(root(k), []).append(k)
+    return list(groups.values())
+
+
 def ladder_dataset(
     claims: Sequence[Mapping],
     ladder: Mapping,
@@ -221,6 +223,8 @@ def ladder_dataset(
     paper = np.array([c["paper_value"] for c in claims], dtype=float)
     tol = np.array([c["tolerance"] for c in claims], dtype=float)
     settings = [{**solver, **r.get("solver", {})} for r in rungs]
+    groups = experiment_groups(claims, keys)
+    group_of = {k: g for g, files in enumerate(groups) for k in files}
     ds = xr.Dataset(
         {
             "value": (
@@ -275,6 +279,16 @@ def ladder_dataset(
                 "rung",
                 [float(s["atol"]) for s in settings],
                 {"long_name": "absolute tolerance", "units": "1"},
+            ),
+            "file_group": (
+                "file",
+                np.array([group_of.get(k, -1) for k in keys], dtype=np.int32),
+                {"long_name": "experiment group of the file (-1: no claim reads it)"},
+            ),
+            "claim_group": (
+                "claim",
+                np.array([group_of[claim_files(c)[0]] for c in claims], dtype=np.int32),
+                {"long_name": "experiment group of the files the claim reads"},
             ),
             "paper_value": ("claim", paper, {"long_name": "paper's value"}),
             "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),

@@ -332,14 +332,18 @@ def targeted_files(
     curves: Sequence[str] = ("free_swing",),
     l1_max: float | None = None,
     threads: int | None = 1,
+    keys: Sequence[str] | None = None,
 ) -> dict[str, xr.Dataset]:
     """The files the claims read, by key as
     :func:`~tennis_stroke.inference.multiverse.paper_results` gives them: those of
     :data:`SEARCHED` by :func:`searched_files`, Table I's numbers
-    (:func:`table1_numbers`), the others (a few strokes each) computed whole."""
-    out = paper_results(
-        config, dict(model), settings, curves, threads, skip=SEARCHED + NUMBERS_ONLY
-    )
-    elbow = EXPERIMENTS["elbow"].arguments({**config, "figure_curves": curves[0]})
-    out["elbow"] = table1_numbers(elbow, dict(model), settings)
-    return {**out, **searched_files(config, model, settings, l1_max, threads)}
+    (:func:`table1_numbers`), the others (a few strokes each) computed whole.  ``keys``:
+    only these result files (default: every paper file)."""
+    keys = [k for k in EXPERIMENTS if EXPERIMENTS[k].family == "paper"] if keys is None else keys
+    skip = tuple(k for k in EXPERIMENTS if k not in keys) + SEARCHED + NUMBERS_ONLY
+    out = paper_results(config, dict(model), settings, curves, threads, skip=skip)
+    if "elbow" in keys:
+        elbow = EXPERIMENTS["elbow"].arguments({**config, "figure_curves": curves[0]})
+        out["elbow"] = table1_numbers(elbow, dict(model), settings)
+    searched = [k for k in SEARCHED if k in keys]
+    return {**out, **searched_files(config, model, settings, l1_max, threads, searched)}

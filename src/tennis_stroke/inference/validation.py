@@ -22,7 +22,15 @@ from ..experiments.maps import mass_length_map
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, VALIDATION_GROUPS, plain, pruned
 from ..io.netcdf import labelled, provenance
 from ..solver.settings import SolverSettings
-from .claims import AGREEMENT, agrees, cause, difference, grid_half_step, measure
+from .claims import (
+    AGREEMENT,
+    agrees,
+    cause,
+    claim_files,
+    difference,
+    grid_half_step,
+    measure,
+)
 from .multiverse import experiment_config, paper_results, reading_of
 from .reading_space import ReadingSpace
 from .targeted import SEARCHED, searched_files
@@ -31,14 +39,9 @@ from .targeted import SEARCHED, searched_files
 GROUPS = VALIDATION_GROUPS
 
 
-def _files(claim: Mapping) -> list[str]:
-    names = claim["measure"]["file"]
-    return names if isinstance(names, list) else [names]
-
-
 def searched_claims(claims: Sequence[Mapping], keys: Sequence[str] = SEARCHED) -> list[Mapping]:
     """The claims that read a file found by a search (of ``keys``) and no other file."""
-    return [c for c in claims if set(_files(c)) <= set(keys)]
+    return [c for c in claims if set(claim_files(c)) <= set(keys)]
 
 
 def group_config(config: Mapping, group: str) -> dict:

@@ -19,7 +19,6 @@ import xarray as xr  # noqa: E402
 
 from ..inference.measures import measure_delay_threshold, valid_v_out  # noqa: E402
 from ..io.netcdf import load_result  # noqa: E402
-from .ladder import experiment_groups  # noqa: E402
 from .registry import FIGURES  # noqa: E402
 
 DPI = 110
@@ -326,14 +325,14 @@ def ladder_claims(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
 
 def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     """Speed against accuracy per scene: for each group of result files that claims read
-    together (a panel; :func:`tennis_stroke.replication.ladder.experiment_groups`), each
+    together (a panel; the file's ``file_group``), each
     rung's right-hand-side evaluations on the group against the reference rung's (x) and
     the largest distance of the group's claims from the reference rung's values, in
     tolerances (y; a claim the rung cannot answer counts as infinitely far: drawn at the
     top)."""
     d = ds[0]
-    files = [str(f).split(",") for f in d["claim_files"].values]
-    groups = experiment_groups(d)
+    group = d["file_group"].values
+    groups = [list(d["file"].values[group == g]) for g in range(group.max() + 1)]
     ref = list(d["rung"].values).index(d.attrs["reference_rung"])
     cols = 4
     rows = -(-len(groups) // cols)
@@ -343,9 +342,9 @@ def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     distance = np.where((d["comparable"].values == 1) & np.isfinite(distance), distance, np.inf)
     ceiling = 30.0
     markers = "os^vDPX*"
-    for ax, group in zip(axes.flat, groups, strict=False):
-        reads = np.array([bool(set(group) & set(f)) for f in files])
-        evals = d["rhs_evals"].sel(file=group).sum("file").values
+    for g, (ax, files) in enumerate(zip(axes.flat, groups, strict=False)):
+        reads = d["claim_group"].values == g
+        evals = d["rhs_evals"].sel(file=files).sum("file").values
         cost = evals / evals[ref]
         worst = np.minimum(distance[:, reads].max(axis=1), ceiling)
         for i, rung in enumerate(d["rung"].values):
@@ -363,7 +362,7 @@ def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
         ax.axhline(d.attrs["adoption_agreement"], color="grey", lw=0.8, ls="--")
         ax.set_yscale("log")
         ax.set_ylim(1e-6, ceiling * 2)
-        ax.set_title(f"{' + '.join(group)} ({int(reads.sum())} claims)", fontsize=8)
+        ax.set_title(f"{' + '.join(files)} ({int(reads.sum())} claims)", fontsize=8)
         ax.set_xlabel("evaluations / reference", fontsize=7)
         ax.set_ylabel("distance (tolerances)", fontsize=7)
         ax.tick_params(labelsize=7)

@@ -101,26 +101,10 @@ def claims_by_rung(ds: xr.Dataset) -> pd.DataFrame:
 
 
 def experiment_groups(ds: xr.Dataset) -> list[list[str]]:
-    """The result files the claims read, in groups of files that claims read together
-    (connected by the claims that read several), in the order of the file coordinate."""
-    order = [str(k) for k in ds["file"].values]
-    parent = {k: k for k in order}
-
-    def root(k: str) -> str:
-        while parent[k] != k:
-            k = parent[k]
-        return k
-
-    read = set()
-    for files in _files(ds):
-        read.update(files)
-        for other in files[1:]:
-            parent[root(other)] = root(files[0])
-    groups: dict[str, list[str]] = {}
-    for k in order:
-        if k in read:
-            groups.setdefault(root(k), []).append(k)
-    return list(groups.values())
+    """The experiment groups of the file (:func:`tennis_stroke.inference.ladder.
+    experiment_groups`): the files of each, in group order."""
+    group = ds["file_group"].values
+    return [[str(k) for k in ds["file"].values[group == g]] for g in range(group.max() + 1)]
 
 
 def experiments_by_rung(ds: xr.Dataset) -> pd.DataFrame:
@@ -140,8 +124,8 @@ def experiments_by_rung(ds: xr.Dataset) -> pd.DataFrame:
     evals = ds["rhs_evals"].to_pandas()
     models = model_rungs(ds)
     rows = []
-    for group in experiment_groups(ds):
-        reads = np.array([bool(set(group) & set(files)) for files in _files(ds)])
+    for g, group in enumerate(experiment_groups(ds)):
+        reads = ds["claim_group"].values == g
         cost = evals[group].sum(axis=1).values[:, None]
         rule = close[:, reads].all(axis=1)
         keeps = _cheapest(same[:, reads].all(axis=1)[:, None], cost, names)[0]
