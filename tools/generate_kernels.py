@@ -72,7 +72,7 @@ def _method(name: str, cls) -> list[str]:
         "@njit(**JIT_FAST_INNER)",
         f"def step_{name}(t, y, f0, h, cf, c2, rtol, atol, contact):",
         f'    """{name.upper()} step: ``(y_new, f(t+h, y_new), error)``; ``contact``: the ball',
-        f'    spring acts and the error norm covers {N_STATE} components, else {N_SWING}',
+        f"    spring acts and the error norm covers {N_STATE} components, else {N_SWING}",
         '    (the ball\'s derivatives are then 0, so its state is carried over exactly)."""',
         "    k0 = f0",
     ]
@@ -139,10 +139,24 @@ def _dense(name: str, cls) -> list[str]:
         lines += _array(f"_D_{tag}", [list(r) for r in cls.D])
     else:
         lines += _array(f"_P_{tag}", [list(cls.P[:, col]) for col in range(cls.P.shape[1])])
-    z = ",\n            ".join(
-        "(" + ", ".join(f"z[{r}, {i}]" for i in range(N_STATE)) + ")" for r in range(7)
+    comps = range(N_STATE)
+
+    def sums(coeffs: str, row: str, stop: str, indent: str) -> list[str]:
+        """``a{i} = sum over m < stop of coeffs[row, m] * k[m, i]``, in the order of ``m``,
+        one accumulator per component: independent sums that the CPU overlaps (a loop
+        over the components outside the loop over the stages made one dependent chain
+        of multiply-adds per component; the same arithmetic, so the same bits)."""
+        return [
+            indent + " = ".join(f"a{i}" for i in comps) + " = 0.0",
+            f"{indent}for m in range({stop}):",
+            f"{indent}    c = {coeffs}[{row}, m]",
+            *(f"{indent}    a{i} += c * k[m, {i}]" for i in comps),
+        ]
+
+    y_stage = ", ".join(
+        f"y[{i}] + h * a{i}" if i < N_SWING else f"y[{i}] + h * a{i} if contact else y[{i}]"
+        for i in comps
     )
-    y_stage = ", ".join(f"ys[{i}]" for i in range(N_STATE))
     lines += [
         "",
         "",
@@ -150,49 +164,46 @@ def _dense(name: str, cls) -> list[str]:
         f"def dense_{name}(t, y, f0, h, cf, c2, y_new, f_new, contact):",
         '    """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:',
         '    10 integrated components, else 8)."""',
-        f"    n = {N_STATE} if contact else 8",
         f"    k = np.zeros(({n_k}, {N_STATE}))",
-        f"    ys = np.empty({N_STATE})",
-        f"    z = np.zeros((7, {N_STATE}))",
         f"    for i in range({N_STATE}):",
         "        k[0, i] = f0[i]",
         f"        k[{ns}, i] = f_new[i]",
         f"    for s in range(1, {n_k}):",
         f"        if s == {ns}:",
         "            continue",
-        f"        for i in range({N_STATE}):",
-        "            ys[i] = y[i]",
-        "        for i in range(n):",
-        "            acc = 0.0",
-        "            for m in range(s):",
-        f"                acc += _A_{tag}[s, m] * k[m, i]",
-        "            ys[i] = y[i] + h * acc",
+        *sums(f"_A_{tag}", "s", "s", "        "),
         f"        ks = rhs_trig(t + _C_{tag}[s] * h, ({y_stage}), cf, c2, contact)",
         f"        for i in range({N_STATE}):",
         "            k[s, i] = ks[i]",
-        "    for i in range(n):",
     ]
+    zero = "(" + ", ".join("0.0" for _ in comps) + ")"
+
+    def row(expr) -> str:
+        """A row of z: ``expr(i)`` for the integrated components, 0 for the ball's in the
+        swing."""
+        return (
+            "("
+            + ", ".join(expr(i) if i < N_SWING else f"{expr(i)} if contact else 0.0" for i in comps)
+            + ")"
+        )
+
     if extra:
         lines += [
-            "        dy = y_new[i] - y[i]",
-            "        z[0, i] = dy",
-            "        z[1, i] = h * k[0, i] - dy",
-            f"        z[2, i] = 2.0 * dy - h * (k[{ns}, i] + k[0, i])",
-            f"        for r in range({cls.D.shape[0]}):",
-            "            acc = 0.0",
-            f"            for m in range({n_k}):",
-            f"                acc += _D_{tag}[r, m] * k[m, i]",
-            "            z[3 + r, i] = h * acc",
+            "    z0 = " + row(lambda i: f"y_new[{i}] - y[{i}]"),
+            "    z1 = " + row(lambda i: f"h * k[0, {i}] - (y_new[{i}] - y[{i}])"),
+            "    z2 = "
+            + row(lambda i: f"2.0 * (y_new[{i}] - y[{i}]) - h * (k[{ns}, {i}] + k[0, {i}])"),
         ]
+        first = 3
     else:
-        lines += [
-            f"        for r in range({cls.P.shape[1]}):",
-            "            acc = 0.0",
-            f"            for m in range({n_k}):",
-            f"                acc += _P_{tag}[r, m] * k[m, i]",
-            "            z[r, i] = h * acc",
-        ]
-    lines.append(f"    return ({z})")
+        first = 0
+    n_rows = cls.D.shape[0] if extra else cls.P.shape[1]
+    coeffs = f"_D_{tag}" if extra else f"_P_{tag}"
+    for r in range(n_rows):
+        lines += sums(coeffs, str(r), str(n_k), "    ")
+        lines.append(f"    z{first + r} = " + row(lambda i: f"h * a{i}"))
+    rows = [f"z{r}" for r in range(first + n_rows)] + [zero] * (7 - first - n_rows)
+    lines.append("    return (" + ", ".join(rows) + ")")
     return lines
 
 

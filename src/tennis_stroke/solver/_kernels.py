@@ -121,39 +121,86 @@ _P_DP54 = np.array([
 def dense_dp54(t, y, f0, h, cf, c2, y_new, f_new, contact):
     """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:
     10 integrated components, else 8)."""
-    n = 10 if contact else 8
     k = np.zeros((7, 10))
-    ys = np.empty(10)
-    z = np.zeros((7, 10))
     for i in range(10):
         k[0, i] = f0[i]
         k[6, i] = f_new[i]
     for s in range(1, 7):
         if s == 6:
             continue
-        for i in range(10):
-            ys[i] = y[i]
-        for i in range(n):
-            acc = 0.0
-            for m in range(s):
-                acc += _A_DP54[s, m] * k[m, i]
-            ys[i] = y[i] + h * acc
-        ks = rhs_trig(t + _C_DP54[s] * h, (ys[0], ys[1], ys[2], ys[3], ys[4], ys[5], ys[6], ys[7], ys[8], ys[9]), cf, c2, contact)
+        a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+        for m in range(s):
+            c = _A_DP54[s, m]
+            a0 += c * k[m, 0]
+            a1 += c * k[m, 1]
+            a2 += c * k[m, 2]
+            a3 += c * k[m, 3]
+            a4 += c * k[m, 4]
+            a5 += c * k[m, 5]
+            a6 += c * k[m, 6]
+            a7 += c * k[m, 7]
+            a8 += c * k[m, 8]
+            a9 += c * k[m, 9]
+        ks = rhs_trig(t + _C_DP54[s] * h, (y[0] + h * a0, y[1] + h * a1, y[2] + h * a2, y[3] + h * a3, y[4] + h * a4, y[5] + h * a5, y[6] + h * a6, y[7] + h * a7, y[8] + h * a8 if contact else y[8], y[9] + h * a9 if contact else y[9]), cf, c2, contact)
         for i in range(10):
             k[s, i] = ks[i]
-    for i in range(n):
-        for r in range(4):
-            acc = 0.0
-            for m in range(7):
-                acc += _P_DP54[r, m] * k[m, i]
-            z[r, i] = h * acc
-    return ((z[0, 0], z[0, 1], z[0, 2], z[0, 3], z[0, 4], z[0, 5], z[0, 6], z[0, 7], z[0, 8], z[0, 9]),
-            (z[1, 0], z[1, 1], z[1, 2], z[1, 3], z[1, 4], z[1, 5], z[1, 6], z[1, 7], z[1, 8], z[1, 9]),
-            (z[2, 0], z[2, 1], z[2, 2], z[2, 3], z[2, 4], z[2, 5], z[2, 6], z[2, 7], z[2, 8], z[2, 9]),
-            (z[3, 0], z[3, 1], z[3, 2], z[3, 3], z[3, 4], z[3, 5], z[3, 6], z[3, 7], z[3, 8], z[3, 9]),
-            (z[4, 0], z[4, 1], z[4, 2], z[4, 3], z[4, 4], z[4, 5], z[4, 6], z[4, 7], z[4, 8], z[4, 9]),
-            (z[5, 0], z[5, 1], z[5, 2], z[5, 3], z[5, 4], z[5, 5], z[5, 6], z[5, 7], z[5, 8], z[5, 9]),
-            (z[6, 0], z[6, 1], z[6, 2], z[6, 3], z[6, 4], z[6, 5], z[6, 6], z[6, 7], z[6, 8], z[6, 9]))
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(7):
+        c = _P_DP54[0, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z0 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(7):
+        c = _P_DP54[1, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z1 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(7):
+        c = _P_DP54[2, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z2 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(7):
+        c = _P_DP54[3, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z3 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    return (z0, z1, z2, z3, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
 
 
 @njit(**JIT_FAST_INNER)
@@ -266,43 +313,89 @@ _D_DOP853 = np.array([
 def dense_dop853(t, y, f0, h, cf, c2, y_new, f_new, contact):
     """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:
     10 integrated components, else 8)."""
-    n = 10 if contact else 8
     k = np.zeros((16, 10))
-    ys = np.empty(10)
-    z = np.zeros((7, 10))
     for i in range(10):
         k[0, i] = f0[i]
         k[12, i] = f_new[i]
     for s in range(1, 16):
         if s == 12:
             continue
-        for i in range(10):
-            ys[i] = y[i]
-        for i in range(n):
-            acc = 0.0
-            for m in range(s):
-                acc += _A_DOP853[s, m] * k[m, i]
-            ys[i] = y[i] + h * acc
-        ks = rhs_trig(t + _C_DOP853[s] * h, (ys[0], ys[1], ys[2], ys[3], ys[4], ys[5], ys[6], ys[7], ys[8], ys[9]), cf, c2, contact)
+        a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+        for m in range(s):
+            c = _A_DOP853[s, m]
+            a0 += c * k[m, 0]
+            a1 += c * k[m, 1]
+            a2 += c * k[m, 2]
+            a3 += c * k[m, 3]
+            a4 += c * k[m, 4]
+            a5 += c * k[m, 5]
+            a6 += c * k[m, 6]
+            a7 += c * k[m, 7]
+            a8 += c * k[m, 8]
+            a9 += c * k[m, 9]
+        ks = rhs_trig(t + _C_DOP853[s] * h, (y[0] + h * a0, y[1] + h * a1, y[2] + h * a2, y[3] + h * a3, y[4] + h * a4, y[5] + h * a5, y[6] + h * a6, y[7] + h * a7, y[8] + h * a8 if contact else y[8], y[9] + h * a9 if contact else y[9]), cf, c2, contact)
         for i in range(10):
             k[s, i] = ks[i]
-    for i in range(n):
-        dy = y_new[i] - y[i]
-        z[0, i] = dy
-        z[1, i] = h * k[0, i] - dy
-        z[2, i] = 2.0 * dy - h * (k[12, i] + k[0, i])
-        for r in range(4):
-            acc = 0.0
-            for m in range(16):
-                acc += _D_DOP853[r, m] * k[m, i]
-            z[3 + r, i] = h * acc
-    return ((z[0, 0], z[0, 1], z[0, 2], z[0, 3], z[0, 4], z[0, 5], z[0, 6], z[0, 7], z[0, 8], z[0, 9]),
-            (z[1, 0], z[1, 1], z[1, 2], z[1, 3], z[1, 4], z[1, 5], z[1, 6], z[1, 7], z[1, 8], z[1, 9]),
-            (z[2, 0], z[2, 1], z[2, 2], z[2, 3], z[2, 4], z[2, 5], z[2, 6], z[2, 7], z[2, 8], z[2, 9]),
-            (z[3, 0], z[3, 1], z[3, 2], z[3, 3], z[3, 4], z[3, 5], z[3, 6], z[3, 7], z[3, 8], z[3, 9]),
-            (z[4, 0], z[4, 1], z[4, 2], z[4, 3], z[4, 4], z[4, 5], z[4, 6], z[4, 7], z[4, 8], z[4, 9]),
-            (z[5, 0], z[5, 1], z[5, 2], z[5, 3], z[5, 4], z[5, 5], z[5, 6], z[5, 7], z[5, 8], z[5, 9]),
-            (z[6, 0], z[6, 1], z[6, 2], z[6, 3], z[6, 4], z[6, 5], z[6, 6], z[6, 7], z[6, 8], z[6, 9]))
+    z0 = (y_new[0] - y[0], y_new[1] - y[1], y_new[2] - y[2], y_new[3] - y[3], y_new[4] - y[4], y_new[5] - y[5], y_new[6] - y[6], y_new[7] - y[7], y_new[8] - y[8] if contact else 0.0, y_new[9] - y[9] if contact else 0.0)
+    z1 = (h * k[0, 0] - (y_new[0] - y[0]), h * k[0, 1] - (y_new[1] - y[1]), h * k[0, 2] - (y_new[2] - y[2]), h * k[0, 3] - (y_new[3] - y[3]), h * k[0, 4] - (y_new[4] - y[4]), h * k[0, 5] - (y_new[5] - y[5]), h * k[0, 6] - (y_new[6] - y[6]), h * k[0, 7] - (y_new[7] - y[7]), h * k[0, 8] - (y_new[8] - y[8]) if contact else 0.0, h * k[0, 9] - (y_new[9] - y[9]) if contact else 0.0)
+    z2 = (2.0 * (y_new[0] - y[0]) - h * (k[12, 0] + k[0, 0]), 2.0 * (y_new[1] - y[1]) - h * (k[12, 1] + k[0, 1]), 2.0 * (y_new[2] - y[2]) - h * (k[12, 2] + k[0, 2]), 2.0 * (y_new[3] - y[3]) - h * (k[12, 3] + k[0, 3]), 2.0 * (y_new[4] - y[4]) - h * (k[12, 4] + k[0, 4]), 2.0 * (y_new[5] - y[5]) - h * (k[12, 5] + k[0, 5]), 2.0 * (y_new[6] - y[6]) - h * (k[12, 6] + k[0, 6]), 2.0 * (y_new[7] - y[7]) - h * (k[12, 7] + k[0, 7]), 2.0 * (y_new[8] - y[8]) - h * (k[12, 8] + k[0, 8]) if contact else 0.0, 2.0 * (y_new[9] - y[9]) - h * (k[12, 9] + k[0, 9]) if contact else 0.0)
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(16):
+        c = _D_DOP853[0, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z3 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(16):
+        c = _D_DOP853[1, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z4 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(16):
+        c = _D_DOP853[2, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z5 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+    for m in range(16):
+        c = _D_DOP853[3, m]
+        a0 += c * k[m, 0]
+        a1 += c * k[m, 1]
+        a2 += c * k[m, 2]
+        a3 += c * k[m, 3]
+        a4 += c * k[m, 4]
+        a5 += c * k[m, 5]
+        a6 += c * k[m, 6]
+        a7 += c * k[m, 7]
+        a8 += c * k[m, 8]
+        a9 += c * k[m, 9]
+    z6 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
+    return (z0, z1, z2, z3, z4, z5, z6)
 
 
 #: The kernels of each method id: (step, dense-output coefficients, dense-output
