@@ -168,8 +168,19 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
         CF_CONTACT_MODEL: float(CONTACT_MODEL_IDS[params["contact_model"]]),
         CF_DAMP: contact_damping(g["restitution"], g["ball_mass"], g["M2"], g["k_contact"]),
     }
-    out = np.empty((*shape, N_CF))
+    # The columns that are one value for every stroke go in as one row, copied to every
+    # stroke at once; only the others are written column by column (strided writes,
+    # most of this function's time on a large grid).
+    row = np.zeros(N_CF)
+    varying = {}
     for col, val in cols.items():
+        if np.ndim(val) == 0:
+            row[col] = val
+        else:
+            varying[col] = val
+    out = np.empty((*shape, N_CF))
+    out[...] = row
+    for col, val in varying.items():
         out[..., col] = val
     return out.reshape(-1, N_CF)
 
