@@ -16,11 +16,13 @@ from tennis_stroke.solver.integrate import (
     PHASE_END,
     PHASE_EVENT,
     PHASE_FAIL,
+    PREDICTIVE_ERR_FLOOR,
     SAFETY,
     ST_NREJECT,
     ST_NSTEP,
     dense_coefficients,
     dense_value,
+    error_root,
     integrate_phase,
     peak_omega2,
     rk_step,
@@ -150,20 +152,40 @@ def test_peak_of_omega2_inside_a_step():
     )
 
 
+def test_error_root_is_the_norm_s_root_and_keeps_order():
+    for err in (1e-30, 1e-8, 0.3, 1.0, 7.5, 1e12):
+        assert error_root(err, -1.0 / 8.0) == pytest.approx(err ** (1 / 8), rel=1e-15)
+        assert error_root(err, -0.2) == pytest.approx(err**0.2, rel=1e-15)
+    # Order is kept, so the integrator floors the root instead of the norm.
+    errs = np.geomspace(1e-3, 1e-1, 2001)
+    roots = [error_root(err, -1.0 / 8.0) for err in errs]
+    assert all(a <= b for a, b in zip(roots, roots[1:], strict=False))
+    floor = error_root(PREDICTIVE_ERR_FLOOR, -1.0 / 8.0)
+    for err in errs:
+        root = error_root(max(err, PREDICTIVE_ERR_FLOOR), -1.0 / 8.0)
+        assert root == max(error_root(err, -1.0 / 8.0), floor)
+
+
 def test_step_factor_closed_forms():
     e = -1.0 / 8.0
+
+    def root(err):
+        return error_root(err, e)
+
     classical = SAFETY * 0.3**e
-    assert step_factor(0.3, e, 1e-3, 0.0, 0.0) == pytest.approx(classical, rel=1e-15)
-    assert step_factor(0.0, e, 1e-3, 1e-3, 0.5) == MAX_FACTOR
-    assert step_factor(1e-30, e, 1e-3, 0.0, 0.0) == MAX_FACTOR
+    assert step_factor(root(0.3), 1e-3, 0.0, 0.0) == pytest.approx(classical, rel=1e-15)
+    assert step_factor(0.0, 1e-3, 1e-3, root(0.5)) == MAX_FACTOR
+    assert step_factor(root(1e-30), 1e-3, 0.0, 0.0) == MAX_FACTOR
     # The error doubled over two equal steps: the step shrinks by a further 2**(1/8).
-    assert step_factor(0.6, e, 1e-3, 1e-3, 0.3) == pytest.approx(
+    assert step_factor(root(0.6), 1e-3, 1e-3, root(0.3)) == pytest.approx(
         SAFETY * 0.6**e * 0.5 ** (1 / 8), rel=1e-15
     )
     # A falling error never grows the step beyond the classical rule ...
-    assert step_factor(0.1, e, 1e-3, 1e-3, 0.5) == pytest.approx(SAFETY * 0.1**e, rel=1e-15)
+    assert step_factor(root(0.1), 1e-3, 1e-3, root(0.5)) == pytest.approx(
+        SAFETY * 0.1**e, rel=1e-15
+    )
     # ... and a steeply rising one never shrinks it below MIN_FACTOR.
-    assert step_factor(0.9, e, 1e-3, 1e-2, 1e-2) == MIN_FACTOR
+    assert step_factor(root(0.9), 1e-3, 1e-2, root(1e-2)) == MIN_FACTOR
 
 
 def _classical_attempts(cf, y, f, t_end, h, rtol):
