@@ -12,10 +12,17 @@ For the lockstep part of the solver issue.  Measures, in one run:
   (packed divisions ``vdivpd`` in numba's machine code, ``inspect_asm``); a reduced
   right-hand side that reads 12 rows (the pendulum's accelerations only) beside the
   full one that reads 30;
+* **lockstep lanes**: a whole DOP853 step of ``L`` strokes at once, every state
+  component, stage and coefficient a row of ``L`` numbers in one flat array (row ``r``
+  of stroke ``j`` at ``r * L + j``, ``L`` a compile-time constant), generated from the
+  same tableau; nanoseconds per stroke-step for ``L`` = 8, 16 and 32, whether LLVM
+  vectorized it, its compile time, and how far its ``y_new`` is from the solver's
+  kernel (the right-hand side without the elbow force and the lossy ball, which the
+  benchmark's strokes do not have);
 * **dense output**: the dense-output coefficients at an event (which evaluate the
   step's stages again, and DOP853's 3 extra stages) against the step itself.
 
-Run: ``.venv/bin/python benchmarks/step_layouts.py`` (about half a minute, most of it
+Run: ``.venv/bin/python benchmarks/step_layouts.py`` (about a minute, most of it
 compiling; nothing is cached).  Timings vary with the machine's load: read the ratios
 within one run.
 """
@@ -37,7 +44,7 @@ from tennis_stroke.model.params import resolve_params
 from tennis_stroke.solver._kernels import coefficient_tuple, dense_dop853, step_dop853
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tools"))
-from generate_kernels import _method  # noqa: E402  (the solver's own kernel generator)
+from generate_kernels import _method, _tableau  # noqa: E402  (the solver's kernel generator)
 
 FAST = {"cache": False, "error_model": "numpy", "fastmath": {"contract", "arcp"}}
 ARGS = ("t", "y", "f0", "h", "cf", "c2", "contact")
@@ -246,6 +253,126 @@ def vectorized(fn) -> str:
     return "yes" if "vdivpd" in asm else "no"
 
 
+def lane_source(lanes: int) -> str:
+    """A DOP853 step of ``lanes`` strokes in lockstep over flat rows (see the module
+    docstring): each stage one loop over the strokes, the stage sums and the right-hand
+    side (:func:`rhs_trig`'s arithmetic, the contact a 0/1 factor ``CON[j]``) written
+    out in it, so that LLVM can vectorize the loop."""
+    a, c = _tableau(DOP853, True)
+    ns = DOP853.n_stages
+
+    def row(r: int) -> str:
+        return f"{r} * L + j"
+
+    def cf(name: str) -> str:
+        return f"CF[{getattr(D, name)} * L + j]"
+
+    def weighted(coeffs, upto: int, i: int) -> str:
+        return " + ".join(
+            f"{float(coeffs[m])!r} * K[{row(10 * m + i)}]" for m in range(upto) if coeffs[m] != 0.0
+        )
+
+    out = [
+        f"L = {lanes}",
+        "",
+        "",
+        "def lane_step(T, Y, F0, H, CF, C2, CON, K, YN, ERR, rtol, atol):",
+    ]
+    out += ["    for i in range(10 * L):", "        K[i] = F0[i]"]  # stage 0: f(t, y), given
+    for s in range(1, ns + 1):
+        coeffs = a[s] if s < ns else DOP853.B
+        out += ["    for j in range(L):", "        h = H[j]"]
+        for i in range(10):
+            out.append(f"        y{i} = Y[{row(i)}] + h * ({weighted(coeffs, s, i)})")
+            if s == ns:
+                out.append(f"        YN[{row(i)}] = y{i}")
+        t = f"(T[j] + {float(c[s]) if s < ns else 1.0!r} * h)"
+        k = [f"K[{row(10 * s + i)}]" for i in range(10)]
+        out += [
+            f"        ax = {cf('CF_VX1')} + 2.0 * {cf('CF_VX2')} * {t}",
+            f"        ay = {cf('CF_VY1')} + 2.0 * {cf('CF_VY2')} * {t}",
+            "        sd = y2 * y1 - y3 * y0",
+            "        cd = y3 * y1 + y2 * y0",
+            f"        m12 = {cf('CF_M12')}",
+            f"        p = {cf('CF_C1')} - C2[j] - m12 * y5 * y5 * sd"
+            f" + {cf('CF_A1')} * (ax * y1 + ay * y0)",
+            f"        q = C2[j] + m12 * y4 * y4 * sd + {cf('CF_A2')} * (ax * y3 + ay * y2)",
+            f"        fb = -{cf('CF_K')} * (y8 - ({cf('CF_L1')} * y0 + {cf('CF_LH')} * y2))"
+            " * CON[j]",
+            f"        fr = -fb * {cf('CF_COUPLING')}",
+            f"        p -= fr * {cf('CF_L1')} * y1",
+            f"        q -= fr * {cf('CF_LH')} * y3",
+            "        mc = m12 * cd",
+            f"        det = {cf('CF_M11')} * {cf('CF_M22')} - mc * mc",
+            f"        {k[0]}, {k[1]}, {k[2]}, {k[3]} = -y4 * y1, y4 * y0, -y5 * y3, y5 * y2",
+            f"        {k[4]} = (p * {cf('CF_M22')} - q * mc) / det",
+            f"        {k[5]} = (q * {cf('CF_M11')} - p * mc) / det",
+            f"        {k[6]}, {k[7]}, {k[8]} = -y4, -y5, y9 * CON[j]",
+            f"        {k[9]} = (fb / {cf('CF_MB')} - ax) * CON[j]",
+        ]
+    out += ["    for j in range(L):", "        e5 = 0.0", "        e3 = 0.0"]
+    for i in range(10):
+        on = "" if i < 8 else " * CON[j]"
+        out += [
+            f"        sc = atol + rtol * max(abs(Y[{row(i)}]), abs(YN[{row(i)}]))",
+            f"        d = ({weighted(DOP853.E5, ns + 1, i)}) / sc{on}",
+            "        e5 += d * d",
+            f"        d = ({weighted(DOP853.E3, ns + 1, i)}) / sc{on}",
+            "        e3 += d * d",
+        ]
+    out.append(
+        "        ERR[j] = abs(H[j]) * e5 / math.sqrt((e5 + 0.01 * e3) * (8.0 + 2.0 * CON[j]))"
+    )
+    return "\n".join(out) + "\n"
+
+
+def lane_measurement(lanes: int, contact: bool) -> tuple[float, str, float, float]:
+    """ns per stroke-step, vectorized?, compile seconds, largest relative difference of
+    ``y_new`` from the solver's kernel."""
+    namespace = {"math": __import__("math")}
+    exec(compile(lane_source(lanes), f"<lane_step{lanes}>", "exec"), namespace)
+    step = njit(**FAST)(namespace["lane_step"])
+
+    @njit(**FAST)
+    def run(T, Y, F0, H, CF, C2, CON, reps):
+        K = np.zeros(13 * 10 * lanes)
+        YN = np.empty(10 * lanes)
+        ERR = np.empty(lanes)
+        acc = 0.0
+        for _ in range(reps):
+            Y[5 * lanes] += 1e-12
+            step(T, Y, F0, H, CF, C2, CON, K, YN, ERR, 1e-8, 1e-8)
+            acc += YN[4 * lanes] + ERR[lanes - 1]
+        return acc, YN
+
+    rows, y_cols = strokes(lanes)
+    CF = np.ascontiguousarray(rows.T).ravel()
+    T, H, C2 = np.full(lanes, 0.1), np.full(lanes, 1e-3), np.full(lanes, 0.5)
+    CON = np.full(lanes, 1.0 if contact else 0.0)
+    pairs = [scalar_step(rows[j], y_cols[:, j].copy(), contact) for j in range(lanes)]
+    ref = np.array([y_new for y_new, _ in pairs]).T
+    F0 = np.array([f0 for _, f0 in pairs]).T.ravel().copy()
+    start = time.perf_counter()
+    _, y_new = run(T, y_cols.ravel().copy(), F0, H, CF, C2, CON, 0)
+    compile_s = time.perf_counter() - start
+    _, y_new = run(T, y_cols.ravel().copy(), F0, H, CF, C2, CON, 1)
+    rel = float(np.max(np.abs(y_new.reshape(10, lanes) - ref) / np.maximum(np.abs(ref), 1e-300)))
+    asm = next(iter(step.inspect_asm().values()))
+    reps = 400_000 // lanes
+    ns = best(run, T, y_cols.ravel().copy(), F0, H, CF, C2, CON, reps) / (reps * lanes) * 1e9
+    return ns, "yes" if "vdivpd" in asm else "no", compile_s, rel
+
+
+@njit(**FAST)
+def scalar_step(cf_row, y_col, contact):
+    cf = coefficient_tuple(cf_row)
+    y = (y_col[0], y_col[1], y_col[2], y_col[3], y_col[4], y_col[5], y_col[6], y_col[7],
+         y_col[8], y_col[9])  # fmt: skip
+    f = rhs_trig(0.1, y, cf, 0.5, contact)
+    y_new, _, _ = step_dop853(0.1, y, f, 1e-3, cf, 0.5, 1e-8, 1e-8, contact)
+    return np.array(y_new), np.array(f)
+
+
 def check_interleaved(step2, rows, y_cols):
     """The interleaved kernel computes what the solver's kernel computes, bit for bit."""
 
@@ -301,6 +428,16 @@ def main() -> int:
             f"| full right-hand side over rows (30 read), {lanes} strokes: ns per stroke "
             f"| {full:.1f} (vectorized: {vectorized(rows_rhs_full)}) |"
         )
+
+    for lanes in (8, 16, 32):
+        for contact in (False, True):
+            ns, vec, compile_s, rel = lane_measurement(lanes, contact)
+            phase = "contact" if contact else "swing"
+            print(
+                f"| DOP853 step in lockstep ({phase}), {lanes} strokes over flat rows: ns per "
+                f"stroke-step | {ns:.0f} (vectorized: {vec}; compiled in {compile_s:.1f} s; "
+                f"y_new within {rel:.1e} of the solver's kernel) |"
+            )
 
     step_and_dense(rows[0], 2, True)
     step_and_dense(rows[0], 2, False)
