@@ -16,8 +16,11 @@ Measures, in one run on one machine:
 Usage::
 
     python benchmarks/bench_sweep.py [--subset 200] [--repeats 3] [--target 1e-4]
+                                     [--compiled-only]
 
-Prints a Markdown table; ``--json FILE`` also writes the numbers.  Not a test: timings
+Prints a Markdown table; ``--json FILE`` also writes the numbers.  ``--compiled-only``
+measures the compiled solver alone (no sweep process, no ``solve_ivp``): a few seconds,
+for side-by-side runs of two commits.  Not a test: timings
 vary with the machine's load, so read the ratios, measured side by side.
 """
 
@@ -59,6 +62,9 @@ def main() -> int:
     ap.add_argument("--repeats", type=int, default=3)
     ap.add_argument("--target", type=float, default=1e-4, help="accuracy target (km/h)")
     ap.add_argument("--json", type=Path, default=None)
+    ap.add_argument(
+        "--compiled-only", action="store_true", help="the compiled solver alone (no baseline)"
+    )
     args = ap.parse_args()
 
     th, de = THETA0[:, None], DELTA0[None, :]
@@ -77,6 +83,16 @@ def main() -> int:
     err = np.abs(res["v_out_kmh"] - reference["v_out_kmh"])[ok]
     compiled_err = float(err.max())
     us_core = rows[1] / n * 1e6
+    if args.compiled_only:
+        table = {
+            "grid_strokes": n,
+            "compiled_us_per_stroke_1_thread": us_core,
+            "compiled_us_per_stroke_wall_all_threads": rows[max(rows)] / n * 1e6,
+            "threads": n_threads,
+            "compiled_rhs_evals_per_stroke_mean": float(res["rhs_evals"][ok].mean()),
+            "compiled_max_err_kmh": compiled_err,
+        }
+        return report(table, args.json)
 
     with tempfile.TemporaryDirectory() as tmp:
         cmd = [
@@ -131,11 +147,16 @@ def main() -> int:
         "ratio_per_core": scipy_row[1] / us_core,
         "ratio_whole_process_per_stroke": scipy_row[1] / (process_wall / n * 1e6),
     }
+    return report(table, args.json)
+
+
+def report(table: dict, json_path: Path | None) -> int:
+    """Print ``table`` as Markdown (and write it to ``json_path``)."""
     print("| quantity | value |\n|---|---|")
     for key, value in table.items():
         print(f"| {key} | {value:.4g} |" if isinstance(value, float) else f"| {key} | {value} |")
-    if args.json:
-        args.json.write_text(json.dumps(table, indent=2))
+    if json_path:
+        json_path.write_text(json.dumps(table, indent=2))
     return 0
 
 

@@ -145,7 +145,9 @@ def _dense(name: str, cls) -> list[str]:
         """``a{i} = sum over m < stop of coeffs[row, m] * k[m, i]``, in the order of ``m``,
         one accumulator per component: independent sums that the CPU overlaps (a loop
         over the components outside the loop over the stages made one dependent chain
-        of multiply-adds per component; the same arithmetic, so the same bits)."""
+        of multiply-adds per component).  The same operations in the same order: alone,
+        the function gives the same bits as before; compiled into the stroke, the
+        multiply-adds may be fused differently, which moves last bits."""
         return [
             indent + " = ".join(f"a{i}" for i in comps) + " = 0.0",
             f"{indent}for m in range({stop}):",

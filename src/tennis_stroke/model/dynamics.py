@@ -171,6 +171,8 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
     # The columns that are one value for every stroke go in as one row, copied to every
     # stroke at once; only the others are written column by column (strided writes,
     # most of this function's time on a large grid).
+    if sorted(cols) != list(range(N_CF)):  # a column left out would silently stay 0
+        raise AssertionError("coefficients(): the columns do not cover the layout")
     row = np.zeros(N_CF)
     varying = {}
     for col, val in cols.items():

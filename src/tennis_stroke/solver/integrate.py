@@ -111,8 +111,10 @@ def error_root(err, exponent):
     """``err ** -exponent``, the root of an error norm that the step-size rules take
     (``exponent = -1 / (error order + 1)``).  For DOP853's 1/8 by three square roots:
     ``pow`` was about a tenth of the solver's time (a ``perf`` profile of the bench
-    grid), three square roots cost less, and like every root they preserve order, so
-    ``error_root(max(a, b)) == max(error_root(a), error_root(b))`` exactly."""
+    grid), three square roots cost less.  Correctly rounded square roots keep order,
+    so there ``error_root(max(a, b)) == max(error_root(a), error_root(b))`` exactly
+    (the integrator floors the root, not the norm; for ``pow``, other methods, only
+    as far as ``pow`` is monotonic)."""
     if exponent == -0.125:
         return math.sqrt(math.sqrt(math.sqrt(err)))
     return err**-exponent
