@@ -166,7 +166,7 @@ def _dense(name: str, cls) -> list[str]:
         f"def dense_{name}(t, y, f0, h, cf, c2, y_new, f_new, contact):",
         '    """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:',
         '    10 integrated components, else 8)."""',
-        f"    k = np.zeros(({n_k}, {N_STATE}))",
+        f"    k = np.zeros(({n_k + (cls.D.shape[0] if extra else cls.P.shape[1])}, {N_STATE}))",
         f"    for i in range({N_STATE}):",
         "        k[0, i] = f0[i]",
         f"        k[{ns}, i] = f_new[i]",
@@ -201,10 +201,16 @@ def _dense(name: str, cls) -> list[str]:
         first = 0
     n_rows = cls.D.shape[0] if extra else cls.P.shape[1]
     coeffs = f"_D_{tag}" if extra else f"_P_{tag}"
-    for r in range(n_rows):
-        lines += sums(coeffs, str(r), str(n_k), "    ")
-        lines.append(f"    z{first + r} = " + row(lambda i: f"h * a{i}"))
-    rows = [f"z{r}" for r in range(first + n_rows)] + [zero] * (7 - first - n_rows)
+    # The interpolant's rows from the weighted sums go below the stages in ``k``.
+    lines += [f"    for r in range({n_rows}):"]
+    lines += sums(coeffs, "r", str(n_k), "        ")
+    lines += [f"        k[{n_k} + r, {i}] = h * a{i}" for i in range(N_SWING)]
+    lines += [
+        f"        k[{n_k} + r, {i}] = h * a{i} if contact else 0.0" for i in range(N_SWING, N_STATE)
+    ]
+    rows = [f"z{r}" for r in range(first)]
+    rows += ["(" + ", ".join(f"k[{n_k + r}, {i}]" for i in comps) + ")" for r in range(n_rows)]
+    rows += [zero] * (7 - first - n_rows)
     lines.append("    return (" + ", ".join(rows) + ")")
     return lines
 

@@ -121,7 +121,7 @@ _P_DP54 = np.array([
 def dense_dp54(t, y, f0, h, cf, c2, y_new, f_new, contact):
     """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:
     10 integrated components, else 8)."""
-    k = np.zeros((7, 10))
+    k = np.zeros((11, 10))
     for i in range(10):
         k[0, i] = f0[i]
         k[6, i] = f_new[i]
@@ -144,63 +144,31 @@ def dense_dp54(t, y, f0, h, cf, c2, y_new, f_new, contact):
         ks = rhs_trig(t + _C_DP54[s] * h, (y[0] + h * a0, y[1] + h * a1, y[2] + h * a2, y[3] + h * a3, y[4] + h * a4, y[5] + h * a5, y[6] + h * a6, y[7] + h * a7, y[8] + h * a8 if contact else y[8], y[9] + h * a9 if contact else y[9]), cf, c2, contact)
         for i in range(10):
             k[s, i] = ks[i]
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(7):
-        c = _P_DP54[0, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z0 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(7):
-        c = _P_DP54[1, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z1 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(7):
-        c = _P_DP54[2, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z2 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(7):
-        c = _P_DP54[3, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z3 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    return (z0, z1, z2, z3, (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
+    for r in range(4):
+        a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+        for m in range(7):
+            c = _P_DP54[r, m]
+            a0 += c * k[m, 0]
+            a1 += c * k[m, 1]
+            a2 += c * k[m, 2]
+            a3 += c * k[m, 3]
+            a4 += c * k[m, 4]
+            a5 += c * k[m, 5]
+            a6 += c * k[m, 6]
+            a7 += c * k[m, 7]
+            a8 += c * k[m, 8]
+            a9 += c * k[m, 9]
+        k[7 + r, 0] = h * a0
+        k[7 + r, 1] = h * a1
+        k[7 + r, 2] = h * a2
+        k[7 + r, 3] = h * a3
+        k[7 + r, 4] = h * a4
+        k[7 + r, 5] = h * a5
+        k[7 + r, 6] = h * a6
+        k[7 + r, 7] = h * a7
+        k[7 + r, 8] = h * a8 if contact else 0.0
+        k[7 + r, 9] = h * a9 if contact else 0.0
+    return ((k[7, 0], k[7, 1], k[7, 2], k[7, 3], k[7, 4], k[7, 5], k[7, 6], k[7, 7], k[7, 8], k[7, 9]), (k[8, 0], k[8, 1], k[8, 2], k[8, 3], k[8, 4], k[8, 5], k[8, 6], k[8, 7], k[8, 8], k[8, 9]), (k[9, 0], k[9, 1], k[9, 2], k[9, 3], k[9, 4], k[9, 5], k[9, 6], k[9, 7], k[9, 8], k[9, 9]), (k[10, 0], k[10, 1], k[10, 2], k[10, 3], k[10, 4], k[10, 5], k[10, 6], k[10, 7], k[10, 8], k[10, 9]), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0))
 
 
 @njit(**JIT_FAST_INNER)
@@ -313,7 +281,7 @@ _D_DOP853 = np.array([
 def dense_dop853(t, y, f0, h, cf, c2, y_new, f_new, contact):
     """Dense-output coefficients (7 rows) of the step ``y -> y_new`` (``contact``:
     10 integrated components, else 8)."""
-    k = np.zeros((16, 10))
+    k = np.zeros((20, 10))
     for i in range(10):
         k[0, i] = f0[i]
         k[12, i] = f_new[i]
@@ -339,63 +307,31 @@ def dense_dop853(t, y, f0, h, cf, c2, y_new, f_new, contact):
     z0 = (y_new[0] - y[0], y_new[1] - y[1], y_new[2] - y[2], y_new[3] - y[3], y_new[4] - y[4], y_new[5] - y[5], y_new[6] - y[6], y_new[7] - y[7], y_new[8] - y[8] if contact else 0.0, y_new[9] - y[9] if contact else 0.0)
     z1 = (h * k[0, 0] - (y_new[0] - y[0]), h * k[0, 1] - (y_new[1] - y[1]), h * k[0, 2] - (y_new[2] - y[2]), h * k[0, 3] - (y_new[3] - y[3]), h * k[0, 4] - (y_new[4] - y[4]), h * k[0, 5] - (y_new[5] - y[5]), h * k[0, 6] - (y_new[6] - y[6]), h * k[0, 7] - (y_new[7] - y[7]), h * k[0, 8] - (y_new[8] - y[8]) if contact else 0.0, h * k[0, 9] - (y_new[9] - y[9]) if contact else 0.0)
     z2 = (2.0 * (y_new[0] - y[0]) - h * (k[12, 0] + k[0, 0]), 2.0 * (y_new[1] - y[1]) - h * (k[12, 1] + k[0, 1]), 2.0 * (y_new[2] - y[2]) - h * (k[12, 2] + k[0, 2]), 2.0 * (y_new[3] - y[3]) - h * (k[12, 3] + k[0, 3]), 2.0 * (y_new[4] - y[4]) - h * (k[12, 4] + k[0, 4]), 2.0 * (y_new[5] - y[5]) - h * (k[12, 5] + k[0, 5]), 2.0 * (y_new[6] - y[6]) - h * (k[12, 6] + k[0, 6]), 2.0 * (y_new[7] - y[7]) - h * (k[12, 7] + k[0, 7]), 2.0 * (y_new[8] - y[8]) - h * (k[12, 8] + k[0, 8]) if contact else 0.0, 2.0 * (y_new[9] - y[9]) - h * (k[12, 9] + k[0, 9]) if contact else 0.0)
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(16):
-        c = _D_DOP853[0, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z3 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(16):
-        c = _D_DOP853[1, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z4 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(16):
-        c = _D_DOP853[2, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z5 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
-    for m in range(16):
-        c = _D_DOP853[3, m]
-        a0 += c * k[m, 0]
-        a1 += c * k[m, 1]
-        a2 += c * k[m, 2]
-        a3 += c * k[m, 3]
-        a4 += c * k[m, 4]
-        a5 += c * k[m, 5]
-        a6 += c * k[m, 6]
-        a7 += c * k[m, 7]
-        a8 += c * k[m, 8]
-        a9 += c * k[m, 9]
-    z6 = (h * a0, h * a1, h * a2, h * a3, h * a4, h * a5, h * a6, h * a7, h * a8 if contact else 0.0, h * a9 if contact else 0.0)
-    return (z0, z1, z2, z3, z4, z5, z6)
+    for r in range(4):
+        a0 = a1 = a2 = a3 = a4 = a5 = a6 = a7 = a8 = a9 = 0.0
+        for m in range(16):
+            c = _D_DOP853[r, m]
+            a0 += c * k[m, 0]
+            a1 += c * k[m, 1]
+            a2 += c * k[m, 2]
+            a3 += c * k[m, 3]
+            a4 += c * k[m, 4]
+            a5 += c * k[m, 5]
+            a6 += c * k[m, 6]
+            a7 += c * k[m, 7]
+            a8 += c * k[m, 8]
+            a9 += c * k[m, 9]
+        k[16 + r, 0] = h * a0
+        k[16 + r, 1] = h * a1
+        k[16 + r, 2] = h * a2
+        k[16 + r, 3] = h * a3
+        k[16 + r, 4] = h * a4
+        k[16 + r, 5] = h * a5
+        k[16 + r, 6] = h * a6
+        k[16 + r, 7] = h * a7
+        k[16 + r, 8] = h * a8 if contact else 0.0
+        k[16 + r, 9] = h * a9 if contact else 0.0
+    return (z0, z1, z2, (k[16, 0], k[16, 1], k[16, 2], k[16, 3], k[16, 4], k[16, 5], k[16, 6], k[16, 7], k[16, 8], k[16, 9]), (k[17, 0], k[17, 1], k[17, 2], k[17, 3], k[17, 4], k[17, 5], k[17, 6], k[17, 7], k[17, 8], k[17, 9]), (k[18, 0], k[18, 1], k[18, 2], k[18, 3], k[18, 4], k[18, 5], k[18, 6], k[18, 7], k[18, 8], k[18, 9]), (k[19, 0], k[19, 1], k[19, 2], k[19, 3], k[19, 4], k[19, 5], k[19, 6], k[19, 7], k[19, 8], k[19, 9]))
 
 
 #: The kernels of each method id: (step, dense-output coefficients, dense-output
