@@ -4,6 +4,9 @@ from pathlib import Path
 import os
 import re
 import sys
+from collections import namedtuple
+from dataclasses import asdict
+from functools import cache
 
 from snakemake.utils import validate
 
@@ -21,17 +24,28 @@ from tennis_stroke.experiments.specs import (
     plain,
     value_at,
 )
-from tennis_stroke.inference.multiverse import MULTIVERSE_SETS
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
-from tennis_stroke.inference.targeted import targeted_config
 from tennis_stroke.inference.validation import group_config
 from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
+from tennis_stroke.pipeline import params as job_params
+from tennis_stroke.pipeline.scenarios import (
+    ScenarioError,
+    changes_read,
+    describe,
+    folder as scenario_folder,
+    load_scenarios,
+    resolved_results,
+    scenario_config,
+)
 from tennis_stroke.pipeline.targets import damaged_results
 from tennis_stroke.replication.registry import FIGURES
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
 config.update(numbers_from_strings(config))
+# Scenarios given on the command line (--config 'scenarios={NAME: {...}}') are not part
+# of the paper's configuration: taken out before it is checked.
+_ADHOC_SCENARIOS = config.pop("scenarios", None)
 # One line naming the key and the rule it breaks, before any job starts (no traceback).
 _errors = config_errors(
     config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
@@ -54,6 +68,19 @@ try:
     )
 except ReadingSpaceError as _exc:
     sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
+    sys.exit(1)
+
+# The what-if scenarios (config/scenarios.yaml and --config scenarios=...), each checked
+# as the paper's configuration is, before any job: their configurations by name.
+SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
+try:
+    SCENARIOS = load_scenarios("config/scenarios.yaml", _ADHOC_SCENARIOS)
+    SCENARIO_CONFIGS = {
+        _name: scenario_config(config, _name, _overrides, SCHEMA)
+        for _name, _overrides in SCENARIOS.items()
+    }
+except ScenarioError as _exc:
+    sys.stderr.write(f"tennis-stroke scenario error: {_exc}\n")
     sys.exit(1)
 
 # A damaged result file (truncated, garbage) is named before any job: Snakemake would take
@@ -119,21 +146,22 @@ def simulation_code(experiment):
 
 
 def simulation_params(experiment):
-    """A row's params: what the job runs (its row: function and flags), the config values
-    it reads and, for a model row, the model overrides and solver settings."""
-    out = {
-        "experiment": {
-            "key": experiment.key,
-            "function": experiment.function,
-            "model": experiment.model,
-            "chunks": bool(experiment.chunks),
-            "threaded": experiment.threaded,
-        },
-        "args": experiment.arguments(config),
-    }
-    if experiment.model:
-        out["common"] = common_params()
-    return out
+    """A row's params in the paper's configuration (tennis_stroke.pipeline.params)."""
+    return job_params.simulation_params(experiment, config)
+
+
+def scenario_params(experiment):
+    """A row's params in a scenario: the same keys as the paper's, each a function of
+    the job's scenario (the ``scenario`` wildcard)."""
+
+    def of(key):
+        def value(wildcards):
+            scenario = SCENARIO_CONFIGS[wildcards.scenario]
+            return job_params.simulation_params(experiment, scenario)[key]
+
+        return value
+
+    return {key: of(key) for key in simulation_params(experiment)}
 
 
 wildcard_constraints:
@@ -147,63 +175,145 @@ CHUNKED = {e.stem: e for e in EXPERIMENTS.values() if e.chunks}
 CHUNKED_MAPS = "|".join(re.escape(stem) for stem in [*CHUNKED, "robustness/claims"])
 
 
-def map_rows(name):
+def configuration(wildcards):
+    """The configuration of a job: its scenario's (the ``scenario`` wildcard), else the
+    paper's."""
+    name = wildcards.get("scenario")
+    return config if name is None else SCENARIO_CONFIGS[name]
+
+
+def results_folder(wildcards):
+    """The folder of a job's result files: ``results``, or its scenario's."""
+    name = wildcards.get("scenario")
+    return "results" if name is None else scenario_folder(name)
+
+
+def map_rows(name, configuration=config):
     """Requested chunks and number of rows of the first axis of map ``name``
-    (CHUNKED_MAPS); the robustness analysis' from config/readings.yaml (its rows: at
-    most the declared number of readings)."""
+    (CHUNKED_MAPS) in a ``configuration``; the robustness analysis' from
+    config/readings.yaml (its rows: at most the declared number of readings)."""
     if name == "robustness/claims":
         spec = READING_SPACE.raw["multiverse"]
         return spec["chunks"], spec["readings"]
     experiment = CHUNKED[name]
-    requested = value_at(config, experiment.chunks)
-    return requested, experiment.row_count(experiment.arguments(config))
+    requested = value_at(configuration, experiment.chunks)
+    return requested, experiment.row_count(experiment.arguments(configuration))
 
 
 def chunk_files(wildcards):
     """The chunk files of a map: the requested chunk count, at most one per row."""
-    n = chunk_count(*map_rows(wildcards.map))
-    return [f"results/chunks/{wildcards.map}/{i}-of-{n}.nc" for i in range(n)]
-
-
-def model():
-    """Model overrides as a plain dict in a fixed order (params compare by repr)."""
-    return dict(sorted(config.get("model", {}).items()))
-
-
-def solver():
-    """Solver settings as a plain dict."""
-    return dict(sorted(config["solver"].items()))
+    n = chunk_count(*map_rows(wildcards.map, configuration(wildcards)))
+    folder = results_folder(wildcards)
+    return [f"{folder}/chunks/{wildcards.map}/{i}-of-{n}.nc" for i in range(n)]
 
 
 def common_params():
-    """Params every model simulation needs."""
-    return {"model": model(), "solver": solver()}
-
-
-def paper_sections():
-    """The config sections the paper's experiments read and the claims' search settings
-    (section ``search``), less those the multiverse sets itself."""
-    sections = {
-        key.split(".")[0]
-        for e in EXPERIMENTS.values()
-        if e.family == "paper"
-        for key in e.keys()
-    }
-    sections.add("search")
-    # plain: keys sorted, as a --config merge reorders them (params compare by repr)
-    return plain({k: config[k] for k in sections - set(MULTIVERSE_SETS)})
+    """Params every model simulation needs (the paper's configuration)."""
+    return job_params.common_params(config)
 
 
 def paper_experiments():
-    """What the targeted evaluation of the claims reads (the claims job and the
-    robustness analysis rerun it): :func:`paper_sections` less the steps of the maps it
-    searches instead (tennis_stroke.inference.targeted.targeted_config)."""
-    return plain(targeted_config(paper_sections()))
+    """What the targeted evaluation of the claims reads (the paper's configuration)."""
+    return job_params.paper_experiments(config)
+
+
+#: Where a row's rule writes: the paper's folders, or a scenario's (the ``scenario``
+#: wildcard), with the rule's name and params.
+Where = namedtuple("Where", "name results logs benchmarks values")
+
+
+def where_to_run(experiment):
+    """The rules of a row: the paper's; and, for a paper experiment, the scenarios'."""
+    out = [
+        Where(
+            experiment.rule,
+            "results",
+            "logs",
+            "benchmarks/workflow",
+            simulation_params(experiment),
+        )
+    ]
+    if experiment.family == "paper":
+        out.append(
+            Where(
+                f"scenario_{experiment.rule}",
+                scenario_folder("{scenario}"),
+                scenario_folder("{scenario}", "logs"),
+                scenario_folder("{scenario}", "benchmarks/workflow"),
+                scenario_params(experiment),
+            )
+        )
+    return out
+
+
+#: Every row's rules: (row, where) pairs.
+ROW_RULES = [(e, where) for e in EXPERIMENTS.values() for where in where_to_run(e)]
+
+
+def scenario_setting(key):
+    """A params function: a top-level config value of the job's scenario."""
+
+    def value(wildcards):
+        return SCENARIO_CONFIGS[wildcards.scenario][key]
+
+    return value
+
+
+#: The paper experiments' maps gathered from chunks in a scenario.
+SCENARIO_MAPS = "|".join(
+    re.escape(stem) for stem, e in CHUNKED.items() if e.family == "paper"
+)
+
+
+# A scenario wildcard matches a declared scenario's name only (none: nothing).
+wildcard_constraints:
+    scenario="|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x",
 
 
 def figure_inputs(wildcards):
     """The result files a figure is drawn from (the registry)."""
     return FIGURES[wildcards.name].inputs
+
+
+#: The registry of figures: not a code input of the figure jobs, each of which gets its
+#: entry as a param (figure_entry).
+REGISTRY = PACKAGE_DIR / "replication" / "registry.py"
+
+
+def figure_entry(wildcards):
+    """A figure's registry entry as plain data (a param: editing one entry reruns its
+    figure only)."""
+    return plain(asdict(FIGURES[wildcards.name]))
+
+
+#: The paper's figures, drawn from the paper's experiments only: the figures a scenario
+#: draws (a regex of their names).
+PAPER_FIGURES = [
+    name for name, f in FIGURES.items() if set(f.files) <= set(PAPER_RESULTS)
+]
+PAPER_FIGURE_NAMES = "|".join(re.escape(name) for name in PAPER_FIGURES)
+
+
+@cache
+def scenario_files(name):
+    """The paper's result files as scenario ``name`` reads them, by key: its own where
+    it changes what their jobs read, the paper's elsewhere."""
+    return resolved_results(config, SCENARIO_CONFIGS[name], name)
+
+
+def scenario_figure_inputs(wildcards):
+    """The result files a scenario's figure is drawn from."""
+    files = scenario_files(wildcards.scenario)
+    return [files[key] for key in FIGURES[wildcards.name].files]
+
+
+def scenario_figure_note(wildcards):
+    """A scenario figure's second title line: the scenario and what it changes of what
+    the figure's files read."""
+    name = wildcards.scenario
+    read = changes_read(FIGURES[wildcards.name].files, config, SCENARIO_CONFIGS[name])
+    what = "; ".join(describe(*change) for change in read) or "no change to its inputs"
+    return f"scenario {name}: {what}"
 
 
 def relabel_map(wildcards):

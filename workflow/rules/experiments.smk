@@ -5,25 +5,29 @@
 # reruns nothing of it.  Its code inputs are the modules its job imports.  Threads,
 # memory and runtime are resources: `--set-threads` or a profile (profiles/slurm)
 # changes them, never the science config.
+#
+# Each row of the paper's experiments has a second rule for the what-if scenarios
+# (config/scenarios.yaml): the same job under results/scenarios/{scenario}/, its params
+# those of the scenario's configuration (tennis_stroke.pipeline.scenarios).
 
 
-for _experiment in EXPERIMENTS.values():
+for _experiment, _where in ROW_RULES:
     if _experiment.chunks:
 
         rule:
             name:
-                _experiment.rule
+                _where.name
             input:
                 code=simulation_code(_experiment),
             output:
-                f"results/chunks/{_experiment.stem}/{{chunk}}-of-{{chunks}}.nc",
+                f"{_where.results}/chunks/{_experiment.stem}/{{chunk}}-of-{{chunks}}.nc",
             log:
-                f"logs/{_experiment.rule}/{{chunk}}-of-{{chunks}}.log",
+                f"{_where.logs}/{_experiment.rule}/{{chunk}}-of-{{chunks}}.log",
             benchmark:
-                f"benchmarks/workflow/{_experiment.rule}_{{chunk}}-of-{{chunks}}.tsv"
+                f"{_where.benchmarks}/{_experiment.rule}_{{chunk}}-of-{{chunks}}.tsv"
             threads: 1
             params:
-                **simulation_params(_experiment),
+                **_where.values,
             script:
                 "../scripts/simulate.py"
 
@@ -31,18 +35,18 @@ for _experiment in EXPERIMENTS.values():
 
         rule:
             name:
-                _experiment.rule
+                _where.name
             input:
                 code=simulation_code(_experiment),
             output:
-                _experiment.path,
+                f"{_where.results}/{_experiment.stem}.nc",
             log:
-                f"logs/{_experiment.rule}.log",
+                f"{_where.logs}/{_experiment.rule}.log",
             benchmark:
-                f"benchmarks/workflow/{_experiment.rule}.tsv"
+                f"{_where.benchmarks}/{_experiment.rule}.tsv"
             threads: 1
             params:
-                **simulation_params(_experiment),
+                **_where.values,
             script:
                 "../scripts/simulate.py"
 
@@ -59,6 +63,23 @@ rule gather_map:
         map=CHUNKED_MAPS,
     params:
         max_failure_share=config["max_failure_share"],
+        relabel=relabel_map,
+    script:
+        "../scripts/gather_map.py"
+
+
+rule scenario_gather_map:
+    input:
+        chunks=chunk_files,
+        code=code_inputs("gather_map.py", labels=True),
+    output:
+        "results/scenarios/{scenario}/{map}.nc",
+    log:
+        "logs/scenarios/{scenario}/gather_map/{map}.log",
+    wildcard_constraints:
+        map=SCENARIO_MAPS,
+    params:
+        max_failure_share=scenario_setting("max_failure_share"),
         relabel=relabel_map,
     script:
         "../scripts/gather_map.py"

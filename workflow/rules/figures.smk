@@ -1,10 +1,12 @@
-# Plotting rules: separate from the simulations, so restyling never re-simulates.
+# Plotting rules: separate from the simulations, so restyling never re-simulates.  A
+# figure's registry entry is a param of its job (not the registry as code), so adding or
+# editing one figure reruns that figure only.
 
 
 rule figure:
     input:
         figure_inputs,
-        code_inputs("figure.py"),
+        code_inputs("figure.py", leave_out=[REGISTRY]),
     output:
         report(
             "results/figures/{name}.png",
@@ -15,5 +17,27 @@ rule figure:
         "logs/figure_{name}.log",
     wildcard_constraints:
         name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
+    params:
+        figure=figure_entry,
+        note="",
+    script:
+        "../scripts/figure.py"
+
+
+# A scenario's figure (one of the paper's figures): drawn from the scenario's files where
+# it changes them, from the paper's elsewhere; its title says what the scenario changes.
+rule scenario_figure:
+    input:
+        scenario_figure_inputs,
+        code_inputs("figure.py", leave_out=[REGISTRY]),
+    output:
+        "results/scenarios/{scenario}/figures/{name}.png",
+    log:
+        "logs/scenarios/{scenario}/figure_{name}.log",
+    wildcard_constraints:
+        name=PAPER_FIGURE_NAMES,
+    params:
+        figure=figure_entry,
+        note=scenario_figure_note,
     script:
         "../scripts/figure.py"

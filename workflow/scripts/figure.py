@@ -1,8 +1,10 @@
-"""Draw one figure from its result files."""
+"""Draw one figure from its result files (its registry entry is a param of the job)."""
 
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.figures import draw
+from tennis_stroke.replication.registry import Figure
 
 with logged(snakemake.log[0]):
     data = [p for p in snakemake.input if p.endswith(".nc")]
-    draw(snakemake.wildcards.name, data, snakemake.output[0])
+    figure = Figure(**snakemake.params.figure)
+    draw(figure, data, snakemake.output[0], note=snakemake.params.note)

@@ -19,7 +19,7 @@ import xarray as xr  # noqa: E402
 
 from ..inference.measures import measure_delay_threshold, valid_v_out  # noqa: E402
 from ..io.netcdf import load_result  # noqa: E402
-from .registry import FIGURES  # noqa: E402
+from .registry import FIGURES, Figure  # noqa: E402
 
 DPI = 110
 
@@ -412,11 +412,15 @@ DRAWERS: dict[str, Callable[..., plt.Figure]] = {
 }
 
 
-def draw(name: str, inputs: Sequence[str | Path], output: str | Path) -> None:
-    """Draw figure ``name`` from its result files into ``output`` (PNG)."""
-    figure = FIGURES[name]
+def draw(
+    figure: str | Figure, inputs: Sequence[str | Path], output: str | Path, note: str = ""
+) -> None:
+    """Draw ``figure`` (a registry entry, or its name in :data:`FIGURES`) from its result
+    files into ``output`` (PNG); ``note`` (a scenario's changes) is a second title line."""
+    figure = FIGURES[figure] if isinstance(figure, str) else figure
     datasets = [load_result(p) for p in inputs]
-    fig = DRAWERS[figure.draw](datasets, title(figure.title, datasets[0]), *figure.args)
+    heading = title(figure.title, datasets[0]) + (f"\n{note}" if note else "")
+    fig = DRAWERS[figure.draw](datasets, heading, *figure.args)
     fig.tight_layout()
     fig.savefig(output, dpi=DPI)
     plt.close(fig)

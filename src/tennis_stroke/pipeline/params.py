@@ -1,0 +1,102 @@
+"""What each workflow job reads of a configuration: its rule's params, as plain data.
+
+A job's params are the config values it reads, and nothing else: Snakemake reruns a job
+when they change (it compares their ``repr``), so a change of another key reruns nothing
+of it.  The same functions give the params of the paper's jobs (the workflow config) and
+of a scenario's (the config with the scenario's overrides,
+:mod:`tennis_stroke.pipeline.scenarios`), and tell which files a scenario changes: those
+whose job reads a value it overrides (:func:`changed_results`).
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, Experiment, plain
+from ..inference.multiverse import MULTIVERSE_SETS
+from ..inference.targeted import targeted_config
+
+
+def model(config: Mapping) -> dict:
+    """Model overrides as a plain dict in a fixed order (params compare by repr)."""
+    return dict(sorted((config.get("model") or {}).items()))
+
+
+def solver(config: Mapping) -> dict:
+    """Solver settings as a plain dict."""
+    return dict(sorted(config["solver"].items()))
+
+
+def common_params(config: Mapping) -> dict:
+    """Params every model simulation needs."""
+    return {"model": model(config), "solver": solver(config)}
+
+
+def simulation_params(experiment: Experiment, config: Mapping) -> dict:
+    """A row's params: what the job runs (its row: function and flags), the config values
+    it reads and, for a model row, the model overrides and solver settings."""
+    out = {
+        "experiment": {
+            "key": experiment.key,
+            "function": experiment.function,
+            "model": experiment.model,
+            "chunks": bool(experiment.chunks),
+            "threaded": experiment.threaded,
+        },
+        "args": experiment.arguments(config),
+    }
+    if experiment.model:
+        out["common"] = common_params(config)
+    return out
+
+
+def paper_sections(config: Mapping) -> dict:
+    """The config sections the paper's experiments read and the claims' search settings
+    (section ``search``), less those the multiverse sets itself."""
+    sections = {
+        key.split(".")[0]
+        for e in EXPERIMENTS.values()
+        if e.family == "paper"
+        for key in e.keys()
+    }
+    sections.add("search")
+    # plain: keys sorted, as a --config merge reorders them (params compare by repr)
+    return plain({k: config[k] for k in sections - set(MULTIVERSE_SETS)})
+
+
+def paper_experiments(config: Mapping) -> dict:
+    """What the targeted evaluation of the claims reads (the claims job and the
+    robustness analysis rerun it): :func:`paper_sections` less the steps of the maps it
+    searches instead (:func:`tennis_stroke.inference.targeted.targeted_config`)."""
+    return plain(targeted_config(paper_sections(config)))
+
+
+def claims_params(config: Mapping) -> dict:
+    """What the claims job reads besides its files: the targeted evaluation's sections and
+    the model and solver."""
+    return {"experiments": paper_experiments(config), "common": common_params(config)}
+
+
+def changed_results(base: Mapping, other: Mapping) -> list[str]:
+    """The paper's result files (keys of :data:`PAPER_RESULTS`) whose job reads a value
+    that differs between configs ``base`` and ``other``, in the table's order."""
+    return [
+        key
+        for key in PAPER_RESULTS
+        if simulation_params(EXPERIMENTS[key], base)
+        != simulation_params(EXPERIMENTS[key], other)
+    ]
+
+
+def read_keys(experiment: Experiment) -> list[str]:
+    """The dotted config keys a row's job reads: its arguments' and, for a model row,
+    the sections ``model`` and ``solver``."""
+    return [*experiment.keys(), *(["model", "solver"] if experiment.model else [])]
+
+
+def related(key: str, read: str) -> bool:
+    """Whether a change of config ``key`` changes what a job reading ``read`` gets: the
+    same key, one inside it, or one holding it (``torque_delay`` holds
+    ``torque_delay.L1``; a list is read whole: ``angle_maps.L1`` holds
+    ``angle_maps.L1.0``)."""
+    return key == read or key.startswith(f"{read}.") or read.startswith(f"{key}.")

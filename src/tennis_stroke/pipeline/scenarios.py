@@ -1,0 +1,191 @@
+"""What-if scenarios: named sets of overrides of the paper's configuration, run beside it.
+
+The paper's configuration (``config/config.yaml``) is what the replication is graded on.
+A scenario is a name and overrides in the shape of that file
+(``heavy_racket: {model: {M2: 0.35}}``), declared in ``config/scenarios.yaml`` or given on
+the command line (``--config 'scenarios={NAME: {...}}'``, or ``tennis-stroke whatif``).
+Its files mirror the paper's under ``results/scenarios/<name>/`` and its page is
+``report/scenarios/<name>/index.html``; the same rules make them.  A scenario reads the
+paper's file wherever its overrides change nothing the file's job reads
+(:func:`resolved_results`), so it computes what it changes and nothing else, and it never
+writes a paper file.
+
+Checked before any job, each failure one line naming the scenario: the name, the shape,
+every override against the config's schema and bounds (the config with the overrides is
+checked as the paper's is), and no override of a section only the paper's configuration
+runs (:data:`PAPER_ONLY`).
+"""
+
+from __future__ import annotations
+
+import copy
+import re
+from collections.abc import Mapping
+from pathlib import Path
+
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, plain
+from ..model.params import PARAMETERS, READINGS
+from ..io.config_files import ConfigFileError, load_yaml
+from .config_check import config_errors, numbers_from_strings
+from .params import changed_results, read_keys, related
+
+#: A scenario's name: a folder name on every system, and a Snakemake wildcard value.
+NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]{0,63}")
+#: The folder of the scenarios' result files and pages, below ``results/`` and ``report/``.
+FOLDER = "scenarios"
+#: Config sections a scenario may not override: what runs only in the paper's
+#: configuration (the speed-against-accuracy studies, the model ladder).
+PAPER_ONLY = {
+    "solver_study": "the speed-against-accuracy studies run in the paper's configuration only",
+    "model_ladder": "the model ladder runs in the paper's configuration only",
+}
+
+
+class ScenarioError(ValueError):
+    """A scenario that cannot run as declared (one line)."""
+
+
+def merged(base: Mapping, overrides: Mapping) -> dict:
+    """``base`` with ``overrides`` applied: mappings merge key by key, any other value
+    (a number, a list, a range given whole) replaces the base's."""
+    out = copy.deepcopy(dict(base))
+    for key, value in overrides.items():
+        if isinstance(value, Mapping) and isinstance(out.get(key), Mapping):
+            out[key] = merged(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
+    return out
+
+
+def changes(base: Mapping, other: Mapping, prefix: str = "") -> list[tuple[str, object, object]]:
+    """Every dotted config key whose value differs between ``base`` and ``other``, with
+    both values (a list or a value missing on one side compares whole), in key order."""
+    out = []
+    for key in sorted(set(base) | set(other), key=str):
+        a, b = base.get(key), other.get(key)
+        path = f"{prefix}{key}"
+        if isinstance(a, Mapping) and isinstance(b, Mapping):
+            out.extend(changes(a, b, f"{path}."))
+        elif plain(a) != plain(b):
+            out.append((path, plain(a), plain(b)))
+    return out
+
+
+def _shape_errors(name: object, overrides: object) -> list[str]:
+    if not isinstance(name, str) or not NAME.fullmatch(name):
+        return [
+            f"scenario name {name!r}: a letter, then letters, digits, '_' or '-' "
+            "(at most 64; it names a folder)"
+        ]
+    if overrides is None:
+        return []
+    if not isinstance(overrides, Mapping):
+        return [
+            f"scenario {name!r}: overrides must be a mapping in the shape of "
+            f"config/config.yaml, got {overrides!r}"
+        ]
+    for section in overrides:
+        if section in PAPER_ONLY:
+            return [f"scenario {name!r}: may not override {section!r} ({PAPER_ONLY[section]})"]
+        if section == "scenarios":
+            return [f"scenario {name!r}: a scenario may not declare scenarios"]
+    return []
+
+
+def scenario_config(base: Mapping, name: str, overrides: Mapping | None, schema: str | Path) -> dict:
+    """The configuration of scenario ``name``: ``base`` (the paper's, validated) with its
+    ``overrides``, checked as the paper's is.  Raises :class:`ScenarioError`."""
+    errors = _shape_errors(name, overrides)
+    if errors:
+        raise ScenarioError(errors[0])
+    config = merged(base, numbers_from_strings(dict(overrides or {})))
+    errors = config_errors(config, schema)
+    if errors:
+        raise ScenarioError(f"scenario {name!r}: {errors[0]}")
+    return config
+
+
+def load_scenarios(path: str | Path, extra: Mapping | None = None) -> dict[str, dict]:
+    """The declared scenarios of ``path`` (``config/scenarios.yaml``; an empty or missing
+    file: none), and ``extra`` ones (given on the command line) replacing any of the same
+    name, by name.  Only their shape is checked here (:func:`scenario_config` checks the
+    values)."""
+    raw = None
+    if Path(path).is_file():
+        try:
+            raw = load_yaml(path)
+        except ConfigFileError as exc:
+            raise ScenarioError(str(exc)) from None
+    if raw is None:
+        raw = {}
+    if not isinstance(raw, Mapping):
+        raise ScenarioError(
+            f"{path}: must map each scenario's name to its overrides, got {type(raw).__name__}"
+        )
+    if extra is not None and not isinstance(extra, Mapping):
+        raise ScenarioError(
+            f"--config scenarios: must map each scenario's name to its overrides, got {extra!r}"
+        )
+    out = {**raw, **(extra or {})}
+    for name, overrides in out.items():
+        errors = _shape_errors(name, overrides)
+        if errors:
+            raise ScenarioError(errors[0])
+    return {name: plain(overrides or {}) for name, overrides in out.items()}
+
+
+def folder(name: str, top: str = "results") -> str:
+    """The folder of scenario ``name``'s files below ``top`` (``results`` or ``report``)."""
+    return f"{top}/{FOLDER}/{name}"
+
+
+def scenario_path(path: str, name: str) -> str:
+    """The scenario's counterpart of a paper file ``path`` (``results/...`` or
+    ``report/...``): the same relative path below the scenario's folder."""
+    top, _, rest = path.partition("/")
+    return f"{folder(name, top)}/{rest}"
+
+
+def resolved_results(base: Mapping, config: Mapping, name: str) -> dict[str, str]:
+    """The paper's result files as scenario ``name`` (configuration ``config``) reads
+    them, by key: its own file where its overrides change what the file's job reads, the
+    paper's file elsewhere (the same values: the same job)."""
+    changed = set(changed_results(base, config))
+    return {
+        key: scenario_path(path, name) if key in changed else path
+        for key, path in PAPER_RESULTS.items()
+    }
+
+
+def changes_read(files, base: Mapping, config: Mapping) -> list[tuple[str, object, object]]:
+    """The changes from ``base`` to ``config`` (:func:`changes`) that the jobs of the
+    paper's result files ``files`` (keys of :data:`PAPER_RESULTS`) read."""
+    read = [k for key in files for k in read_keys(EXPERIMENTS[key])]
+    return [c for c in changes(base, config) if any(related(c[0], r) for r in read)]
+
+
+def describe(key: str, old, new) -> str:
+    """One override for a title or a banner: ``key = new (paper: old)``; a model
+    parameter or reading the paper's configuration leaves at its default is shown with
+    that default and its unit (:data:`~tennis_stroke.model.params.PARAMETERS`)."""
+    unit = ""
+    section, _, name = key.partition(".")
+    if section == "model" and name in PARAMETERS:
+        spec = PARAMETERS[name]
+        old = spec.default if old is None else old
+        unit = "" if spec.unit == "1" else f" {spec.unit}"
+    elif section == "model" and name in READINGS and old is None:
+        old = READINGS[name].default
+    return f"{key} = {_short(new)}{unit} (paper: {_short(old)}{unit})"
+
+
+def _short(value) -> str:
+    if value is None:
+        return "default"
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{k}: {_short(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, list):
+        return "[" + ", ".join(_short(v) for v in value) + "]"
+    return str(value)
