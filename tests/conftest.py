@@ -132,3 +132,12 @@ def tiny_run(tmp_path_factory):
     done = run_snakemake("report", work, "--cores", "2", timeout=1200)
     assert done.returncode == 0, done.stderr[-3000:]
     return work
+
+
+def record_configuration(folder, scenario=None, departures=()) -> None:
+    """The record the claims job writes beside a claims table in ``folder``: the paper's
+    configuration unless a ``scenario`` or ``departures`` are given."""
+    from tennis_stroke.inference.paper_config import RECORD_NAME, write_record
+
+    record = {"scenario": scenario, "departures": list(departures)}
+    write_record(record, Path(folder) / RECORD_NAME)

@@ -11,6 +11,7 @@ import time
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import record_configuration
 
 from tennis_stroke import strike, strike_batch
 from tennis_stroke.cli import main
@@ -429,6 +430,7 @@ def test_console_script_runs_as_a_process(tmp_path):
 
 def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     table = tmp_path / "claims.csv"
+    record_configuration(tmp_path)
     row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,,{value},0,agrees\n"
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
     header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
@@ -449,6 +451,7 @@ def test_claims_command_exits_1_when_a_search_and_its_map_differ_without_cause(t
     import xarray as xr
 
     table = tmp_path / "claims.csv"
+    record_configuration(tmp_path)
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
     header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
     declared = tmp_path / "claims.yaml"

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+from conftest import record_configuration
 
 from tennis_stroke.cli import main
 
@@ -81,6 +82,8 @@ def _table(tmp_path):
     value (so passing), as the claims job would write it."""
     declared = __import__("yaml").safe_load((ROOT / "config" / "claims.yaml").read_text())
     from tennis_stroke.replication.claims import COLUMNS
+
+    record_configuration(tmp_path)
 
     rows = [
         {

@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 import pandas as pd
+from conftest import record_configuration
 
 ROOT = Path(__file__).resolve().parents[1]
 TOOL = ROOT / "tools" / "readme_results.py"
@@ -33,6 +34,7 @@ def _claims(path: Path, status="pass") -> Path:
         },
     ]
     pd.DataFrame(rows).to_csv(path, index=False)
+    record_configuration(path.parent)
     return path
 
 

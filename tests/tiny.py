@@ -29,7 +29,8 @@ TINY = {
             "delta0": {"start": 0.0, "stop": 100.0, "step": 50.0},
             "tau": {"start": 0.0, "stop": 0.2, "step": 0.1},
         },
-        "fig9": {"C2": 5.0, "delta0": 52.5, "tau": {"start": 0.0, "stop": 0.2, "step": 0.05}},
+        "base_stroke": {"C2": 5.0, "delta0": 52.5},
+        "fig9": {"tau": {"start": 0.0, "stop": 0.2, "step": 0.05}},
         "strokes": {"tau_L": 0.0, "tau_H": 0.185, "t_end": 0.32, "samples": 33},
     },
     "solver_study": {

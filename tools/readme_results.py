@@ -17,6 +17,12 @@ from pathlib import Path
 
 import pandas as pd
 
+from tennis_stroke.inference.paper_config import (
+    PaperConfigError,
+    describe_departures,
+    read_record,
+)
+
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 STATUSES = ("pass", "used_for_fit", "known_deviation", "fail")
 CLASSES = ("robust", "reading_dependent", "not_reproduced", "used_for_fit")
@@ -74,6 +80,24 @@ def replaced(readme: str, content: str) -> str:
     return f"{head}{BEGIN}\n{content}\n{END}{tail}"
 
 
+def not_the_papers(claims: str) -> str:
+    """Why the claims table ``claims`` may not write the README (empty: it may): the
+    README's results are the paper's configuration's, never a scenario's or a departing
+    configuration's (the record beside the table, tennis_stroke.inference.paper_config)."""
+    record = read_record(claims)
+    if record["scenario"]:
+        return (
+            f"{claims} is scenario {record['scenario']['name']!r}'s, an exploration: the "
+            "README shows the paper's configuration only"
+        )
+    if record["departures"]:
+        return (
+            f"{claims} was computed under a configuration that departs from the paper's "
+            f"({describe_departures(record)}): the README shows the paper's configuration only"
+        )
+    return ""
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--claims", default="results/claims.csv")
@@ -81,10 +105,14 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--check", action="store_true", help="exit 1 if the README is stale")
     args = parser.parse_args(argv)
     try:
+        refusal = not_the_papers(args.claims)
+        if refusal:
+            sys.stderr.write(f"readme_results: {refusal}\n")
+            return 2
         table = pd.read_csv(args.claims, keep_default_na=False)
         readme = Path(args.readme).read_text()
         new = replaced(readme, block(table))
-    except (OSError, ReadmeError, KeyError) as exc:
+    except (OSError, ReadmeError, KeyError, PaperConfigError) as exc:
         sys.stderr.write(f"readme_results: {exc}\n")
         return 2
     if args.check:

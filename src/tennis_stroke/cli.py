@@ -309,7 +309,8 @@ def _claims(args: argparse.Namespace) -> int:
     from pathlib import Path
 
     from .inference.claims import ClaimError, load_claims
-    from .replication.claims import check
+    from .inference.paper_config import describe_departures, read_record
+    from .replication.claims import check, read_table
 
     try:
         declared = load_claims(args.claims)
@@ -317,6 +318,21 @@ def _claims(args: argparse.Namespace) -> int:
         raise ValueError(f"the declared claims: {exc}") from None
     if not Path(args.csv).is_file():
         raise ValueError(f"claims table {args.csv!r} does not exist (run the workflow first)")
+    record = read_record(args.csv)
+    if record["scenario"]:
+        # a scenario is an exploration: the table is checked, never graded
+        read_table(args.csv, [c["id"] for c in declared])
+        name = record["scenario"]["name"]
+        print(f"{args.csv}: scenario {name!r}, an exploration beside the paper: not graded")
+        for change in record["scenario"]["changes"]:
+            print(f"  {change['text']}")
+        return 0
+    if record["departures"]:
+        raise ValueError(
+            f"{args.csv} was computed under a configuration that departs from the paper's, "
+            f"so it is not graded: {describe_departures(record)} (declare a change as a "
+            "scenario in config/scenarios.yaml and restore config/config.yaml)"
+        )
     return check(args.csv, [c["id"] for c in declared], declared)
 
 

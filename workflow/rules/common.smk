@@ -31,6 +31,7 @@ from tennis_stroke.pipeline.config_check import config_errors, numbers_from_stri
 from tennis_stroke.pipeline import params as job_params
 from tennis_stroke.pipeline.scenarios import (
     ScenarioError,
+    changes,
     changes_read,
     describe,
     folder as scenario_folder,
@@ -270,6 +271,13 @@ wildcard_constraints:
     scenario="|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x",
 
 
+def template_files(page):
+    """A page's template and the style sheet it includes: code of its job too (not
+    modules: no import edge)."""
+    folder = PACKAGE_DIR / "replication" / "templates"
+    return [checkout_path(folder / page), checkout_path(folder / "style.css")]
+
+
 def figure_inputs(wildcards):
     """The result files a figure is drawn from (the registry)."""
     return FIGURES[wildcards.name].inputs
@@ -299,6 +307,78 @@ def scenario_files(name):
     """The paper's result files as scenario ``name`` reads them, by key: its own where
     it changes what their jobs read, the paper's elsewhere."""
     return resolved_results(config, SCENARIO_CONFIGS[name], name)
+
+
+def scenario_value(function):
+    """A params function: ``function`` of the job's scenario's configuration."""
+
+    def value(wildcards):
+        return function(SCENARIO_CONFIGS[wildcards.scenario])
+
+    return value
+
+
+def scenario_files_of(wildcards):
+    """A scenario's claims job's result files by key (a param, and its inputs)."""
+    return scenario_files(wildcards.scenario)
+
+
+def scenario_claim_files(wildcards):
+    """A scenario's claims job's result files as named inputs."""
+    return scenario_files(wildcards.scenario)
+
+
+def scenario_record(wildcards):
+    """What a scenario is: its name, its overrides and every change of the paper's
+    configuration they make (key, the paper's value, the scenario's)."""
+    name = wildcards.scenario
+    return {
+        "name": name,
+        "overrides": SCENARIOS[name],
+        "changes": [
+            {"key": k, "paper": old, "scenario": new, "text": describe(k, old, new)}
+            for k, old, new in changes(config, SCENARIO_CONFIGS[name])
+        ],
+    }
+
+
+def scenario_changed_figures(name):
+    """The paper's figures scenario ``name`` changes (one of their files is its own)."""
+    files = scenario_files(name)
+    return [
+        f
+        for f in PAPER_FIGURES
+        if any(files[k] != PAPER_RESULTS[k] for k in FIGURES[f].files)
+    ]
+
+
+def scenario_report_figures(wildcards):
+    """A scenario's page's figure inputs: its own of the figures it changes."""
+    return [
+        f"{scenario_folder(wildcards.scenario)}/figures/{f}.png"
+        for f in scenario_changed_figures(wildcards.scenario)
+    ]
+
+
+def scenario_figure_table(wildcards):
+    """Each paper figure on a scenario's page: the paper's file, the scenario's (None
+    where it changes nothing the figure shows) and what it changes of its inputs."""
+    name = wildcards.scenario
+    changed = set(scenario_changed_figures(name))
+    out = []
+    for f in PAPER_FIGURES:
+        read = changes_read(FIGURES[f].files, config, SCENARIO_CONFIGS[name])
+        out.append(
+            {
+                "name": f,
+                "paper": f"results/figures/{f}.png",
+                "scenario": (
+                    f"{scenario_folder(name)}/figures/{f}.png" if f in changed else None
+                ),
+                "changes": [describe(*c) for c in read],
+            }
+        )
+    return out
 
 
 def scenario_figure_inputs(wildcards):

@@ -1,4 +1,4 @@
-# Claims, assumption ledger and the HTML report.
+# Claims, assumption ledger and the HTML report; a scenario's claims and page.
 
 
 rule claims:
@@ -9,7 +9,10 @@ rule claims:
         robustness=RESULT_FILES["robustness"],
         code=code_inputs("claims.py"),
     output:
-        report("results/claims.csv", caption="../report/claims.rst", category="Claims"),
+        claims=report(
+            "results/claims.csv", caption="../report/claims.rst", category="Claims"
+        ),
+        configuration="results/configuration.yaml",
     log:
         "logs/claims.log",
     benchmark:
@@ -19,6 +22,7 @@ rule claims:
         files=PAPER_RESULTS,
         experiments=paper_experiments(),
         common=common_params(),
+        scenario=None,
     script:
         "../scripts/claims.py"
 
@@ -27,14 +31,13 @@ rule report:
     input:
         figures=expand("results/figures/{name}.png", name=sorted(FIGURES)),
         claims="results/claims.csv",
+        configuration="results/configuration.yaml",
         statements="config/claims.yaml",
         inference=list(INFERENCE_RESULTS.values()),
         results=list(PAPER_RESULTS.values()),
         code=code_inputs("report.py"),
         # the page's template is code of the report too (not a module: no import edge)
-        template=checkout_path(
-            PACKAGE_DIR / "replication" / "templates" / "report.html.j2"
-        ),
+        template=template_files("report.html.j2"),
         assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
         studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],
     output:
@@ -46,3 +49,50 @@ rule report:
         benchmarks="benchmarks/workflow",
     script:
         "../scripts/report.py"
+
+
+# A scenario's claims: the same evaluation under its configuration, from its files where
+# it changes them and the paper's elsewhere; no robustness analysis (a scenario is an
+# exploration, not graded).
+rule scenario_claims:
+    input:
+        unpack(scenario_claim_files),
+        claims="config/claims.yaml",
+        readings="config/readings.yaml",
+        code=code_inputs("claims.py"),
+    output:
+        claims="results/scenarios/{scenario}/claims.csv",
+        configuration="results/scenarios/{scenario}/configuration.yaml",
+    log:
+        "logs/scenarios/{scenario}/claims.log",
+    threads: 1
+    params:
+        files=scenario_files_of,
+        experiments=scenario_value(job_params.paper_experiments),
+        common=scenario_value(job_params.common_params),
+        scenario=scenario_record,
+    script:
+        "../scripts/claims.py"
+
+
+# A scenario's page: each of the paper's figures beside the scenario's where the
+# scenario changes it, and every claim under both configurations (no scoreboard).  The
+# paper configuration's figures and claims are shown when they exist (not inputs: a
+# scenario never asks for the paper's whole run).
+rule scenario_report:
+    input:
+        figures=scenario_report_figures,
+        claims="results/scenarios/{scenario}/claims.csv",
+        configuration="results/scenarios/{scenario}/configuration.yaml",
+        statements="config/claims.yaml",
+        code=code_inputs("scenario_report.py"),
+        template=template_files("scenario.html.j2"),
+    output:
+        "report/scenarios/{scenario}/index.html",
+    log:
+        "logs/scenarios/{scenario}/report.log",
+    params:
+        scenario=scenario_record,
+        figures=scenario_figure_table,
+    script:
+        "../scripts/scenario_report.py"

@@ -34,12 +34,12 @@ from .grids import axis_size, bracket_size
 STROKE_VARIABLES = tuple(FILE_NAMES.get(k, k) for k in RESULT_FIELDS)
 #: Variables of the sampled curves of single strokes.
 CURVE_VARIABLES = ("omega1", "omega2", "theta", "phi", "x_elbow", "y_elbow")
-#: The config keys of the Sec. V-VI base stroke (Figs. 10-14, Table I).
+#: The config keys of the Sec. V-VI base stroke (Fig. 9's curve, Figs. 10-14, Table I).
 SEC5_STROKE = {
     "L1": "torque_delay.L1",
     "theta0": "torque_delay.theta0",
-    "C2": "torque_delay.fig9.C2",
-    "delta0": "torque_delay.fig9.delta0",
+    "C2": "torque_delay.base_stroke.C2",
+    "delta0": "torque_delay.base_stroke.delta0",
     "tau_L": "torque_delay.strokes.tau_L",
     "tau_H": "torque_delay.strokes.tau_H",
     "t_end": "torque_delay.strokes.t_end",
@@ -242,7 +242,11 @@ def _angle_map(fig: str, index: int) -> Experiment:
     )
 
 
-def _delay_map(fig: str, first: str, other: str) -> Experiment:
+def _delay_map(fig: str, first: str, other: str, section: str = "") -> Experiment:
+    """A delay map of Figs. 7-9: ``first`` (its chunked axis) and ``other`` read from
+    ``torque_delay.{section}`` (default: the figure's own section), ``tau`` from the
+    figure's."""
+    section = section or fig
     return Experiment(
         fig,
         f"results/torque_delay/{fig}.nc",
@@ -250,8 +254,8 @@ def _delay_map(fig: str, first: str, other: str) -> Experiment:
         {
             "L1": "torque_delay.L1",
             "theta0": "torque_delay.theta0",
-            first: f"torque_delay.{fig}.{first}",
-            other: f"torque_delay.{fig}.{other}",
+            first: f"torque_delay.{section}.{first}",
+            other: f"torque_delay.{section}.{other}",
             "tau": f"torque_delay.{fig}.tau",
         },
         (*STROKE_VARIABLES, "best_tau", "best_v_out", "v_out_tau0"),
@@ -336,7 +340,7 @@ EXPERIMENTS: dict[str, Experiment] = {
         ),
         _delay_map("fig7", "C2", "delta0"),
         _delay_map("fig8", "delta0", "C2"),
-        _delay_map("fig9", "delta0", "C2"),
+        _delay_map("fig9", "delta0", "C2", section="base_stroke"),
         Experiment(
             "delay",
             "results/strokes/delay.nc",

@@ -137,9 +137,35 @@ def measure(spec: Mapping, files: Mapping[str, xr.Dataset]) -> float:
         return float(fn(*(files[n] for n in names), **spec))
     da = files[spec["file"]][spec["var"]]
     if "sel" in spec:
-        da = da.isel(spec["sel"])
+        da = da.isel(selection(da, spec["sel"], spec["file"]))
     value = float(da)
     return abs(value) if spec.get("abs") else value
+
+
+#: How close a ``sel`` value must be to a coordinate value (relative to the axis' span,
+#: or absolute on a one-point axis): what a decimal number in YAML can say of it.
+SEL_TOLERANCE = 1e-9
+
+
+def selection(da: xr.DataArray, sel: Mapping, file: str = "") -> dict[str, int]:
+    """A claim's ``sel`` as positions along ``da``'s dimensions: an integer is a position,
+    a decimal number (``delta0: 52.5``) a value of the dimension's coordinate, which must
+    hold it (within :data:`SEL_TOLERANCE`); raises :class:`ClaimError` naming the nearest
+    value otherwise."""
+    out = {}
+    for dim, value in sel.items():
+        if isinstance(value, int):
+            out[dim] = value
+            continue
+        if dim not in da.coords:
+            raise ClaimError(f"{file}: dimension {dim!r} has no coordinate to find {value} in")
+        axis = np.asarray(da[dim].values, float).ravel()
+        span = float(np.ptp(axis)) if axis.size > 1 else 1.0
+        i = int(np.argmin(np.abs(axis - value)))
+        if abs(axis[i] - value) > SEL_TOLERANCE * max(span, 1.0):
+            raise ClaimError(f"{file}: no {dim} = {value:g} on its axis (nearest {axis[i]:g})")
+        out[dim] = i
+    return out
 
 
 def _number(value) -> bool:
@@ -217,9 +243,13 @@ def _measure_errors(spec, files: Collection[str]) -> Iterator[str]:
         yield f"a variable is read from one file, got {names}"
     sel = spec.get("sel", {})
     if not isinstance(sel, Mapping) or not all(
-        isinstance(i, int) and not isinstance(i, bool) for i in sel.values()
+        isinstance(i, int | float) and not isinstance(i, bool) and np.isfinite(i)
+        for i in sel.values()
     ):
-        yield f"sel must map dimensions to integer positions, got {sel!r}"
+        yield (
+            "sel must map dimensions to integer positions or coordinate values "
+            f"(a decimal number: delta0: 52.5), got {sel!r}"
+        )
     if not isinstance(spec.get("abs", False), bool):
         yield f"abs must be true or false, got {spec['abs']!r}"
 

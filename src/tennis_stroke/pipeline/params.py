@@ -54,10 +54,7 @@ def paper_sections(config: Mapping) -> dict:
     """The config sections the paper's experiments read and the claims' search settings
     (section ``search``), less those the multiverse sets itself."""
     sections = {
-        key.split(".")[0]
-        for e in EXPERIMENTS.values()
-        if e.family == "paper"
-        for key in e.keys()
+        key.split(".")[0] for e in EXPERIMENTS.values() if e.family == "paper" for key in e.keys()
     }
     sections.add("search")
     # plain: keys sorted, as a --config merge reorders them (params compare by repr)
@@ -83,8 +80,7 @@ def changed_results(base: Mapping, other: Mapping) -> list[str]:
     return [
         key
         for key in PAPER_RESULTS
-        if simulation_params(EXPERIMENTS[key], base)
-        != simulation_params(EXPERIMENTS[key], other)
+        if simulation_params(EXPERIMENTS[key], base) != simulation_params(EXPERIMENTS[key], other)
     ]
 
 

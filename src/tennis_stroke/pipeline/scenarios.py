@@ -24,8 +24,8 @@ from collections.abc import Mapping
 from pathlib import Path
 
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, plain
-from ..model.params import PARAMETERS, READINGS
 from ..io.config_files import ConfigFileError, load_yaml
+from ..model.params import PARAMETERS, READINGS
 from .config_check import config_errors, numbers_from_strings
 from .params import changed_results, read_keys, related
 
@@ -92,7 +92,9 @@ def _shape_errors(name: object, overrides: object) -> list[str]:
     return []
 
 
-def scenario_config(base: Mapping, name: str, overrides: Mapping | None, schema: str | Path) -> dict:
+def scenario_config(
+    base: Mapping, name: str, overrides: Mapping | None, schema: str | Path
+) -> dict:
     """The configuration of scenario ``name``: ``base`` (the paper's, validated) with its
     ``overrides``, checked as the paper's is.  Raises :class:`ScenarioError`."""
     errors = _shape_errors(name, overrides)

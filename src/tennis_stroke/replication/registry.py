@@ -89,7 +89,13 @@ FIGURES: dict[str, Figure] = {
             "delay_map",
             "Fig. 8: v_out over (delta0, tau), C2 = {C2:g} N m",
         ),
-        Figure("fig09_v_tau", "V", ("fig9",), "v_tau", "Fig. 9: v_out over the delay tau"),
+        Figure(
+            "fig09_v_tau",
+            "V",
+            ("fig9",),
+            "v_tau",
+            "Fig. 9: v_out over the delay tau: C2 = {C2:g} N m, L1 = {L1:g} m",
+        ),
         Figure(
             "fig10_omegas_delay",
             "V",

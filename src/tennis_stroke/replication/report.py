@@ -33,6 +33,7 @@ from markupsafe import Markup
 
 from .._version import __version__
 from ..inference.claims import load_claims
+from ..inference.paper_config import PaperConfigError, departure_lines, read_record
 from ..io.config_files import load_yaml
 from ..io.failures import failure_counts
 from ..io.netcdf import git_commit, load_result
@@ -537,8 +538,15 @@ def build_report(
 ) -> None:
     """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
     ``statements_yaml``: ``config/claims.yaml``, whose ``statements`` quote the paper on
-    each figure and whose ``sections`` name the paper's sections)."""
+    each figure and whose ``sections`` name the paper's sections).  A claims table whose
+    configuration departs from the paper's (its record beside it,
+    :mod:`tennis_stroke.inference.paper_config`) is said so at the top."""
     claims = _checked_claims(claims_csv, statements_yaml)
+    try:
+        record = read_record(claims_csv)
+    except PaperConfigError as exc:
+        raise ReportInputError(str(exc)) from None
+    departures = departure_lines(record)
     if assumptions_md and not Path(assumptions_md).read_text(encoding="utf-8").strip():
         raise ReportInputError(f"the assumption ledger {assumptions_md} is empty")
     paper = load_yaml(statements_yaml) if statements_yaml else {}
@@ -587,6 +595,7 @@ def build_report(
     }
     ladder_error, study_tables = _studies(studies)
     html = ENVIRONMENT.get_template("report.html.j2").render(
+        departures=departures,
         score=score,
         deviation_groups=_deviation_groups(rows),
         toc=toc,

@@ -1,0 +1,139 @@
+"""A scenario's page: what a what-if changes, beside the paper's configuration.
+
+A scenario (:mod:`tennis_stroke.pipeline.scenarios`) is an exploration, never a
+replication: its page has no scoreboard and no verdict.  It opens with the overrides,
+then shows each of the paper's figures the scenario changes beside the paper
+configuration's (when that exists), and every claim's value under both configurations
+with the change: the paper's value, ours under the paper's configuration, ours under the
+scenario.  No cause is quoted: the causes in ``config/claims.yaml`` were written for the
+paper's configuration.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping, Sequence
+from datetime import UTC, datetime
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .._version import __version__
+from ..inference.claims import load_claims
+from ..inference.paper_config import PaperConfigError, describe_departures, read_record
+from ..io.netcdf import git_commit
+from .claims import ClaimsTableError, read_table
+from .registry import FIGURES
+from .report import ENVIRONMENT, UNIT_SHORT, ReportInputError, _figure_entry, _number
+
+
+def _paper_table(path: str | Path, ids: Sequence[str]) -> tuple[pd.DataFrame | None, str]:
+    """The paper configuration's claims table, if it exists and is the paper's, with a
+    note on where the values come from (or why there are none)."""
+    try:
+        table = read_table(path, ids)
+    except ClaimsTableError:
+        return None, (
+            f"not computed: {path} does not exist or is not a claims table "
+            "(snakemake -j2 results/claims.csv computes it)"
+        )
+    try:
+        record = read_record(path)
+    except PaperConfigError as exc:
+        return table, f"from {path}, whose configuration is unknown ({exc})"
+    if record["departures"]:
+        return table, (
+            f"from {path}, computed under config/config.yaml, which departs from the "
+            f"paper's: {describe_departures(record)}"
+        )
+    return table, f"from {path} (the paper's configuration)"
+
+
+def _change(ours: float, scenario: float, unit: str) -> str:
+    if not (np.isfinite(ours) and np.isfinite(scenario)):
+        return "-"
+    if unit == "1":
+        return "same" if ours == scenario else f"{_number(ours)} \u2192 {_number(scenario)}"
+    delta = scenario - ours
+    return "0" if delta == 0 else f"{delta:+.4g}"
+
+
+def claim_rows(scenario: pd.DataFrame, paper: pd.DataFrame | None) -> list[dict]:
+    """Each claim under both configurations: the paper's value, ours (the paper's
+    configuration, where computed), ours (the scenario) and the change."""
+    ours = (
+        dict(zip(paper["id"], paper["reproduced_value"].astype(float), strict=True))
+        if paper is not None
+        else {}
+    )
+    rows = []
+    for c in scenario.to_dict("records"):
+        value = float(c["reproduced_value"])
+        base = ours.get(c["id"], float("nan"))
+        rows.append(
+            {
+                "id": c["id"],
+                "source": c["source"],
+                "quantity": c["quantity"],
+                "unit_short": UNIT_SHORT.get(c["unit"], c["unit"]),
+                "paper": _number(float(c["paper_value"])),
+                "ours_paper": _number(base) if np.isfinite(base) else "-",
+                "ours_scenario": _number(value),
+                "change": _change(base, value, c["unit"]),
+                "moved": bool(np.isfinite(base) and base != value),
+            }
+        )
+    return rows
+
+
+def build_scenario_report(
+    scenario: Mapping,
+    figures: Sequence[Mapping],
+    claims_csv: str,
+    claims_yaml: str,
+    output: str,
+    paper_claims_csv: str = "results/claims.csv",
+) -> None:
+    """Write scenario ``scenario``'s page (``{name, overrides, changes}``) to
+    ``output``: ``figures`` lists each of the paper's figures (``name``, ``paper`` and
+    ``scenario`` PNG paths, the latter None where the scenario changes nothing of it,
+    and the ``changes`` it reads); ``claims_csv`` is the scenario's claims table."""
+    declared = load_claims(claims_yaml)
+    ids = [c["id"] for c in declared]
+    try:
+        table = read_table(claims_csv, ids)
+    except ClaimsTableError as exc:
+        raise ReportInputError(str(exc)) from None
+    paper, paper_note = _paper_table(paper_claims_csv, ids)
+    shown, unchanged = [], []
+    for f in figures:
+        title = FIGURES[f["name"]].title.split(":")[0]
+        if f["scenario"] is None:
+            unchanged.append(title)
+            continue
+        shown.append(
+            {
+                "title": title,
+                "changes": f["changes"],
+                "scenario": _figure_entry(f["scenario"]),
+                "paper": _figure_entry(f["paper"]) if Path(f["paper"]).is_file() else None,
+            }
+        )
+    rows = claim_rows(table, paper)
+    html = ENVIRONMENT.get_template("scenario.html.j2").render(
+        name=scenario["name"],
+        changes=[c["text"] for c in scenario["changes"]],
+        figures=shown,
+        unchanged=unchanged,
+        rows=rows,
+        moved=sum(r["moved"] for r in rows),
+        paper_note=paper_note,
+        meta={
+            "scenario": scenario["name"],
+            "tennis_stroke version": __version__,
+            "git commit": git_commit(),
+            "built": datetime.now(UTC).isoformat(timespec="seconds"),
+        },
+    )
+    Path(output).parent.mkdir(parents=True, exist_ok=True)
+    Path(output).write_text(html)

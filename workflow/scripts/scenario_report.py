@@ -1,0 +1,14 @@
+"""Build a scenario's page: its overrides, the figures it changes beside the paper
+configuration's, every claim under both configurations."""
+
+from tennis_stroke.pipeline.jobs import logged
+from tennis_stroke.replication.scenario_report import build_scenario_report
+
+with logged(snakemake.log[0]):
+    build_scenario_report(
+        scenario=snakemake.params.scenario,
+        figures=snakemake.params.figures,
+        claims_csv=snakemake.input.claims,
+        claims_yaml=snakemake.input.statements,
+        output=snakemake.output[0],
+    )
