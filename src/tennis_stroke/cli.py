@@ -176,6 +176,39 @@ def build_parser() -> argparse.ArgumentParser:
     identify.add_argument(
         "--config", default="config/config.yaml", help="workflow config (the strokes)"
     )
+
+    config = sub.add_parser("config", help="what the workflow's config keys drive")
+    config_sub = config.add_subparsers(dest="action", required=True, parser_class=_Parser)
+    explain = config_sub.add_parser(
+        "explain", help="the result files, figures and claims a config key changes"
+    )
+    explain.add_argument("key", nargs="?", help="a dotted config key (torque_delay.base_stroke.C2)")
+    explain.add_argument("--all", action="store_true", help="every key, as a Markdown table")
+    explain.add_argument("--config", default="config/config.yaml", help="workflow config")
+    explain.add_argument("--claims", default="config/claims.yaml", help="the declared claims")
+
+    whatif = sub.add_parser(
+        "whatif",
+        help="run a what-if scenario beside the paper (snakemake): its page or figures",
+    )
+    whatif.add_argument("name", help="the scenario (declared in config/scenarios.yaml, or new)")
+    whatif.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="an override: a model parameter or reading (M2=0.35) or a dotted config key "
+        "(torque_delay.base_stroke.C2=8); replaces the declared scenario's overrides",
+    )
+    whatif.add_argument(
+        "--figure",
+        action="append",
+        default=[],
+        metavar="FIG",
+        help="only this figure of the paper (fig2, fig09, fig09_v_tau); default: the page",
+    )
+    whatif.add_argument("-j", "--cores", type=int, default=2, help="snakemake --cores (2)")
+    whatif.add_argument("-n", "--dry-run", action="store_true", help="plan only (snakemake -n)")
     return parser
 
 
@@ -370,6 +403,65 @@ def _identify(args: argparse.Namespace) -> int:
     return 0
 
 
+def _config(args: argparse.Namespace) -> int:
+    from .inference.claims import ClaimError, load_claims
+    from .io.config_files import ConfigFileError, load_yaml
+    from .pipeline.explain import UnknownKeyError, explain, markdown, text
+
+    try:
+        config, claims = load_yaml(args.config), load_claims(args.claims)
+    except (ConfigFileError, ClaimError) as exc:
+        raise ValueError(str(exc)) from None
+    if args.all == bool(args.key):
+        raise ValueError("config explain takes a KEY or --all (one of them)")
+    if args.all:
+        print(markdown(config, claims))
+        return 0
+    try:
+        print(text(explain(args.key, config, claims)))
+    except UnknownKeyError as exc:
+        raise ValueError(str(exc)) from None
+    return 0
+
+
+def _whatif(args: argparse.Namespace) -> int:
+    import subprocess
+
+    import yaml
+
+    from .pipeline.scenarios import ScenarioError, folder, load_scenarios, override_from
+    from .replication.registry import paper_figure
+
+    try:
+        declared = load_scenarios("config/scenarios.yaml")
+        overrides = override_from(args.set) if args.set else None
+        if overrides is None and args.name not in declared:
+            known = ", ".join(sorted(declared)) or "none"
+            raise ScenarioError(
+                f"scenario {args.name!r} is not declared in config/scenarios.yaml "
+                f"(declared: {known}): give its overrides with --set KEY=VALUE"
+            )
+        load_scenarios("config/scenarios.yaml", {args.name: overrides or {}})  # its name
+        figures = [paper_figure(f) for f in args.figure]
+    except (ScenarioError, KeyError) as exc:
+        raise ValueError(str(exc).strip("'\"")) from None
+    where = folder(args.name)
+    targets = [f"{where}/figures/{f}.png" for f in figures] or [
+        f"{folder(args.name, 'report')}/index.html"
+    ]
+    command = [sys.executable, "-m", "snakemake", "--cores", str(args.cores), *targets]
+    if overrides is not None:
+        flow = yaml.safe_dump({args.name: overrides}, default_flow_style=True, width=10**6)
+        command += ["--config", f"scenarios={flow.strip()}"]
+    if args.dry_run:
+        command.append("-n")
+    print("$ snakemake " + " ".join(command[3:]), flush=True)
+    done = subprocess.run(command, check=False)
+    if done.returncode == 0 and not args.dry_run:
+        print("\n".join(targets))
+    return done.returncode
+
+
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tennis-stroke`` console script."""
     from .io.interrupts import Terminated, terminate_raises
@@ -381,7 +473,14 @@ def main(argv: Sequence[str] | None = None) -> int:
         from .model.params import ParameterError
         from .solver.compiled import CompileCacheError
 
-        commands = {"strike": _strike, "sweep": _sweep, "claims": _claims, "identify": _identify}
+        commands = {
+            "strike": _strike,
+            "sweep": _sweep,
+            "claims": _claims,
+            "identify": _identify,
+            "config": _config,
+            "whatif": _whatif,
+        }
         try:
             return commands[args.command](args)
         except (ParameterError, OutputError, ResultError, CompileCacheError, ValueError) as exc:

@@ -11,7 +11,7 @@ import yaml
 from conftest import ROOT
 
 from tennis_stroke.experiments.specs import PAPER_RESULTS
-from tennis_stroke.inference.claims import ClaimError, claim_errors, load_claims
+from tennis_stroke.inference.claims import ClaimError, claim_errors, load_claims, measure
 from tennis_stroke.inference.measures import MEASUREMENTS
 
 CLAIMS = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())
@@ -125,7 +125,7 @@ BAD = {
     ),
     "variable measure with a label for a position": (
         _measure("fig4_t_a", sel={"stroke": "b"}),
-        "claim 'fig4_t_a': sel must map dimensions to integer positions",
+        "claim 'fig4_t_a': sel must map dimensions to integer positions or coordinate values",
     ),
     "measure without a file": (
         _drop("fig4_t_a", "file", "measure"),
@@ -222,3 +222,20 @@ def test_every_measurement_says_what_it_takes(name):
         assert literal or p.annotation in KNOWN_ANNOTATIONS, (name, p.name, p.annotation)
         kinds.append(p.annotation is xr.Dataset)
     assert kinds[0] and kinds == sorted(kinds, reverse=True), name
+
+
+def test_sel_takes_a_position_or_a_coordinate_value():
+    """An integer in ``sel`` is a position, a decimal number a value of the dimension's
+    coordinate (the README's worked example reads Fig. 9 at delta0: 52.5); a value not
+    on the axis is one line naming the nearest."""
+    import numpy as np
+
+    ds = xr.Dataset(
+        {"v": (("delta0", "tau"), np.arange(6.0).reshape(3, 2))},
+        coords={"delta0": [50.0, 52.5, 55.0], "tau": [0.0, 0.1]},
+    )
+    spec = {"file": "f", "var": "v"}
+    assert measure({**spec, "sel": {"delta0": 52.5, "tau": 1}}, {"f": ds}) == 3.0
+    assert measure({**spec, "sel": {"delta0": 2, "tau": 0.0}}, {"f": ds}) == 4.0
+    with pytest.raises(ClaimError, match=r"f: no delta0 = 52.4 on its axis \(nearest 52.5\)"):
+        measure({**spec, "sel": {"delta0": 52.4, "tau": 0}}, {"f": ds})

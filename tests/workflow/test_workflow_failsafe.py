@@ -21,6 +21,7 @@ from conftest import ROOT, run_snakemake, snakemake_command, workdir
 from tiny import TINY, TINY_READINGS
 
 from tennis_stroke.experiments.specs import EXPERIMENTS
+from tennis_stroke.pipeline.explain import rows_reading
 
 #: The workflow end to end: slow (pytest -m 'not slow' leaves it out).
 pytestmark = pytest.mark.slow
@@ -35,21 +36,13 @@ TABLE_RULES = {e.rule for e in EXPERIMENTS.values()}
 
 def expected_rules(parts) -> set[str]:
     """The rules a change of config key ``parts`` must plan: the rows of the table that
-    read it (a row reading a whole mapping reads its keys), every model row for the model
-    and solver sections, the chunked rows of a chunk count, and the gathering of the maps
-    for their failure limit."""
+    the package says read it (tennis_stroke.pipeline.explain, the table of
+    docs/config_keys.md and `tennis-stroke config explain`), and the gathering of the
+    maps for their failure limit."""
     key = ".".join(map(str, parts))
     if key == "max_failure_share":
         return {"gather_map"}
-    if key.split(".")[0] in ("model", "solver"):
-        return {e.rule for e in EXPERIMENTS.values() if e.model}
-    if key.startswith("chunks."):
-        return {e.rule for e in EXPERIMENTS.values() if e.chunks == key}
-    return {
-        e.rule
-        for e in EXPERIMENTS.values()
-        if any(k == key or k.startswith(key + ".") or key.startswith(k + ".") for k in e.keys())
-    }
+    return {EXPERIMENTS[k].rule for k in rows_reading(key)}
 
 
 SCHEMA = yaml.safe_load((ROOT / "workflow" / "schemas" / "config.schema.yaml").read_text())

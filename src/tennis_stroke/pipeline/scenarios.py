@@ -23,6 +23,8 @@ import re
 from collections.abc import Mapping
 from pathlib import Path
 
+import yaml
+
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, plain
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
@@ -134,6 +136,29 @@ def load_scenarios(path: str | Path, extra: Mapping | None = None) -> dict[str, 
         if errors:
             raise ScenarioError(errors[0])
     return {name: plain(overrides or {}) for name, overrides in out.items()}
+
+
+def override_from(items) -> dict:
+    """Overrides from ``KEY=VALUE`` items (the command line): a model parameter or
+    reading by its name (``M2=0.35``: ``model.M2``), any other config key dotted
+    (``torque_delay.base_stroke.C2=8``); a value is read as YAML (a number, a list)."""
+    out: dict = {}
+    for item in items:
+        key, sep, text = item.partition("=")
+        if not sep or not key or not text:
+            raise ScenarioError(f"--set {item!r}: expected KEY=VALUE")
+        try:
+            value = yaml.safe_load(text)
+        except yaml.YAMLError:
+            raise ScenarioError(f"--set {item!r}: {text!r} is not a value") from None
+        parts = ["model", key] if key in PARAMETERS or key in READINGS else key.split(".")
+        node = out
+        for part in parts[:-1]:
+            node = node.setdefault(part, {})
+            if not isinstance(node, dict):
+                raise ScenarioError(f"--set {item!r}: {part!r} is already set to a value")
+        node[parts[-1]] = value
+    return out
 
 
 def folder(name: str, top: str = "results") -> str:

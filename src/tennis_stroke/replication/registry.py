@@ -184,3 +184,17 @@ FIGURES: dict[str, Figure] = {
         ),
     ]
 }
+
+
+def paper_figure(name: str) -> str:
+    """The registry name of one of the paper's figures from what a user types: its name
+    (``fig09_v_tau``) or number (``fig9``, ``fig09``); raises KeyError naming them."""
+    if name in FIGURES and name.startswith("fig"):
+        return name
+    digits = name.removeprefix("fig")
+    if digits.isdigit():
+        matches = [n for n in FIGURES if n.startswith(f"fig{int(digits):02d}_")]
+        if matches:
+            return matches[0]
+    shown = ", ".join(n for n in FIGURES if n.startswith("fig"))
+    raise KeyError(f"no figure {name!r} of the paper (its figures: {shown})")

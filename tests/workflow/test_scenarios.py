@@ -1,0 +1,251 @@
+"""What-if scenarios (tennis_stroke.pipeline.scenarios), the paper's configuration and
+its gate (tennis_stroke.inference.paper_config), and what each config key drives
+(tennis_stroke.pipeline.explain): the parts that need no workflow run."""
+
+import pytest
+from conftest import ROOT, record_configuration
+from tiny import TINY
+
+from tennis_stroke.cli import main
+from tennis_stroke.experiments.specs import PAPER_RESULTS
+from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.inference.paper_config import (
+    PaperConfigError,
+    configuration_record,
+    departures,
+    load_paper_inputs,
+    read_record,
+    write_record,
+)
+from tennis_stroke.io.config_files import load_yaml
+from tennis_stroke.pipeline.explain import explain, leaves, markdown, rows_reading
+from tennis_stroke.pipeline.params import changed_results
+from tennis_stroke.pipeline.scenarios import (
+    ScenarioError,
+    changes,
+    describe,
+    load_scenarios,
+    merged,
+    override_from,
+    resolved_results,
+    scenario_config,
+)
+from tennis_stroke.replication.registry import paper_figure
+
+SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+PAPER = load_yaml(ROOT / "config" / "config.yaml")
+INPUTS = load_paper_inputs(ROOT / "config" / "claims.yaml")
+CLAIMS = load_claims(ROOT / "config" / "claims.yaml")
+BASE_STROKE = {"torque_delay": {"base_stroke": {"C2": 8.0}}}
+#: The tiny configuration with the defaults the workflow's schema fills in.
+BASE = merged(PAPER, TINY)
+
+
+def test_overrides_merge_key_by_key_and_replace_lists_whole():
+    out = merged(PAPER, {"torque_delay": {"base_stroke": {"C2": 8.0}}, "angle_maps": {"L1": [0.5]}})
+    assert out["torque_delay"]["base_stroke"] == {"C2": 8.0, "delta0": 52.5}
+    assert out["torque_delay"]["L1"] == 0.4 and out["angle_maps"]["L1"] == [0.5]
+    assert PAPER["torque_delay"]["base_stroke"]["C2"] == 5.0  # the base is not touched
+    assert changes(PAPER, out) == [
+        ("angle_maps.L1", [0.3, 0.4], [0.5]),
+        ("torque_delay.base_stroke.C2", 5.0, 8.0),
+    ]
+
+
+def test_a_change_of_the_base_stroke_moves_the_files_of_secs_5_6_only():
+    config = scenario_config(BASE, "s", BASE_STROKE, SCHEMA)
+    assert changed_results(BASE, config) == ["fig9", "delay", "elbow_map", "elbow"]
+    files = resolved_results(BASE, config, "s")
+    assert files["fig9"] == "results/scenarios/s/torque_delay/fig9.nc"
+    assert files["fig2"] == PAPER_RESULTS["fig2"] == "results/angle_maps/fig2.nc"
+    # a model parameter is read by every model row
+    heavy = scenario_config(BASE, "h", {"model": {"M2": 0.35}}, SCHEMA)
+    assert changed_results(BASE, heavy) == list(PAPER_RESULTS)
+    assert changed_results(BASE, BASE) == []
+
+
+@pytest.mark.parametrize(
+    ("name", "overrides", "message"),
+    [
+        ("1st", {}, "scenario name '1st': a letter"),
+        ("a/b", {}, "scenario name 'a/b'"),
+        ("s", [1], "scenario 's': overrides must be a mapping"),
+        ("s", {"solver_study": {"seed": 2}}, "may not override 'solver_study'"),
+        ("s", {"model_ladder": {}}, "may not override 'model_ladder'"),
+        (
+            "s",
+            {"model": {"M2": -1.0}},
+            "scenario 's': config key 'model': parameter 'M2' must be > 0",
+        ),
+        ("s", {"torque_delay": {"base": 1}}, "scenario 's': config key 'torque_delay'"),
+        ("s", {"solver": {"method": "Euler"}}, "scenario 's': config key 'solver.method'"),
+    ],
+)
+def test_a_bad_scenario_is_one_line_naming_it(name, overrides, message):
+    with pytest.raises(ScenarioError) as info:
+        scenario_config(BASE, name, overrides, SCHEMA)
+    assert message in str(info.value) and "\n" not in str(info.value)
+
+
+def test_scenarios_come_from_the_file_and_the_command_line(tmp_path):
+    path = tmp_path / "scenarios.yaml"
+    assert load_scenarios(path) == {}  # no file: none
+    path.write_text("")
+    assert load_scenarios(path) == {}  # an empty file: none
+    path.write_text("a: {model: {M2: 0.35}}\nb:\n")
+    assert load_scenarios(path, {"a": {"model": {"M2": 0.4}}}) == {
+        "a": {"model": {"M2": 0.4}},
+        "b": {},
+    }
+    path.write_text("- a\n")
+    with pytest.raises(ScenarioError, match="must map each scenario's name"):
+        load_scenarios(path)
+    path.write_text("a: {model: {M2: 0.35}}\na: {}\n")
+    with pytest.raises(ScenarioError, match="duplicate key 'a'"):
+        load_scenarios(path)
+
+
+def test_the_declared_scenarios_are_valid():
+    for name, overrides in load_scenarios(ROOT / "config" / "scenarios.yaml").items():
+        scenario_config(PAPER, name, overrides, SCHEMA)
+
+
+def test_command_line_overrides_name_a_parameter_or_a_dotted_key():
+    assert override_from(["M2=0.35", "inertia=paper_text"]) == {
+        "model": {"M2": 0.35, "inertia": "paper_text"}
+    }
+    assert override_from(["torque_delay.base_stroke.C2=8", "angle_maps.L1=[0.3, 0.5]"]) == {
+        "torque_delay": {"base_stroke": {"C2": 8}},
+        "angle_maps": {"L1": [0.3, 0.5]},
+    }
+    for bad in ("M2", "=1", "M2=", "a=1 a.b=2"):
+        with pytest.raises(ScenarioError):
+            override_from(bad.split(" "))
+
+
+def test_an_override_is_described_with_the_papers_value_and_unit():
+    assert describe("model.M2", None, 0.35) == "model.M2 = 0.35 kg (paper: 0.3 kg)"
+    assert describe("model.inertia", None, "paper_text") == (
+        "model.inertia = paper_text (paper: uniform_rod)"
+    )
+    assert describe("torque_delay.base_stroke.C2", 5.0, 8.0) == (
+        "torque_delay.base_stroke.C2 = 8 (paper: 5)"
+    )
+
+
+def test_the_paper_configuration_is_the_declared_inputs():
+    assert departures(PAPER, INPUTS) == [] and departures(TINY, INPUTS) == []
+    for item in INPUTS:  # every declared key exists in the config
+        node = PAPER
+        for part in item["key"].split("."):
+            node = node[part]
+    moved = merged(PAPER, {**BASE_STROKE, "model": {"M2": 0.35, "inertia": "uniform_rod"}})
+    assert [(d["key"], d["value"], d["paper_value"]) for d in departures(moved, INPUTS)] == [
+        ("torque_delay.base_stroke.C2", 8.0, 5.0),
+        ("model.M2", 0.35, 0.3),  # a reading at its default is not a departure
+    ]
+    # grids, chunks, searches and the solver are ours: never a departure
+    ours = merged(PAPER, {"solver": {"rtol": 1e-9}, "fig9": {}, "chunks": {"angle_map": 4}})
+    assert departures(ours, INPUTS) == []
+
+
+def test_the_gate_grades_the_paper_configuration_only(tmp_path, capsys):
+    table = tmp_path / "claims.csv"
+    table.write_text("id\n")
+    write_record(
+        configuration_record(merged(PAPER, BASE_STROKE), INPUTS), tmp_path / "configuration.yaml"
+    )
+    with pytest.raises(SystemExit) as info:
+        main(["claims", str(table)])
+    assert info.value.code == 2
+    err = capsys.readouterr().err.strip()
+    assert err.startswith(f"tennis-stroke: error: {table} was computed under a configuration")
+    assert "torque_delay.base_stroke.C2 = 8 (the paper's 5" in err and "\n" not in err
+    (tmp_path / "configuration.yaml").unlink()
+    with pytest.raises(SystemExit):
+        main(["claims", str(table)])
+    assert "configuration.yaml is missing" in capsys.readouterr().err
+    (tmp_path / "configuration.yaml").write_text("[1]\n")
+    with pytest.raises(PaperConfigError, match="not a configuration record"):
+        read_record(table)
+
+
+def test_a_scenario_table_is_checked_and_not_graded(tmp_path, capsys):
+    from tennis_stroke.replication.claims import COLUMNS
+
+    header = ",".join(COLUMNS)
+    ids = [c["id"] for c in CLAIMS]
+    lines = [header] + [
+        ",".join(
+            {"id": i, "status": "fail", "reproduced_value": "1.0"}.get(col, "") for col in COLUMNS
+        )
+        for i in ids
+    ]
+    table = tmp_path / "claims.csv"
+    table.write_text("\n".join(lines) + "\n")
+    change = {"key": "model.M2", "paper": None, "scenario": 0.35, "text": "model.M2 = 0.35 kg"}
+    record_configuration(tmp_path, scenario={"name": "h", "overrides": {}, "changes": [change]})
+    assert main(["claims", str(table)]) == 0
+    out = capsys.readouterr().out
+    assert "scenario 'h', an exploration beside the paper: not graded" in out
+    assert "model.M2 = 0.35 kg" in out
+
+
+def test_the_readme_is_never_written_from_a_scenario_or_a_departure(tmp_path):
+    import subprocess
+    import sys
+
+    table = tmp_path / "claims.csv"
+    table.write_text("id,status,robustness\n")
+    readme = tmp_path / "README.md"
+    readme.write_text("<!-- results:begin -->\n<!-- results:end -->\n")
+    record_configuration(tmp_path, scenario={"name": "h", "overrides": {}, "changes": []})
+    tool = [sys.executable, str(ROOT / "tools" / "readme_results.py")]
+    done = subprocess.run(
+        [*tool, "--claims", table, "--readme", readme], capture_output=True, text=True
+    )
+    assert done.returncode == 2 and "scenario 'h'" in done.stderr
+    record_configuration(
+        tmp_path, departures=[{"key": "model.M2", "value": 0.35, "paper_value": 0.3, "source": "s"}]
+    )
+    done = subprocess.run(
+        [*tool, "--claims", table, "--readme", readme, "--check"], capture_output=True, text=True
+    )
+    assert done.returncode == 2 and "departs from the paper's (model.M2 = 0.35" in done.stderr
+    assert readme.read_text() == "<!-- results:begin -->\n<!-- results:end -->\n"
+
+
+def test_each_key_names_what_it_drives():
+    e = explain("torque_delay.base_stroke.C2", PAPER, CLAIMS)
+    assert e.rows == ("fig9", "delay", "elbow_map", "elbow")
+    assert e.figures == (
+        "fig09_v_tau",
+        "fig10_omegas_delay",
+        "fig11_strobe_tau_H",
+        "fig12_strobe_tau_L",
+        "fig13_elbow_force",
+        "fig14_elbow_paths",
+    )
+    assert "fig9_v_H" in e.claims and "fig2_best_delta0_at_120" not in e.claims
+    assert "identification" in e.inference and "claims" in e.inference
+    # the Fig. 9 section now holds only its delays
+    assert rows_reading("torque_delay.fig9.tau") == ["fig9"]
+    assert explain("chunks.angle_map", PAPER, CLAIMS).note.endswith("moves no number")
+    assert explain("chunks.angle_map", PAPER, CLAIMS).files == ()
+    with pytest.raises(KeyError, match="did you mean torque_delay.base_stroke.C2"):
+        explain("torque_delay.base_stroke.c2", PAPER, CLAIMS)
+
+
+def test_the_config_keys_page_is_current():
+    """docs/config_keys.md holds `tennis-stroke config explain --all` of config.yaml."""
+    text = (ROOT / "docs" / "config_keys.md").read_text()
+    assert markdown(PAPER, CLAIMS) in text
+    assert len(list(leaves(PAPER))) == text.count("\n| `")
+
+
+def test_a_figure_is_found_by_its_number():
+    assert paper_figure("fig9") == paper_figure("fig09") == "fig09_v_tau"
+    assert paper_figure("fig02_angle_map") == "fig02_angle_map"
+    for bad in ("fig99", "study01_work_precision", "nine"):
+        with pytest.raises(KeyError, match="no figure"):
+            paper_figure(bad)
