@@ -6,6 +6,7 @@ import sys
 from pathlib import Path
 
 import pandas as pd
+import pytest
 from conftest import record_configuration
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -76,3 +77,60 @@ def test_a_readme_without_markers_is_refused_in_one_line(tmp_path):
 def test_the_readme_has_one_results_block():
     text = (ROOT / "README.md").read_text()
     assert text.count("<!-- results:begin -->") == 1 and text.count("<!-- results:end -->") == 1
+
+
+def _what_if_section() -> str:
+    text = (ROOT / "README.md").read_text()
+    return text.split("## What if: scenarios beside the paper")[1].split("\n## ")[0]
+
+
+def test_the_readme_scenario_is_the_declared_one_and_valid():
+    """The README's worked scenario is config/scenarios.yaml's, word for word, and passes
+    the checks a run makes before any job."""
+    import yaml
+
+    from tennis_stroke.io.config_files import load_yaml
+    from tennis_stroke.pipeline.scenarios import load_scenarios, scenario_config
+
+    block = _what_if_section().split("```yaml\n")[1].split("```")[0]
+    assert block in (ROOT / "config" / "scenarios.yaml").read_text()
+    (name, overrides), *_ = yaml.safe_load(block).items()
+    assert load_scenarios(ROOT / "config" / "scenarios.yaml")[name] == overrides
+    paper = load_yaml(ROOT / "config" / "config.yaml")
+    schema = ROOT / "workflow" / "schemas" / "config.schema.yaml"
+    assert scenario_config(paper, name, overrides, schema)["torque_delay"]["base_stroke"]["C2"] == 8
+
+
+@pytest.mark.slow
+def test_the_readme_scenario_commands_plan_what_they_say():
+    """Each command of the README's scenario block, as a dry run in the checkout: the
+    figure plans its three jobs (map, gathering, figure), `whatif` the same for an ad hoc
+    scenario, `config explain` names the base stroke's files."""
+    import re
+
+    blocks = re.findall(r"```(\w*)\n(.*?)```", _what_if_section(), flags=re.S)
+    lines = next(text for lang, text in blocks if not lang).splitlines()
+    commands = [line.split("#")[0].split() for line in lines if line.strip()]
+    assert [c[0] for c in commands] == ["snakemake"] * 2 + ["tennis-stroke"] * 2
+    bin_ = ROOT / ".venv" / "bin"
+    figure = subprocess.run(
+        [str(bin_ / commands[0][0]), *commands[0][1:], "-n"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
+    assert figure.returncode == 0, figure.stderr[-2000:]
+    assert "scenario_fig9" in figure.stdout and "scenario_figure" in figure.stdout
+    whatif = subprocess.run(
+        [str(bin_ / commands[2][0]), *commands[2][1:], "-n"],
+        cwd=ROOT,
+        capture_output=True,
+        text=True,
+    )
+    assert whatif.returncode == 0, whatif.stderr[-2000:]
+    stats = whatif.stdout.split("Job stats:")[1].split("Reasons:")[0]
+    assert "scenario_fig2" in stats and re.search(r"^total\s+3\s*$", stats, re.M), stats
+    explain = subprocess.run(
+        [str(bin_ / commands[3][0]), *commands[3][1:]], cwd=ROOT, capture_output=True, text=True
+    )
+    assert explain.returncode == 0 and "results/torque_delay/fig9.nc" in explain.stdout

@@ -3,6 +3,8 @@ a map with too many failed strokes, and a run killed midway and restarted."""
 
 import json
 import os
+import re
+import shutil
 import signal
 import subprocess
 import time
@@ -241,3 +243,80 @@ def test_every_row_of_the_table_is_wired_end_to_end(tiny_run, key):
     )
     assert logs, f"no log of rule {e.rule}"
     assert list((tiny_run / "benchmarks" / "workflow").glob(f"{e.rule}*.tsv")), e.rule
+
+
+def override(section, value) -> str:
+    """A --config item setting a whole top-level section."""
+    return f"{section}={yaml.safe_dump(value, default_flow_style=True).strip()}"
+
+
+def _tree(folder):
+    """Every file below ``folder`` with its bytes and modification time."""
+    return {
+        str(p.relative_to(folder)): (p.read_bytes(), p.stat().st_mtime_ns)
+        for p in sorted(folder.rglob("*"))
+        if p.is_file()
+    }
+
+
+def test_a_scenario_runs_beside_the_paper_and_touches_none_of_its_files(tiny_run):
+    """A scenario given on the command line computes only the files its override changes,
+    under results/scenarios/NAME/; every paper file keeps its bytes and time, the paper's
+    configuration then plans no job, and the scenario's page and claims are explorations
+    (no scoreboard, the gate says not graded)."""
+    paper = {top: _tree(tiny_run / top) for top in ("results", "report")}
+    scenario = "scenarios={strong: {torque_delay: {base_stroke: {C2: 8.0}}}}"
+    page = "report/scenarios/strong/index.html"
+    done = run_snakemake(page, tiny_run, "--cores", "2", "--config", scenario, timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    for top in ("results", "report"):
+        now = _tree(tiny_run / top)
+        assert {k: v for k, v in now.items() if not k.startswith("scenarios/")} == paper[top]
+    own = sorted(
+        str(p.relative_to(tiny_run / "results/scenarios/strong"))
+        for p in (tiny_run / "results/scenarios/strong").rglob("*.nc")
+        if "chunks" not in p.parts
+    )
+    assert own == [
+        "elbow_force/map.nc",
+        "strokes/delay.nc",
+        "strokes/elbow_force.nc",
+        "torque_delay/fig9.nc",
+    ]
+    with xr.open_dataset(tiny_run / "results/scenarios/strong/torque_delay/fig9.nc") as ds:
+        assert float(ds.attrs["param_C2"]) == 8.0
+    again = run_snakemake("report", tiny_run, "-n")
+    assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-2000:]
+    html = (tiny_run / page).read_text()
+    assert "torque_delay.base_stroke.C2 = 8 (paper: 5)" in html
+    words = re.sub(r"data:image/png;base64,[A-Za-z0-9+/=]+", "", html).lower()
+    assert 'id="scoreboard"' not in words and not re.search(r"\bfail", words)
+    assert html.count('<tr id="claim-') == len(pd.read_csv(tiny_run / "results" / "claims.csv"))
+    checked = subprocess.run(
+        [str(ROOT / ".venv/bin/tennis-stroke"), "claims", "results/scenarios/strong/claims.csv"],
+        cwd=tiny_run,
+        capture_output=True,
+        text=True,
+    )
+    assert checked.returncode == 0 and "not graded" in checked.stdout, checked.stderr
+
+
+def test_a_departing_configuration_is_said_so_and_refused_by_the_gate(tiny_run, tmp_path_factory):
+    """The paper's configuration changed (C2 of the base stroke): the page opens with the
+    departure and `tennis-stroke claims` refuses in one line naming it."""
+    # a copy at the same depth: the code inputs' relative paths stay the same
+    work = tmp_path_factory.mktemp("departing")
+    shutil.copytree(tiny_run, work, symlinks=True, dirs_exist_ok=True)
+    section = {**TINY["torque_delay"], "base_stroke": {"C2": 8.0, "delta0": 52.5}}
+    done = run_snakemake(
+        "report", work, "--cores", "2", "--config", override("torque_delay", section), timeout=1200
+    )
+    assert done.returncode == 0, done.stderr[-3000:]
+    html = (work / "report" / "index.html").read_text()
+    assert "departs from the paper&#39;s" in html or "departs from the paper's" in html
+    assert "torque_delay.base_stroke.C2 = 8" in html
+    gate = subprocess.run(
+        [str(ROOT / ".venv/bin/tennis-stroke"), "claims"], cwd=work, capture_output=True, text=True
+    )
+    assert gate.returncode == 2 and len(gate.stderr.strip().splitlines()) == 1
+    assert "departs from the paper's" in gate.stderr and "base_stroke.C2 = 8" in gate.stderr

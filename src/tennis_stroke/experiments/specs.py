@@ -23,6 +23,7 @@ the model overrides (``params``) and the solver settings (``settings``); a row w
 
 from __future__ import annotations
 
+import copy
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from importlib import import_module
@@ -171,6 +172,19 @@ def pruned(config: Mapping, keys) -> dict:
                 node[part] = plain(value)
                 break
             node, source = node.setdefault(part, {}), value
+    return out
+
+
+def merged(base: Mapping, overrides: Mapping) -> dict:
+    """``base`` with ``overrides`` applied (neither is changed): mappings merge key by
+    key, any other value (a number, a list, a range given whole) replaces the base's, as
+    a nested ``--config`` value does."""
+    out = copy.deepcopy(dict(base))
+    for key, value in overrides.items():
+        if isinstance(value, Mapping) and isinstance(out.get(key), Mapping):
+            out[key] = merged(out[key], value)
+        else:
+            out[key] = copy.deepcopy(value)
     return out
 
 

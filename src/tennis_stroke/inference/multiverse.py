@@ -20,7 +20,6 @@ Three steps, each a workflow job:
 
 from __future__ import annotations
 
-import copy
 import itertools
 import math
 from collections.abc import Mapping, Sequence
@@ -29,7 +28,7 @@ import numpy as np
 import xarray as xr
 from scipy.stats import qmc
 
-from ..experiments.specs import EXPERIMENTS, compute
+from ..experiments.specs import EXPERIMENTS, compute, merged
 from ..io.netcdf import labelled, provenance
 from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
@@ -260,16 +259,6 @@ def reading_of(readings: xr.Dataset, index: int) -> dict[str, object]:
     return out
 
 
-def _merge(config: Mapping, update: Mapping) -> dict:
-    out = copy.deepcopy(dict(config))
-    for k, v in update.items():
-        if isinstance(v, Mapping) and isinstance(out.get(k), Mapping):
-            out[k] = _merge(out[k], v)
-        else:
-            out[k] = copy.deepcopy(v)
-    return out
-
-
 def experiment_config(
     config: Mapping, space: ReadingSpace, reading: Mapping[str, object]
 ) -> tuple[dict, dict]:
@@ -279,7 +268,7 @@ def experiment_config(
     and parameters) on top of the config's ``model``."""
     resolution = dict(space.raw["multiverse"]["resolution"])
     fig7_tau = resolution.pop("fig7_tau", None)
-    cfg = _merge(config, resolution)
+    cfg = merged(config, resolution)
     # a config pruned to what one job reads may lack these sections
     if fig7_tau is not None and "fig7" in cfg.get("torque_delay", {}):
         cfg["torque_delay"]["fig7"]["tau"] = dict(fig7_tau)

@@ -18,14 +18,13 @@ runs (:data:`PAPER_ONLY`).
 
 from __future__ import annotations
 
-import copy
 import re
 from collections.abc import Mapping
 from pathlib import Path
 
 import yaml
 
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, plain
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, plain
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
 from .config_check import config_errors, numbers_from_strings
@@ -45,18 +44,6 @@ PAPER_ONLY = {
 
 class ScenarioError(ValueError):
     """A scenario that cannot run as declared (one line)."""
-
-
-def merged(base: Mapping, overrides: Mapping) -> dict:
-    """``base`` with ``overrides`` applied: mappings merge key by key, any other value
-    (a number, a list, a range given whole) replaces the base's."""
-    out = copy.deepcopy(dict(base))
-    for key, value in overrides.items():
-        if isinstance(value, Mapping) and isinstance(out.get(key), Mapping):
-            out[key] = merged(out[key], value)
-        else:
-            out[key] = copy.deepcopy(value)
-    return out
 
 
 def changes(base: Mapping, other: Mapping, prefix: str = "") -> list[tuple[str, object, object]]:
