@@ -7,6 +7,7 @@ come from the files' ``long_name`` and ``units`` attributes.
 
 from __future__ import annotations
 
+import textwrap
 from collections.abc import Callable, Sequence
 from pathlib import Path
 
@@ -419,8 +420,10 @@ def draw(
     files into ``output`` (PNG); ``note`` (a scenario's changes) is a second title line."""
     figure = FIGURES[figure] if isinstance(figure, str) else figure
     datasets = [load_result(p) for p in inputs]
-    heading = title(figure.title, datasets[0]) + (f"\n{note}" if note else "")
-    fig = DRAWERS[figure.draw](datasets, heading, *figure.args)
+    fig = DRAWERS[figure.draw](datasets, title(figure.title, datasets[0]), *figure.args)
+    if note:  # below the drawing's own title, wrapped to the figure's width
+        ax = fig.axes[0]
+        ax.set_title(ax.get_title() + "\n" + "\n".join(textwrap.wrap(note, 48)))
     fig.tight_layout()
     fig.savefig(output, dpi=DPI)
     plt.close(fig)
