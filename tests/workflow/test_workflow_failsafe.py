@@ -266,6 +266,41 @@ def test_a_bad_claim_is_refused_before_any_job(tmp_path):
     assert not (work / "results").exists() and not (work / "logs").exists()
 
 
+@pytest.mark.parametrize(
+    ("scenarios", "target", "line"),
+    [
+        # a name no scenario declares, as a target (Snakemake's own message is a traceback)
+        (
+            "a: {model: {M2: 0.35}}\n",
+            "results/scenarios/b/figures/fig02_angle_map.png",
+            "tennis-stroke scenario error: no scenario 'b' is declared (declared: a;",
+        ),
+        # a bad override, whatever the target
+        (
+            "a: {model: {M2: -1.0}}\n",
+            "report",
+            "tennis-stroke scenario error: scenario 'a': config key 'model': parameter 'M2' "
+            "must be > 0 kg, got -1",
+        ),
+        # a section only the paper's configuration runs
+        (
+            "a: {solver_study: {seed: 3}}\n",
+            "report",
+            "tennis-stroke scenario error: scenario 'a': may not override 'solver_study'",
+        ),
+        ("- a\n", "report", "tennis-stroke scenario error: config/scenarios.yaml: must map"),
+    ],
+)
+def test_a_bad_scenario_is_one_line_before_any_job(tmp_path, scenarios, target, line):
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    (work / "config" / "scenarios.yaml").write_text(scenarios)
+    done = run_snakemake(target, work, "-n")
+    assert done.returncode == 1
+    lines = done.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith(line), lines
+    assert not (work / "results").exists()
+
+
 def test_a_yaml_syntax_error_in_the_config_names_file_and_line(tmp_path):
     """Snakemake's own message names neither; the workflow reads the file first."""
     work = workdir(tmp_path, TINY, TINY_READINGS)

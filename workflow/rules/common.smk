@@ -266,6 +266,25 @@ SCENARIO_MAPS = "|".join(
 )
 
 
+#: A name no scenario declares (the rule unknown_scenario refuses it in one line).
+UNKNOWN_SCENARIO = (
+    "(?!(?:" + "|".join(re.escape(n) for n in SCENARIO_CONFIGS) + ")/)[^/]+"
+    if SCENARIO_CONFIGS
+    else "[^/]+"
+)
+
+
+def refuse_unknown_scenario(wildcards):
+    """The input function of rule unknown_scenario: one line, then exit status 1."""
+    known = ", ".join(sorted(SCENARIO_CONFIGS)) or "none"
+    sys.stderr.write(
+        f"tennis-stroke scenario error: no scenario {wildcards.unknown!r} is declared "
+        f"(declared: {known}; config/scenarios.yaml, or --config "
+        f"'scenarios={{{wildcards.unknown}: {{...}}}}')\n"
+    )
+    sys.exit(1)
+
+
 # A scenario wildcard matches a declared scenario's name only (none: nothing).
 wildcard_constraints:
     scenario="|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x",
@@ -376,6 +395,11 @@ def scenario_figure_table(wildcards):
                     f"{scenario_folder(name)}/figures/{f}.png" if f in changed else None
                 ),
                 "changes": [describe(*c) for c in read],
+                "files": [
+                    [PAPER_RESULTS[k], scenario_files(name)[k]]
+                    for k in FIGURES[f].files
+                    if scenario_files(name)[k] != PAPER_RESULTS[k]
+                ],
             }
         )
     return out

@@ -96,3 +96,17 @@ rule scenario_report:
         figures=scenario_figure_table,
     script:
         "../scripts/scenario_report.py"
+
+
+# A scenario's file asked for under a name no scenario declares: one line naming the
+# declared ones, before any job (Snakemake's own message for a target no rule makes is
+# a traceback).
+rule unknown_scenario:
+    input:
+        refuse_unknown_scenario,
+    output:
+        "{top}/scenarios/{unknown}/{path}",
+    wildcard_constraints:
+        top="results|report",
+        unknown=UNKNOWN_SCENARIO,
+        path=".+",

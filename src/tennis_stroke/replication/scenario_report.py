@@ -21,7 +21,7 @@ import pandas as pd
 from .._version import __version__
 from ..inference.claims import load_claims
 from ..inference.paper_config import PaperConfigError, describe_departures, read_record
-from ..io.netcdf import git_commit
+from ..io.netcdf import git_commit, load_result
 from .claims import ClaimsTableError, read_table
 from .registry import FIGURES
 from .report import ENVIRONMENT, UNIT_SHORT, ReportInputError, _figure_entry, _number
@@ -47,6 +47,20 @@ def _paper_table(path: str | Path, ids: Sequence[str]) -> tuple[pd.DataFrame | N
             f"paper's: {describe_departures(record)}"
         )
     return table, f"from {path} (the paper's configuration)"
+
+
+def same_values(pairs: Sequence[Sequence[str]]) -> bool:
+    """Whether each (paper, scenario) pair of result files holds the same values (the
+    attributes aside), where the paper's file exists: a scenario's change that the
+    figure's job reads but its numbers do not feel (Figs. 5-6 sweep M2 themselves)."""
+    if not pairs:
+        return False
+    for paper, scenario in pairs:
+        if not Path(paper).is_file():
+            return False
+        if not load_result(paper).equals(load_result(scenario)):
+            return False
+    return True
 
 
 def _change(ours: float, scenario: float, unit: str) -> str:
@@ -105,11 +119,14 @@ def build_scenario_report(
     except ClaimsTableError as exc:
         raise ReportInputError(str(exc)) from None
     paper, paper_note = _paper_table(paper_claims_csv, ids)
-    shown, unchanged = [], []
+    shown, unchanged, same = [], [], []
     for f in figures:
         title = FIGURES[f["name"]].title.split(":")[0]
         if f["scenario"] is None:
             unchanged.append(title)
+            continue
+        if same_values(f.get("files", [])):
+            same.append(title)
             continue
         shown.append(
             {
@@ -125,6 +142,7 @@ def build_scenario_report(
         changes=[c["text"] for c in scenario["changes"]],
         figures=shown,
         unchanged=unchanged,
+        same=same,
         rows=rows,
         moved=sum(r["moved"] for r in rows),
         paper_note=paper_note,
