@@ -10,7 +10,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 import yaml
-from conftest import ROOT, merged, run_snakemake
+from conftest import ROOT, merged, record_configuration, run_snakemake
 
 from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS
 from tennis_stroke.experiments.specs import RESULT_FILES as FILES
@@ -29,7 +29,11 @@ HOSTILE = '<script>alert("claim")</script> & <b>co</b>'
 
 
 def _build(work: Path, output: Path, claims_csv: Path, statements: Path) -> str:
-    """The report of a workflow run in ``work``, as the report rule builds it."""
+    """The report of a workflow run in ``work``, as the report rule builds it (a claims
+    table outside the run gets the run's configuration record beside it)."""
+    record = claims_csv.with_name("configuration.yaml")
+    if not record.exists():
+        shutil.copy(work / "results" / "configuration.yaml", record)
     build_report(
         figures=[str(work / f"results/figures/{name}.png") for name in sorted(FIGURES)],
         claims_csv=str(claims_csv),
@@ -235,3 +239,26 @@ def test_snakemake_builds_its_own_report(tiny_run, tmp_path):
     assert "claims.csv" in html
     for name in FIGURES:
         assert f"{name}.png" in html, name
+
+
+def test_a_departing_configuration_opens_the_page(tiny_run, tmp_path):
+    """A claims table computed under a configuration other than the paper's (its record
+    says where) gives a page that says so first, with each departure."""
+    shutil.copy(tiny_run / "results" / "claims.csv", tmp_path / "claims.csv")
+    departure = {"key": "elbow_force.F0", "value": 30.0, "paper_value": 20.0, "source": "Sec. VI"}
+    record_configuration(tmp_path, departures=[departure])
+    html = _build(
+        tiny_run, tmp_path / "index.html", tmp_path / "claims.csv", ROOT / "config/claims.yaml"
+    )
+    head = html.split('id="scoreboard"')[0]
+    assert (
+        "departs from the paper" in head
+        and "elbow_force.F0 = 30 (the paper&#39;s 20: Sec. VI)" in head
+    )
+    paper = _build(
+        tiny_run,
+        tmp_path / "paper.html",
+        tiny_run / "results/claims.csv",
+        ROOT / "config/claims.yaml",
+    )
+    assert "departs from the paper" not in paper
