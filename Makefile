@@ -1,19 +1,33 @@
-# tennis-stroke: everything installs into ./.venv from pyproject.toml; only python3 is needed.
+# tennis-stroke: everything installs into ./.venv from the lock; only python3 is needed.
 PYTHON ?= python3
 VENV   := .venv
 BIN    := $(VENV)/bin
 STAMP  := $(VENV)/.installed-stamp
 JOBS   ?= 2
+## The lock: every package the three extras install, exact versions with hashes, for
+## CPython 3.11 on Linux x86_64 (make lock writes it from pyproject.toml with uv).
+LOCK   := requirements.lock
+UV     := uv==0.13.9
+LOCKER := .venv-lock
 
-.PHONY: install report test lint bench kernels clean
+.PHONY: install lock report test lint bench kernels clean
 
 install: $(STAMP)
 
-$(STAMP): pyproject.toml
+## Exactly the lock (hashes checked), then the project itself without dependencies.
+$(STAMP): pyproject.toml $(LOCK)
 	$(PYTHON) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,workflow,slurm]'
+	$(BIN)/python -m pip install --quiet --require-hashes --no-deps -r $(LOCK)
+	$(BIN)/python -m pip install --quiet --no-deps --no-build-isolation -e .
 	touch $(STAMP)
+
+## Regenerate the lock from pyproject.toml: the locked versions are kept where they still
+## fit (UPGRADE=1: the newest that fit).  uv runs from its own venv, not the project's.
+lock:
+	test -x $(LOCKER)/bin/uv || { $(PYTHON) -m venv $(LOCKER) && $(LOCKER)/bin/pip install --quiet '$(UV)'; }
+	$(LOCKER)/bin/uv pip compile pyproject.toml --extra test --extra workflow --extra slurm \
+	    --generate-hashes --python-version 3.11 --python-platform x86_64-manylinux_2_28 \
+	    --custom-compile-command "make lock" $(if $(UPGRADE),--upgrade) -o $(LOCK)
 
 ## The replication: every experiment, figure and claim, then report/index.html; fails
 ## when a claim marked `reproduce` in config/claims.yaml fails, or when README.md's
@@ -22,7 +36,7 @@ $(STAMP): pyproject.toml
 ## pipeline/targets.py).
 report: $(STAMP)
 	$(BIN)/snakemake --cores $(JOBS) report $$($(BIN)/python -m tennis_stroke.pipeline.targets)
-	$(BIN)/tennis-stroke claims results/claims.csv
+	$(BIN)/tennis-stroke claims results/claims.csv --junit results/claims.xml
 	$(BIN)/python tools/readme_results.py --check
 
 ## The test suite (includes a tiny end-to-end workflow run).
@@ -30,6 +44,7 @@ test: $(STAMP)
 	$(BIN)/python -m pytest
 
 lint: $(STAMP)
+	$(BIN)/check-jsonschema --builtin-schema vendor.github-workflows .github/workflows/replication.yml
 	$(BIN)/ruff check src tests tools benchmarks workflow/scripts
 	$(BIN)/snakefmt --check Snakefile workflow/rules
 	$(BIN)/python tools/generate_kernels.py --check

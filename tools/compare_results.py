@@ -6,9 +6,10 @@ netCDF files: every data variable and coordinate bit for bit (values, dtype, dim
 attributes), except wall-clock measurements (variables with a ``timing`` attribute), and
 every global attribute except those that differ between two runs of one job
 (:data:`tennis_stroke.io.netcdf.RUN_ATTRS`) and ``--also-differ`` (e.g. ``git_commit`` across
-commits).  CSV files: equal cell for cell.  PNG figures are not compared (matplotlib
-output is not a result).  Prints one line per file and exits 1 if any differs or is
-missing on one side.
+commits).  CSV files: equal cell for cell.  When the two folders' files record different
+software environments (the lock's hash, whether the environment was the lock), says so.
+PNG figures are not compared (matplotlib output is not a result).  Prints one line per
+file and exits 1 if any differs or is missing on one side.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ import pandas as pd
 
 from tennis_stroke.io.compare import result_differences
 from tennis_stroke.io.errors import ResultError
+from tennis_stroke.io.netcdf import load_result
 
 
 def compare(old: Path, new: Path, also_differ: list[str]) -> int:
@@ -53,7 +55,26 @@ def compare(old: Path, new: Path, also_differ: list[str]) -> int:
             print(f"    {problem}")
         bad += bool(problems)
     print(f"{bad} of {len([n for n in names if not n.endswith('.png')])} files differ")
+    envs = {side: environments(root) for side, root in (("old", old), ("new", new))}
+    if envs["old"] != envs["new"]:
+        print("ENVIRONMENTS differ: the folders were made by different software environments")
+        for side, found in envs.items():
+            print(f"    {side}: {'; '.join(sorted(found)) or 'none recorded'}")
     return 1 if bad else 0
+
+
+def environments(root: Path) -> set[str]:
+    """The environments the netCDF files below ``root`` record: the lock's hash and
+    whether the writing environment was the lock (tennis_stroke.io.environment)."""
+    out = set()
+    for path in sorted(root.rglob("*.nc")):
+        try:
+            attrs = load_result(path).attrs
+        except ResultError:
+            continue
+        lock = attrs.get("environment_lock_sha256_16", "not recorded")
+        out.add(f"lock {lock}, environment is the lock: {attrs.get('environment_is_lock', '?')}")
+    return out
 
 
 def main() -> int:

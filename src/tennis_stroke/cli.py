@@ -162,6 +162,11 @@ def build_parser() -> argparse.ArgumentParser:
         default="config/claims.yaml",
         help="the declared claims the table must hold, in order (default: config/claims.yaml)",
     )
+    claims.add_argument(
+        "--junit",
+        metavar="FILE.xml",
+        help="also write the claims as JUnit XML for CI (a test case per claim)",
+    )
 
     identify = sub.add_parser(
         "identify", help="fit the paper's open readings to the declared fit sets"
@@ -355,6 +360,8 @@ def _claims(args: argparse.Namespace) -> int:
     if record["scenario"]:
         # a scenario is an exploration: the table is checked, never graded
         read_table(args.csv, [c["id"] for c in declared])
+        if args.junit:
+            raise ValueError("--junit grades the paper's configuration only, not a scenario")
         name = record["scenario"]["name"]
         print(f"{args.csv}: scenario {name!r}, an exploration beside the paper: not graded")
         for change in record["scenario"]["changes"]:
@@ -366,7 +373,13 @@ def _claims(args: argparse.Namespace) -> int:
             f"so it is not graded: {describe_departures(record)} (declare a change as a "
             "scenario in config/scenarios.yaml and restore config/config.yaml)"
         )
-    return check(args.csv, [c["id"] for c in declared], declared)
+    status = check(args.csv, [c["id"] for c in declared], declared)
+    if args.junit:
+        from .replication.junit import write_junit
+
+        write_junit(read_table(args.csv), args.junit)
+        print(f"wrote {args.junit}")
+    return status
 
 
 def _identify(args: argparse.Namespace) -> int:

@@ -29,6 +29,7 @@ from .._version import __version__
 from ..model.params import MODEL_OPTIONS, PARAMETERS, READINGS, scalar_params
 from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
+from .environment import environment_attrs
 from .errors import OutputError, ResultError
 from .interrupts import deferred_signals
 from .units import VARIABLES, cf_attrs
@@ -93,6 +94,7 @@ def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[s
         "scipy_version": installed_version("scipy"),
         "xarray_version": xr.__version__,
         "history": f"{datetime.now(UTC).isoformat(timespec='seconds')} written by tennis-stroke",
+        **environment_attrs(),
     }
     for name, value in scalar_params(params).items():
         if name in READINGS:

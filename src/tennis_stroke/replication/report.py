@@ -35,6 +35,7 @@ from .._version import __version__
 from ..inference.claims import load_claims
 from ..inference.paper_config import PaperConfigError, departure_lines, read_record
 from ..io.config_files import load_yaml
+from ..io.environment import environment_table
 from ..io.failures import failure_counts
 from ..io.netcdf import git_commit, load_result
 from ..model.params import READINGS
@@ -586,12 +587,20 @@ def build_report(
     ]
     with xr.open_dataset(results[0]) as ds:
         solver = {k: v for k, v in ds.attrs.items() if k.startswith("solver_")}
+    environment = environment_table()
     meta = {
         "tennis_stroke version": __version__,
         "git commit": git_commit(),
         "python": platform.python_version(),
         "built": datetime.now(UTC).isoformat(timespec="seconds"),
         **solver,
+        "lock (requirements.lock, sha256)": environment["lock"],
+        "environment": "the lock"
+        if environment["is_lock"]
+        else "not the lock: " + "; ".join(environment["differences"]),
+        "results written under": _file_environments(results),
+        "CPU": environment["cpu"],
+        "numba compile target": environment["compile_target"],
     }
     ladder_error, study_tables = _studies(studies)
     html = ENVIRONMENT.get_template("report.html.j2").render(
@@ -615,12 +624,26 @@ def build_report(
         ledger=markdown_html(Path(assumptions_md).read_text()) if assumptions_md else "",
         config_yaml=yaml.safe_dump(_plain(config), sort_keys=False),
         meta=meta,
+        distributions=environment["distributions"],
         failure_table=_table(_failures(results), index=False, na_rep="-"),
         timing_table=_table(_timings(Path(benchmarks_dir)), index=False),
         max_failure_share=f"{100 * float(config['max_failure_share']):g} %",
     )
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     Path(output).write_text(html)
+
+
+def _file_environments(results: Sequence[str]) -> str:
+    """The environments the result files record (the lock's hash; whether it was the
+    lock), each with its count of files."""
+    seen: dict[str, int] = {}
+    for path in results:
+        with xr.open_dataset(path) as ds:
+            lock = ds.attrs.get("environment_lock_sha256_16", "not recorded")
+            state = ds.attrs.get("environment_is_lock", "")
+        key = f"lock {lock}" + (f", environment is the lock: {state}" if state else "")
+        seen[key] = seen.get(key, 0) + 1
+    return "; ".join(f"{k} ({n} files)" for k, n in seen.items())
 
 
 def _plain(node):

@@ -1,0 +1,91 @@
+"""The claims as JUnit XML (tennis_stroke.replication.junit), read back with junitparser:
+one test case per claim, a suite per section, each status mapped as CI tools read it."""
+
+import pandas as pd
+import pytest
+from conftest import record_configuration
+from junitparser import Failure, JUnitXml, Skipped
+
+from tennis_stroke.cli import main
+from tennis_stroke.replication.claims import COLUMNS
+from tennis_stroke.replication.junit import write_junit
+
+ROWS = [
+    ("a", "Sec. III, Fig. 2", "pass", "", ""),
+    ("b", "Sec. III, Fig. 4", "used_for_fit", "model", ""),
+    ("c", "Table I", "known_deviation", "", "irreducible"),
+    ("d", "Sec. V, Fig. 9", "fail", "", ""),
+]
+
+
+def table() -> pd.DataFrame:
+    rows = []
+    for cid, source, status, fit_set, evidence in ROWS:
+        row = dict.fromkeys(COLUMNS, "")
+        row.update(id=cid, source=source, quantity=f"quantity {cid}", unit="km/h")
+        row.update(paper_value="1.0", reproduced_value="1.5", tolerance="0.1", status=status)
+        row.update(fit_set=fit_set, evidence=evidence, reason=f"reason {cid}")
+        row["expectation"] = "known_deviation" if status == "known_deviation" else "reproduce"
+        rows.append(row)
+    return pd.DataFrame(rows)
+
+
+def test_each_status_maps_to_a_junit_result(tmp_path):
+    path = tmp_path / "claims.xml"
+    write_junit(table(), path)
+    xml = JUnitXml.fromfile(str(path))
+    assert (xml.tests, xml.failures, xml.skipped, xml.errors) == (4, 1, 1, 0)
+    suites = {s.name: s for s in xml}
+    assert list(suites) == ["Sec. III", "Table I", "Sec. V"]
+    cases = {c.name: c for s in xml for c in s}
+    assert cases["a"].is_passed and cases["b"].is_passed
+    props = {p.name: p.value for p in cases["b"].child(__import__("junitparser").Properties)}
+    assert props == {"used_for_fit": "model"}
+    (skipped,) = cases["c"].result
+    assert isinstance(skipped, Skipped) and "irreducible" in skipped.message
+    assert skipped.text == "reason c"
+    (failure,) = cases["d"].result
+    assert isinstance(failure, Failure)
+    assert failure.message == "paper 1.0 km/h, ours 1.5 km/h, tolerance 0.1 (Sec. V, Fig. 9)"
+    assert cases["d"].classname == "claims.Sec. V"
+
+
+def test_the_claims_command_writes_the_junit_file_also_when_a_claim_fails(tmp_path, capsys):
+    record_configuration(tmp_path)
+    csv = tmp_path / "claims.csv"
+    table().to_csv(csv, index=False)
+    declared = tmp_path / "claims.yaml"
+    claims = [
+        {
+            "id": cid,
+            "source": s,
+            "quantity": "q",
+            "unit": "km/h",
+            "paper_value": 1.0,
+            "tolerance": 0.1,
+            "measure": {"file": "fig9", "var": "best_tau"},
+            "expectation": "known_deviation" if status == "known_deviation" else "reproduce",
+            **({"reason": "r"} if status == "known_deviation" else {}),
+        }
+        for cid, s, status, _, _ in ROWS
+    ]
+    declared.write_text(__import__("json").dumps({"claims": claims}))
+    # the table's statuses follow from its values: a, b pass only if within tolerance
+    frame = table()
+    frame.loc[frame["id"].isin(["a", "b"]), "reproduced_value"] = "1.05"
+    frame.to_csv(csv, index=False)
+    out = tmp_path / "claims.xml"
+    assert main(["claims", str(csv), "--claims", str(declared), "--junit", str(out)]) == 1
+    xml = JUnitXml.fromfile(str(out))
+    counts = frame["status"].value_counts()
+    assert xml.tests == len(frame) and xml.failures == counts["fail"]
+    assert xml.skipped == counts["known_deviation"]
+
+
+def test_a_scenario_table_is_never_junit(tmp_path, capsys):
+    record_configuration(tmp_path, scenario={"name": "s", "overrides": {}, "changes": []})
+    csv = tmp_path / "claims.csv"
+    csv.write_text("id\n")
+    with pytest.raises(SystemExit):
+        main(["claims", str(csv), "--junit", str(tmp_path / "x.xml")])
+    assert not (tmp_path / "x.xml").exists()
