@@ -439,12 +439,15 @@ def _config(args: argparse.Namespace) -> int:
 
 def _whatif(args: argparse.Namespace) -> int:
     import subprocess
+    from pathlib import Path
 
     import yaml
 
     from .pipeline.scenarios import ScenarioError, folder, load_scenarios, override_from
     from .replication.registry import paper_figure
 
+    if not Path("Snakefile").is_file():
+        raise ValueError(f"no Snakefile in {Path.cwd()}: run whatif from the project's folder")
     try:
         declared = load_scenarios("config/scenarios.yaml")
         overrides = override_from(args.set) if args.set else None

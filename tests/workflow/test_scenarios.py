@@ -249,3 +249,22 @@ def test_a_figure_is_found_by_its_number():
     for bad in ("fig99", "study01_work_precision", "nine"):
         with pytest.raises(KeyError, match="no figure"):
             paper_figure(bad)
+
+
+def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
+    """Outside the project's folder, an undeclared scenario without overrides, an unknown
+    figure and a bad --set are each one line and exit status 2, before Snakemake runs."""
+    cases = [(["whatif", "x", "--set", "M2=0.4"], "no Snakefile in")]
+    cases_root = [
+        (["whatif", "nosuch"], "scenario 'nosuch' is not declared in config/scenarios.yaml"),
+        (["whatif", "x", "--set", "M2=0.4", "--figure", "fig99"], "no figure 'fig99'"),
+        (["whatif", "x", "--set", "M2"], "--set 'M2': expected KEY=VALUE"),
+        (["whatif", "1x", "--set", "M2=0.4"], "scenario name '1x'"),
+    ]
+    for where, runs in ((tmp_path, cases), (ROOT, cases_root)):
+        monkeypatch.chdir(where)
+        for argv, message in runs:
+            with pytest.raises(SystemExit) as info:
+                main(argv)
+            err = capsys.readouterr().err
+            assert info.value.code == 2 and message in err and err.count("\n") == 1, err
