@@ -30,6 +30,7 @@ from tennis_stroke.inference.validation import group_config
 from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
 from tennis_stroke.pipeline import params as job_params
 from tennis_stroke.pipeline.scenarios import (
+    FOLDER as SCENARIO_FOLDER,
     ScenarioError,
     changes,
     changes_read,
@@ -72,21 +73,35 @@ except ReadingSpaceError as _exc:
     sys.exit(1)
 
 # The what-if scenarios (config/scenarios.yaml and --config scenarios=...), each checked
-# as the paper's configuration is, before any job: their configurations by name.
+# as the paper's configuration is, before any job: their configurations by name.  A bad
+# scenario never stops the paper's run: it is named in one warning line, and asking for
+# any of its files is refused in one line (rule unknown_scenario).
 SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
+SCENARIO_ERRORS = {}
 try:
     SCENARIOS = load_scenarios("config/scenarios.yaml", _ADHOC_SCENARIOS)
-    SCENARIO_CONFIGS = {
-        _name: scenario_config(config, _name, _overrides, SCHEMA)
-        for _name, _overrides in SCENARIOS.items()
-    }
 except ScenarioError as _exc:
-    sys.stderr.write(f"tennis-stroke scenario error: {_exc}\n")
-    sys.exit(1)
+    SCENARIOS, SCENARIO_ERRORS[None] = {}, str(_exc)
+SCENARIO_CONFIGS = {}
+for _name, _overrides in SCENARIOS.items():
+    try:
+        SCENARIO_CONFIGS[_name] = scenario_config(config, _name, _overrides, SCHEMA)
+    except ScenarioError as _exc:
+        SCENARIO_ERRORS[_name] = str(_exc)
+for _error in SCENARIO_ERRORS.values():
+    sys.stderr.write(f"tennis-stroke scenario warning: {_error} (the paper's runs go on)\n")
 
 # A damaged result file (truncated, garbage) is named before any job: Snakemake would take
 # it for up to date, and every job reading it would fail.
 _damaged = damaged_results()
+for _path, _problem in _damaged:
+    if _path.startswith(f"results/{SCENARIO_FOLDER}/"):
+        # a scenario's file never stops the paper's run
+        sys.stderr.write(
+            f"tennis-stroke results warning: {_path} is damaged ({_problem}): remove it; "
+            "asking for its scenario's files again rebuilds it\n"
+        )
+_damaged = [d for d in _damaged if not d[0].startswith(f"results/{SCENARIO_FOLDER}/")]
 if _damaged:
     _path, _problem = _damaged[0]
     sys.stderr.write(
@@ -264,6 +279,7 @@ def scenario_setting(key):
 SCENARIO_MAPS = "|".join(
     re.escape(stem) for stem, e in CHUNKED.items() if e.family == "paper"
 )
+CHUNKED_PAPER_MAPS = SCENARIO_MAPS
 
 
 #: A name no scenario declares (the rule unknown_scenario refuses it in one line).
@@ -276,6 +292,10 @@ UNKNOWN_SCENARIO = (
 
 def refuse_unknown_scenario(wildcards):
     """The input function of rule unknown_scenario: one line, then exit status 1."""
+    error = SCENARIO_ERRORS.get(wildcards.unknown, SCENARIO_ERRORS.get(None))
+    if error:
+        sys.stderr.write(f"tennis-stroke scenario error: {error}\n")
+        sys.exit(1)
     known = ", ".join(sorted(SCENARIO_CONFIGS)) or "none"
     sys.stderr.write(
         f"tennis-stroke scenario error: no scenario {wildcards.unknown!r} is declared "
@@ -285,9 +305,11 @@ def refuse_unknown_scenario(wildcards):
     sys.exit(1)
 
 
+#: A declared scenario's name (none: nothing).
+DECLARED_SCENARIO = "|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x"
 # A scenario wildcard matches a declared scenario's name only (none: nothing).
 wildcard_constraints:
-    scenario="|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x",
+    scenario=DECLARED_SCENARIO,
 
 
 def template_files(page):
@@ -424,3 +446,29 @@ def relabel_map(wildcards):
     """A map of the table gets its labels from the units table when gathered (plain
     bool: a params value)."""
     return wildcards.map in CHUNKED
+
+
+#: The paths a scenario's rules make below its folders.
+SCENARIO_PATHS = "|".join(
+    [
+        rf"chunks/({CHUNKED_PAPER_MAPS})/\d+-of-\d+\.nc",
+        *(re.escape(f"{e.stem}.nc") for e in EXPERIMENTS.values() if e.family == "paper"),
+        rf"figures/({PAPER_FIGURE_NAMES})\.png",
+        r"claims\.csv",
+        r"configuration\.yaml",
+        r"index\.html",
+    ]
+)
+#: Any other path (rule unknown_scenario_file refuses it in one line).
+UNKNOWN_SCENARIO_PATH = rf"(?!(?:{SCENARIO_PATHS})$).+"
+
+
+def refuse_unknown_scenario_file(wildcards):
+    """The input function of rule unknown_scenario_file: one line, then exit status 1."""
+    where = f"{wildcards.top}/scenarios/{wildcards.declared}/{wildcards.path}"
+    sys.stderr.write(
+        f"tennis-stroke scenario error: no rule makes {where}: a scenario makes the paper "
+        "experiments' files, the paper's figures (figures/fig02_angle_map.png ... "
+        "figures/fig14_elbow_paths.png), claims.csv and its page (docs/scenarios.md)\n"
+    )
+    sys.exit(1)

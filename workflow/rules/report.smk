@@ -110,3 +110,16 @@ rule unknown_scenario:
         top="results|report",
         unknown=UNKNOWN_SCENARIO,
         path=".+",
+
+
+# A path no rule makes under a declared scenario (a study figure, a misspelt name): one
+# line naming what a scenario makes.
+rule unknown_scenario_file:
+    input:
+        refuse_unknown_scenario_file,
+    output:
+        "{top}/scenarios/{declared}/{path}",
+    wildcard_constraints:
+        top="results|report",
+        declared=DECLARED_SCENARIO,
+        path=UNKNOWN_SCENARIO_PATH,
