@@ -2,7 +2,7 @@
 # process".  Run:  snakemake -j2 report   (see README.md).
 from snakemake.utils import min_version
 
-min_version("9.0")
+min_version("9.15")
 
 
 include: "workflow/rules/config_file.smk"

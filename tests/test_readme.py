@@ -1,6 +1,7 @@
 """The README's results at a glance are generated from the claims table
 (tools/readme_results.py); ``make report`` fails when they are stale."""
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -102,33 +103,37 @@ def test_the_readme_scenario_is_the_declared_one_and_valid():
 
 
 @pytest.mark.slow
-def test_the_readme_scenario_commands_plan_what_they_say():
-    """Each command of the README's scenario block, as a dry run in the checkout: the
-    figure plans its three jobs (map, gathering, figure), `whatif` the same for an ad hoc
-    scenario, `config explain` names the base stroke's files."""
+def test_the_readme_scenario_commands_plan_what_they_say(tmp_path):
+    """Each command of the README's scenario block as a dry run: the snakemake ones in a
+    fresh working folder with the project's config (the checkout's own results may hold
+    them already), `whatif` in the checkout under a name no run used; the figure plans
+    its map, gathering and figure, `config explain` names the base stroke's files."""
     import re
+    import shutil
 
     blocks = re.findall(r"```(\w*)\n(.*?)```", _what_if_section(), flags=re.S)
     lines = next(text for lang, text in blocks if not lang).splitlines()
     commands = [line.split("#")[0].split() for line in lines if line.strip()]
     assert [c[0] for c in commands] == ["snakemake"] * 2 + ["tennis-stroke"] * 2
+    work = tmp_path / "work"
+    shutil.copytree(ROOT / "config", work / "config")
     bin_ = ROOT / ".venv" / "bin"
-    figure = subprocess.run(
-        [str(bin_ / commands[0][0]), *commands[0][1:], "-n"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
+    for command in commands[:2]:
+        done = subprocess.run(
+            [str(bin_ / "snakemake"), *command[1:], "-n", "-s", str(ROOT / "Snakefile")],
+            cwd=work,
+            capture_output=True,
+            text=True,
+        )
+        assert done.returncode == 0, done.stderr[-2000:]
+        assert "scenario_fig9" in done.stdout and "scenario_figure" in done.stdout
+    name = f"readme_test_{os.getpid()}"
+    whatif = [arg if arg != commands[2][2] else name for arg in commands[2]]
+    done = subprocess.run(
+        [str(bin_ / whatif[0]), *whatif[1:], "-n"], cwd=ROOT, capture_output=True, text=True
     )
-    assert figure.returncode == 0, figure.stderr[-2000:]
-    assert "scenario_fig9" in figure.stdout and "scenario_figure" in figure.stdout
-    whatif = subprocess.run(
-        [str(bin_ / commands[2][0]), *commands[2][1:], "-n"],
-        cwd=ROOT,
-        capture_output=True,
-        text=True,
-    )
-    assert whatif.returncode == 0, whatif.stderr[-2000:]
-    stats = whatif.stdout.split("Job stats:")[1].split("Reasons:")[0]
+    assert done.returncode == 0, done.stderr[-2000:]
+    stats = done.stdout.split("Job stats:")[1].split("Reasons:")[0]
     assert "scenario_fig2" in stats and re.search(r"^total\s+3\s*$", stats, re.M), stats
     explain = subprocess.run(
         [str(bin_ / commands[3][0]), *commands[3][1:]], cwd=ROOT, capture_output=True, text=True

@@ -438,6 +438,7 @@ def _config(args: argparse.Namespace) -> int:
 
 
 def _whatif(args: argparse.Namespace) -> int:
+    import shlex
     import subprocess
     from pathlib import Path
 
@@ -471,7 +472,7 @@ def _whatif(args: argparse.Namespace) -> int:
         command += ["--config", f"scenarios={flow.strip()}"]
     if args.dry_run:
         command.append("-n")
-    print("$ snakemake " + " ".join(command[3:]), flush=True)
+    print("$ " + shlex.join(["snakemake", *command[3:]]), flush=True)
     done = subprocess.run(command, check=False)
     if done.returncode == 0 and not args.dry_run:
         print("\n".join(targets))

@@ -165,9 +165,14 @@ def test_the_gate_grades_the_paper_configuration_only(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["claims", str(table)])
     assert "configuration.yaml is missing" in capsys.readouterr().err
-    (tmp_path / "configuration.yaml").write_text("[1]\n")
-    with pytest.raises(PaperConfigError, match="not a configuration record"):
-        read_record(table)
+    for text, message in [
+        ("[1]\n", "not a configuration record"),
+        ("scenario: null\ndepartures: 3\n", "departures must be a list"),
+        ("scenario: {name: x}\ndepartures: []\n", "scenario must be null or have"),
+    ]:
+        (tmp_path / "configuration.yaml").write_text(text)
+        with pytest.raises(PaperConfigError, match=message):
+            read_record(table)
 
 
 def test_a_scenario_table_is_checked_and_not_graded(tmp_path, capsys):
@@ -230,7 +235,10 @@ def test_each_key_names_what_it_drives():
     assert "identification" in e.inference and "claims" in e.inference
     # the Fig. 9 section now holds only its delays
     assert rows_reading("torque_delay.fig9.tau") == ["fig9"]
-    assert explain("chunks.angle_map", PAPER, CLAIMS).note.endswith("moves no number")
+    assert "moves no number" in explain("chunks.angle_map", PAPER, CLAIMS).note
+    # a model parameter by its name or its key, as whatif --set takes it
+    assert explain("M2", PAPER, CLAIMS) == explain("model.M2", PAPER, CLAIMS)
+    assert explain("M2", PAPER, CLAIMS).rows == tuple(PAPER_RESULTS)
     assert explain("chunks.angle_map", PAPER, CLAIMS).files == ()
     with pytest.raises(KeyError, match="did you mean torque_delay.base_stroke.C2"):
         explain("torque_delay.base_stroke.c2", PAPER, CLAIMS)

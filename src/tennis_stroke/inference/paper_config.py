@@ -123,6 +123,21 @@ def read_record(claims_csv: str | Path) -> dict:
         raise PaperConfigError(str(exc)) from None
     if not isinstance(record, Mapping) or set(record) != {"scenario", "departures"}:
         raise PaperConfigError(f"{path}: not a configuration record")
+    departures, scenario = record["departures"], record["scenario"]
+    if not isinstance(departures, list) or not all(
+        isinstance(d, Mapping) and {"key", "value", "paper_value", "source"} <= set(d)
+        for d in departures
+    ):
+        raise PaperConfigError(
+            f"{path}: departures must be a list of key, value, paper_value, source"
+        )
+    if scenario is not None and not (
+        isinstance(scenario, Mapping)
+        and {"name", "changes"} <= set(scenario)
+        and isinstance(scenario["changes"], list)
+        and all(isinstance(c, Mapping) and "text" in c for c in scenario["changes"])
+    ):
+        raise PaperConfigError(f"{path}: scenario must be null or have a name and its changes")
     return dict(record)
 
 

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 from ..experiments.specs import EXPERIMENTS, SEC5_STROKE, VALIDATION_GROUPS
 from ..inference.claims import claim_files
 from ..inference.multiverse import MULTIVERSE_SETS
+from ..model.params import PARAMETERS, READINGS
 from ..replication.registry import FIGURES
 from .params import read_keys, related
 
@@ -76,9 +77,9 @@ def effect(key: str, claims: Sequence[Mapping]) -> KeyEffect:
     rows = rows_reading(key)
     note = ""
     if key == "max_failure_share":
-        note = "checked when a map is gathered: moves no number"
+        note = "checked when a map is gathered: moves no number (reruns the gatherings)"
     elif key.startswith("chunks."):
-        note = "splits the map into jobs: moves no number"
+        note = "splits the map into jobs: moves no number (reruns the map's jobs)"
     elif key == "max_memory":
         note = "a limit checked before any job: moves no number"
     moving = [] if note else rows
@@ -124,7 +125,12 @@ def leaves(node, parts: tuple = ()) -> Iterator[str]:
 def explain(key: str, config: Mapping, claims: Sequence[Mapping]) -> KeyEffect:
     """:func:`effect` of a key of ``config`` (a leaf or a section); raises
     :class:`UnknownKeyError` naming the closest keys otherwise."""
+    if key in PARAMETERS or key in READINGS:  # a model parameter or reading by its name
+        key = f"model.{key}"
     known = list(leaves(config))
+    section, _, name = key.partition(".")
+    if section == "model" and (name in PARAMETERS or name in READINGS):
+        return effect(key, claims)
     if key not in known and not any(k.startswith(f"{key}.") for k in known):
         import difflib
 
