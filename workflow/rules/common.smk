@@ -89,7 +89,9 @@ for _name, _overrides in SCENARIOS.items():
     except ScenarioError as _exc:
         SCENARIO_ERRORS[_name] = str(_exc)
 for _error in SCENARIO_ERRORS.values():
-    sys.stderr.write(f"tennis-stroke scenario warning: {_error} (the paper's runs go on)\n")
+    sys.stderr.write(
+        f"tennis-stroke scenario warning: {_error} (the paper's runs go on)\n"
+    )
 
 # A damaged result file (truncated, garbage) is named before any job: Snakemake would take
 # it for up to date, and every job reading it would fail.
@@ -307,6 +309,8 @@ def refuse_unknown_scenario(wildcards):
 
 #: A declared scenario's name (none: nothing).
 DECLARED_SCENARIO = "|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x"
+
+
 # A scenario wildcard matches a declared scenario's name only (none: nothing).
 wildcard_constraints:
     scenario=DECLARED_SCENARIO,
@@ -452,7 +456,11 @@ def relabel_map(wildcards):
 SCENARIO_PATHS = "|".join(
     [
         rf"chunks/({CHUNKED_PAPER_MAPS})/\d+-of-\d+\.nc",
-        *(re.escape(f"{e.stem}.nc") for e in EXPERIMENTS.values() if e.family == "paper"),
+        *(
+            re.escape(f"{e.stem}.nc")
+            for e in EXPERIMENTS.values()
+            if e.family == "paper"
+        ),
         rf"figures/({PAPER_FIGURE_NAMES})\.png",
         r"claims\.csv",
         r"configuration\.yaml",
