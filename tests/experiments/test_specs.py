@@ -77,3 +77,29 @@ def test_memory_batches_follow_the_grids():
     ml = EXPERIMENTS["ml"]
     # the search's bracket: 60-120 deg and 0-100 deg at most 10 deg apart, all points at once
     assert ml.strokes(ml.arguments(CONFIG)) == (13 * 13 * 7 * 11,)
+
+
+@pytest.mark.parametrize(
+    ("key", "override"),
+    [("fig2", {"L1": 0.55}), ("ml", {"M2": 0.45, "L1": 0.55})],
+)
+def test_a_row_that_sets_a_parameter_itself_ignores_its_override(key, override):
+    """A row's ``sets`` (the model parameters its function sets at every stroke) may be
+    left out of its job's model overrides only if the override indeed changes none of
+    its numbers: computed on the tiny grid with and without it."""
+    import sys
+
+    sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+    from tiny import TINY
+
+    from tennis_stroke.experiments.specs import EXPERIMENTS, compute
+    from tennis_stroke.solver.settings import SolverSettings
+
+    experiment = EXPERIMENTS[key]
+    assert set(override) <= set(experiment.sets)
+    args = experiment.arguments(TINY)
+    plain_run = compute(experiment, args, {}, SolverSettings(), None, 1)
+    overridden = compute(experiment, args, override, SolverSettings(), None, 1)
+    assert plain_run.data_vars.keys() == overridden.data_vars.keys()
+    for name in plain_run.data_vars:
+        assert plain_run[name].equals(overridden[name]), name

@@ -84,7 +84,9 @@ class Experiment:
     ``rule``: the name of its workflow rule (default: the key); ``bounds``: argument
     (``force.F0`` inside a mapping argument) -> the model parameter
     (:data:`tennis_stroke.model.params.PARAMETERS`) whose unit and bounds its values
-    have, checked before any job.
+    have, checked before any job; ``sets``: the model parameters the row's function sets
+    itself at every stroke (an axis or argument of its own), so a model override of them
+    reaches nothing of it and is not passed to its job.
     """
 
     key: str
@@ -103,6 +105,7 @@ class Experiment:
     section: str = ""
     rule: str = ""
     bounds: Mapping[str, str] = field(default_factory=dict)
+    sets: tuple[str, ...] = ()
 
     @property
     def stem(self) -> str:
@@ -248,6 +251,7 @@ def _angle_map(fig: str, index: int) -> Experiment:
         "Figs. 2-3 map",
         section="angle_maps",
         bounds={"L1": "L1"},
+        sets=("L1",),
         threaded=True,
         chunks="chunks.angle_map",
         rows="theta0",
@@ -346,6 +350,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             "Figs. 5-6",
             section="mass_length",
             bounds={"M2": "M2", "L1": "L1"},
+            sets=("M2", "L1"),
             rule="mass_length",
             threaded=True,
             chunks="chunks.mass_length",

@@ -19,7 +19,7 @@ from ..inference.claims import claim_files
 from ..inference.multiverse import MULTIVERSE_SETS
 from ..model.params import PARAMETERS, READINGS
 from ..replication.registry import FIGURES
-from .params import read_keys, related
+from .params import reads, related
 
 #: The inference jobs and the config keys each reads besides its files (a change of one
 #: reruns it): the identification and the robustness screen simulate the fit sets'
@@ -69,7 +69,7 @@ def rows_reading(key: str) -> list[str]:
     ``model`` and ``solver``) and, for a chunk count, the rows it splits."""
     if key.startswith("chunks."):
         return [k for k, e in EXPERIMENTS.items() if e.chunks == key]
-    return [k for k, e in EXPERIMENTS.items() if any(related(key, r) for r in read_keys(e))]
+    return [k for k, e in EXPERIMENTS.items() if reads(e, key)]
 
 
 def effect(key: str, claims: Sequence[Mapping]) -> KeyEffect:

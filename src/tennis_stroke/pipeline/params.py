@@ -46,7 +46,10 @@ def simulation_params(experiment: Experiment, config: Mapping) -> dict:
         "args": experiment.arguments(config),
     }
     if experiment.model:
-        out["common"] = common_params(config)
+        common = common_params(config)
+        # the parameters the row sets itself: an override of them reaches nothing of it
+        common["model"] = {k: v for k, v in common["model"].items() if k not in experiment.sets}
+        out["common"] = common
     return out
 
 
@@ -88,6 +91,19 @@ def read_keys(experiment: Experiment) -> list[str]:
     """The dotted config keys a row's job reads: its arguments' and, for a model row,
     the sections ``model`` and ``solver``."""
     return [*experiment.keys(), *(["model", "solver"] if experiment.model else [])]
+
+
+def unread(experiment: Experiment, key: str) -> bool:
+    """Whether config ``key`` is a model parameter the row sets itself (``sets``)."""
+    section, _, name = key.partition(".")
+    return section == "model" and name in experiment.sets
+
+
+def reads(experiment: Experiment, key: str) -> bool:
+    """Whether a change of config ``key`` changes what the row's job gets."""
+    if unread(experiment, key):
+        return False
+    return any(related(key, r) for r in read_keys(experiment))
 
 
 def related(key: str, read: str) -> bool:

@@ -28,7 +28,7 @@ from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, plain
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
 from .config_check import config_errors, numbers_from_strings
-from .params import changed_results, read_keys, related
+from .params import changed_results, reads
 
 #: A scenario's name: a folder name on every system, and a Snakemake wildcard value.
 NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]{0,63}")
@@ -174,8 +174,7 @@ def resolved_results(base: Mapping, config: Mapping, name: str) -> dict[str, str
 def changes_read(files, base: Mapping, config: Mapping) -> list[tuple[str, object, object]]:
     """The changes from ``base`` to ``config`` (:func:`changes`) that the jobs of the
     paper's result files ``files`` (keys of :data:`PAPER_RESULTS`) read."""
-    read = [k for key in files for k in read_keys(EXPERIMENTS[key])]
-    return [c for c in changes(base, config) if any(related(c[0], r) for r in read)]
+    return [c for c in changes(base, config) if any(reads(EXPERIMENTS[key], c[0]) for key in files)]
 
 
 def describe(key: str, old, new) -> str:
