@@ -7,6 +7,7 @@ import sys
 from collections import namedtuple
 from dataclasses import asdict
 from functools import cache
+from operator import itemgetter
 
 from snakemake.utils import validate
 
@@ -168,18 +169,24 @@ def simulation_params(experiment):
     return job_params.simulation_params(experiment, config)
 
 
+def scenario_value(function):
+    """A params function: ``function`` of the job's scenario's configuration."""
+
+    def value(wildcards):
+        return function(SCENARIO_CONFIGS[wildcards.scenario])
+
+    return value
+
+
 def scenario_params(experiment):
     """A row's params in a scenario: the same keys as the paper's, each a function of
     the job's scenario (the ``scenario`` wildcard)."""
-
-    def of(key):
-        def value(wildcards):
-            scenario = SCENARIO_CONFIGS[wildcards.scenario]
-            return job_params.simulation_params(experiment, scenario)[key]
-
-        return value
-
-    return {key: of(key) for key in simulation_params(experiment)}
+    return {
+        key: scenario_value(
+            lambda c, k=key: job_params.simulation_params(experiment, c)[k]
+        )
+        for key in simulation_params(experiment)
+    }
 
 
 wildcard_constraints:
@@ -268,28 +275,16 @@ def where_to_run(experiment):
 ROW_RULES = [(e, where) for e in EXPERIMENTS.values() for where in where_to_run(e)]
 
 
-def scenario_setting(key):
-    """A params function: a top-level config value of the job's scenario."""
-
-    def value(wildcards):
-        return SCENARIO_CONFIGS[wildcards.scenario][key]
-
-    return value
-
-
 #: The paper experiments' maps gathered from chunks in a scenario.
 SCENARIO_MAPS = "|".join(
     re.escape(stem) for stem, e in CHUNKED.items() if e.family == "paper"
 )
-CHUNKED_PAPER_MAPS = SCENARIO_MAPS
 
 
+#: A declared scenario's name (none: nothing).
+DECLARED_SCENARIO = "|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x"
 #: A name no scenario declares (the rule unknown_scenario refuses it in one line).
-UNKNOWN_SCENARIO = (
-    "(?!(?:" + "|".join(re.escape(n) for n in SCENARIO_CONFIGS) + ")/)[^/]+"
-    if SCENARIO_CONFIGS
-    else "[^/]+"
-)
+UNKNOWN_SCENARIO = f"(?!(?:{DECLARED_SCENARIO})/)[^/]+"
 
 
 def refuse_unknown_scenario(wildcards):
@@ -354,22 +349,8 @@ def scenario_files(name):
     return resolved_results(config, SCENARIO_CONFIGS[name], name)
 
 
-def scenario_value(function):
-    """A params function: ``function`` of the job's scenario's configuration."""
-
-    def value(wildcards):
-        return function(SCENARIO_CONFIGS[wildcards.scenario])
-
-    return value
-
-
-def scenario_files_of(wildcards):
-    """A scenario's claims job's result files by key (a param, and its inputs)."""
-    return scenario_files(wildcards.scenario)
-
-
 def scenario_claim_files(wildcards):
-    """A scenario's claims job's result files as named inputs."""
+    """A scenario's claims job's result files by key (its named inputs and a param)."""
     return scenario_files(wildcards.scenario)
 
 
@@ -455,7 +436,7 @@ def relabel_map(wildcards):
 #: The paths a scenario's rules make below its folders.
 SCENARIO_PATHS = "|".join(
     [
-        rf"chunks/({CHUNKED_PAPER_MAPS})/\d+-of-\d+\.nc",
+        rf"chunks/({SCENARIO_MAPS})/\d+-of-\d+\.nc",
         *(
             re.escape(f"{e.stem}.nc")
             for e in EXPERIMENTS.values()

@@ -79,7 +79,7 @@ rule scenario_gather_map:
     wildcard_constraints:
         map=SCENARIO_MAPS,
     params:
-        max_failure_share=scenario_setting("max_failure_share"),
+        max_failure_share=scenario_value(itemgetter("max_failure_share")),
         relabel=relabel_map,
     script:
         "../scripts/gather_map.py"

@@ -67,7 +67,7 @@ rule scenario_claims:
         "logs/scenarios/{scenario}/claims.log",
     threads: 1
     params:
-        files=scenario_files_of,
+        files=scenario_claim_files,
         experiments=scenario_value(job_params.paper_experiments),
         common=scenario_value(job_params.common_params),
         scenario=scenario_record,

@@ -191,6 +191,18 @@ def merged(base: Mapping, overrides: Mapping) -> dict:
     return out
 
 
+def shown(value) -> str:
+    """A config value as a message or a page shows it: numbers in ``g`` format, lists and
+    mappings in flow style."""
+    if isinstance(value, float):
+        return f"{value:g}"
+    if isinstance(value, Mapping):
+        return "{" + ", ".join(f"{k}: {shown(v)}" for k, v in value.items()) + "}"
+    if isinstance(value, list | tuple):
+        return "[" + ", ".join(shown(v) for v in value) + "]"
+    return str(value)
+
+
 def plain(value):
     """``value`` as plain data: mappings as dicts with sorted keys, sequences as lists."""
     if isinstance(value, Mapping):

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from ..experiments.specs import ConfigKeyError, plain, value_at
+from ..experiments.specs import ConfigKeyError, plain, shown, value_at
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
 
@@ -144,7 +144,7 @@ def read_record(claims_csv: str | Path) -> dict:
 def departure_lines(record: Mapping) -> list[str]:
     """Each departure of a record as a line: key, value, the paper's value and source."""
     return [
-        f"{d['key']} = {_show(d['value'])} (the paper's {_show(d['paper_value'])}: {d['source']})"
+        f"{d['key']} = {shown(d['value'])} (the paper's {shown(d['paper_value'])}: {d['source']})"
         for d in record["departures"]
     ]
 
@@ -152,11 +152,3 @@ def departure_lines(record: Mapping) -> list[str]:
 def describe_departures(record: Mapping) -> str:
     """The departures of a record in one line."""
     return "; ".join(departure_lines(record))
-
-
-def _show(value) -> str:
-    if isinstance(value, float):
-        return f"{value:g}"
-    if isinstance(value, list):
-        return "[" + ", ".join(_show(v) for v in value) + "]"
-    return str(value)

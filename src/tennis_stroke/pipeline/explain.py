@@ -14,27 +14,25 @@ from __future__ import annotations
 from collections.abc import Iterator, Mapping, Sequence
 from dataclasses import dataclass
 
-from ..experiments.specs import EXPERIMENTS, SEC5_STROKE, VALIDATION_GROUPS
+from ..experiments.specs import EXPERIMENTS, VALIDATION_GROUPS
 from ..inference.claims import claim_files
-from ..inference.multiverse import MULTIVERSE_SETS
 from ..model.params import PARAMETERS, READINGS
 from ..replication.registry import FIGURES
-from .params import reads, related
+from .params import PAPER_SECTIONS, reads, related
 
 #: The inference jobs and the config keys each reads besides its files (a change of one
 #: reruns it): the identification and the robustness screen simulate the fit sets'
 #: strokes; the claims and the robustness analysis run the targeted evaluation of the
 #: paper's sections; the model ladder also its own section and the figures' curves.
-_FIT_SETS = ("fig4.strokes", "elbow_force", *SEC5_STROKE.values(), "model", "solver")
-_PAPER = (
-    *sorted(
-        {k.split(".")[0] for e in EXPERIMENTS.values() if e.family == "paper" for k in e.keys()}
-        - set(MULTIVERSE_SETS)
-    ),
-    "search",
+#: (The keys of tennis_stroke.experiments.specs.fit_set_arguments: Fig. 4's strokes, the
+#: Table I force and stroke.)
+_FIT_SETS = (
+    EXPERIMENTS["fig4"].key_of("strokes"),
+    *(k for arg in ("force", "stroke") for k in EXPERIMENTS["elbow"].args[arg].values()),
     "model",
     "solver",
 )
+_PAPER = (*PAPER_SECTIONS, "model", "solver")
 INFERENCE_READS = {
     "identification": _FIT_SETS,
     "robustness analysis": (*_FIT_SETS, *_PAPER),

@@ -53,15 +53,21 @@ def simulation_params(experiment: Experiment, config: Mapping) -> dict:
     return out
 
 
+#: The config sections the paper's experiments read and the claims' search settings
+#: (section ``search``), less those the multiverse sets itself.
+PAPER_SECTIONS = tuple(
+    sorted(
+        {key.split(".")[0] for e in EXPERIMENTS.values() if e.family == "paper" for key in e.keys()}
+        - set(MULTIVERSE_SETS)
+        | {"search"}
+    )
+)
+
+
 def paper_sections(config: Mapping) -> dict:
-    """The config sections the paper's experiments read and the claims' search settings
-    (section ``search``), less those the multiverse sets itself."""
-    sections = {
-        key.split(".")[0] for e in EXPERIMENTS.values() if e.family == "paper" for key in e.keys()
-    }
-    sections.add("search")
+    """The :data:`PAPER_SECTIONS` of ``config``."""
     # plain: keys sorted, as a --config merge reorders them (params compare by repr)
-    return plain({k: config[k] for k in sections - set(MULTIVERSE_SETS)})
+    return plain({k: config[k] for k in PAPER_SECTIONS})
 
 
 def paper_experiments(config: Mapping) -> dict:

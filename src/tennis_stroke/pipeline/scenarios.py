@@ -24,7 +24,7 @@ from pathlib import Path
 
 import yaml
 
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, plain
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, plain, shown
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
 from .config_check import config_errors, numbers_from_strings
@@ -189,16 +189,8 @@ def describe(key: str, old, new) -> str:
         unit = "" if spec.unit == "1" else f" {spec.unit}"
     elif section == "model" and name in READINGS and old is None:
         old = READINGS[name].default
-    return f"{key} = {_short(new)}{unit} (paper: {_short(old)}{unit})"
+    return f"{key} = {_shown(new)}{unit} (paper: {_shown(old)}{unit})"
 
 
-def _short(value) -> str:
-    if value is None:
-        return "default"
-    if isinstance(value, float):
-        return f"{value:g}"
-    if isinstance(value, Mapping):
-        return "{" + ", ".join(f"{k}: {_short(v)}" for k, v in value.items()) + "}"
-    if isinstance(value, list):
-        return "[" + ", ".join(_short(v) for v in value) + "]"
-    return str(value)
+def _shown(value) -> str:
+    return "default" if value is None else shown(value)
