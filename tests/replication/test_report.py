@@ -181,6 +181,10 @@ def _chromium(page: Path, width: int, height: int, *options: str) -> str:
             "--no-sandbox",
             "--disable-gpu",
             "--hide-scrollbars",
+            # the network off: every request would go to a dead proxy (a page must work
+            # from file:// alone)
+            "--proxy-server=127.0.0.1:9",
+            "--proxy-bypass-list=<-loopback>",
             f"--window-size={width},{height}",
             *options,
             page.as_uri(),
@@ -227,6 +231,24 @@ def test_the_page_in_a_real_browser(tiny_run, tmp_path, width):
     _chromium(page, width, 2400, f"--screenshot={shot}")
     assert shot.stat().st_size > 0
     print(f"screenshot: {shot}")
+
+
+@pytest.mark.skipif(CHROMIUM is None, reason="no chromium on PATH (.ci/run installs it)")
+def test_a_scenario_page_in_a_real_browser(tiny_run, tmp_path):
+    """A scenario's page, built by the workflow beside the tiny run, at a phone width:
+    its figures load, every claim is on it, nothing overflows, the network off."""
+    scenario = "scenarios={browsed: {torque_delay: {base_stroke: {C2: 8.0}}}}"
+    target = "report/scenarios/browsed/index.html"
+    done = run_snakemake(target, tiny_run, "--cores", "2", "--config", scenario, timeout=1200)
+    assert done.returncode == 0, done.stderr[-3000:]
+    page = tmp_path / "index.html"
+    shutil.copy(tiny_run / target, page)
+    seen = _in_browser(page, 500)
+    assert len(seen["images"]) >= 6 and all(loaded for _, loaded in seen["images"])
+    assert not [c for c in CLAIM_IDS if c not in seen["text"]]
+    assert "torque_delay.base_stroke.C2 = 8 (paper: 5)" in seen["text"]
+    assert not seen["overflowing"], seen["overflowing"]
+    assert seen["pageWidth"] <= seen["viewport"], (seen["pageWidth"], seen["viewport"])
 
 
 def test_snakemake_builds_its_own_report(tiny_run, tmp_path):
