@@ -114,11 +114,12 @@ def workdir(parent, config, readings=None):
 
 
 def result_files(work, chunks=False):
-    """The result files under ``work`` (relative paths); with ``chunks``, map chunks too."""
+    """The paper's result files under ``work`` (relative paths, no scenario's); with
+    ``chunks``, map chunks too."""
     return sorted(
         str(p.relative_to(work))
         for p in (work / "results").rglob("*.nc")
-        if chunks or "chunks" not in p.parts
+        if (chunks or "chunks" not in p.parts) and "scenarios" not in p.relative_to(work).parts
     )
 
 

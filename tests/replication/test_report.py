@@ -239,10 +239,12 @@ def test_a_scenario_page_in_a_real_browser(tiny_run, tmp_path):
     its figures load, every claim is on it, nothing overflows, the network off."""
     scenario = "scenarios={browsed: {torque_delay: {base_stroke: {C2: 8.0}}}}"
     target = "report/scenarios/browsed/index.html"
-    done = run_snakemake(target, tiny_run, "--cores", "2", "--config", scenario, timeout=1200)
+    work = tmp_path / "work"  # a copy: the shared tiny run keeps no scenario
+    shutil.copytree(tiny_run, work, symlinks=True)
+    done = run_snakemake(target, work, "--cores", "2", "--config", scenario, timeout=1200)
     assert done.returncode == 0, done.stderr[-3000:]
     page = tmp_path / "index.html"
-    shutil.copy(tiny_run / target, page)
+    shutil.copy(work / target, page)
     seen = _in_browser(page, 500)
     assert len(seen["images"]) >= 6 and all(loaded for _, loaded in seen["images"])
     assert not [c for c in CLAIM_IDS if c not in seen["text"]]

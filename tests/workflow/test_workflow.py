@@ -216,7 +216,11 @@ def test_a_signal_while_a_job_writes_ends_the_run_at_once(tmp_path, signum, line
         if run.poll() is None:
             os.killpg(run.pid, signal.SIGKILL)
     waited = time.monotonic() - start
-    assert pause / 2 < waited < pause + 10  # the write went on with the signal deferred
+    # Nothing hangs.  That the write goes on with the signal deferred is shown by
+    # tests/io/test_interrupts.py in one process: here a lower bound on the wait failed
+    # on loaded machines (0.82 s against a 3 s pause, CI 2026-12-02), as the test cannot
+    # tell when the job's pause began.
+    assert waited < pause + 10
     assert run.returncode != 0
     assert "Traceback" not in stderr
     assert f"tennis-stroke job {line}" in stderr
