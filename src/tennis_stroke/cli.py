@@ -481,9 +481,15 @@ def _whatif(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tennis-stroke`` console script."""
-    from .io.interrupts import Terminated, terminate_raises
+    from .io.interrupts import terminate_raises
 
-    terminate_raises()
+    with terminate_raises():
+        return _main(argv)
+
+
+def _main(argv: Sequence[str] | None) -> int:
+    from .io.interrupts import Terminated
+
     try:
         args = build_parser().parse_args(argv)
         from .io.errors import OutputError, ResultError

@@ -13,7 +13,14 @@ import pytest
 import xarray as xr
 
 from tennis_stroke.io import netcdf
-from tennis_stroke.io.interrupts import Terminated, deferred_signals, terminate_raises
+from tennis_stroke.io.interrupts import (
+    PARENT_ENV,
+    Terminated,
+    _alive,
+    deferred_signals,
+    process_identity,
+    terminate_raises,
+)
 
 
 def _dataset():
@@ -47,15 +54,20 @@ def test_a_signal_during_a_write_waits_for_it_and_keeps_the_old_file(
 
 
 def test_sigterm_raises_terminated_after_the_deferred_block():
-    terminate_raises()
-    try:
-        with pytest.raises(Terminated):
-            with deferred_signals() as received:
-                os.kill(os.getpid(), signal.SIGTERM)
-                time.sleep(0.01)
-                assert received == [signal.SIGTERM]  # recorded, not acted on yet
-    finally:
-        signal.signal(signal.SIGTERM, signal.SIG_DFL)
+    with terminate_raises(), pytest.raises(Terminated):
+        with deferred_signals() as received:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(0.01)
+            assert received == [signal.SIGTERM]  # recorded, not acted on yet
+
+
+def test_the_previous_sigterm_handler_is_back_after_the_block():
+    """A test run that calls the command line in its own process still ends on SIGTERM
+    (make test kept running after SIGTERM to its process group)."""
+    before = signal.getsignal(signal.SIGTERM)
+    with terminate_raises():
+        assert signal.getsignal(signal.SIGTERM) is not before
+    assert signal.getsignal(signal.SIGTERM) is before
 
 
 @pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
@@ -85,3 +97,47 @@ def test_a_sweep_stopped_by_a_signal_ends_in_one_line(tmp_path, signum, status):
     assert proc.returncode == status, stderr
     assert len(stderr.strip().splitlines()) == 1 and "Traceback" not in stderr
     assert list(tmp_path.iterdir()) == []
+
+
+JOB = """
+import sys, time
+from tennis_stroke.io.interrupts import Terminated, stop_with_snakemake, terminate_raises
+with terminate_raises():
+    try:
+        with stop_with_snakemake():
+            print("running", flush=True)
+            time.sleep(60)
+    except Terminated:
+        sys.exit(143)
+"""
+
+
+def test_a_job_stops_when_its_snakemake_is_killed():
+    """After kill -9 of Snakemake its jobs computed on and wrote their files: a job
+    watches the Snakemake process named in its environment and stops within a second."""
+    with subprocess.Popen([sys.executable, "-c", "import time; time.sleep(60)"]) as parent:
+        env = {**os.environ, PARENT_ENV: process_identity(parent.pid)}
+        with subprocess.Popen(
+            [sys.executable, "-c", JOB],
+            env=env,
+            stdout=subprocess.PIPE,
+            stderr=subprocess.PIPE,
+            text=True,
+        ) as job:
+            assert job.stdout.readline() == "running\n"
+            time.sleep(1.0)
+            assert job.poll() is None  # its Snakemake is alive: it runs on
+            parent.kill()
+            parent.wait()
+            _, stderr = job.communicate(timeout=10)
+    assert job.returncode == 143
+    assert f"its Snakemake (pid {parent.pid}) ended: stopping" in stderr
+
+
+def test_a_reused_pid_is_not_taken_for_the_snakemake_process():
+    """The identity holds the process's start time: another process that got the PID
+    later is not the job's Snakemake."""
+    mine = process_identity(os.getpid())
+    pid, start = mine.split(":")
+    assert start.isdigit()
+    assert _alive(mine) and not _alive(f"{pid}:{int(start) + 1}")

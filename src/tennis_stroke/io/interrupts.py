@@ -15,7 +15,9 @@ without cleanup, raises :class:`Terminated` where :func:`terminate_raises` is in
 from __future__ import annotations
 
 import contextlib
+import os
 import signal
+import sys
 import threading
 from collections.abc import Iterator
 
@@ -33,10 +35,19 @@ def _raise_terminated(signum, frame) -> None:
     raise Terminated()
 
 
-def terminate_raises() -> None:
-    """From now on SIGTERM raises :class:`Terminated` (main thread only)."""
-    if threading.current_thread() is threading.main_thread():
-        signal.signal(signal.SIGTERM, _raise_terminated)
+@contextlib.contextmanager
+def terminate_raises() -> Iterator[None]:
+    """Inside the block SIGTERM raises :class:`Terminated` (main thread only); the
+    previous handler is back on leaving it, so a caller that runs the command line in its
+    own process (a test run) still ends on SIGTERM afterwards."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    previous = signal.signal(signal.SIGTERM, _raise_terminated)
+    try:
+        yield
+    finally:
+        signal.signal(signal.SIGTERM, previous)
 
 
 @contextlib.contextmanager
@@ -63,3 +74,62 @@ def deferred_signals() -> Iterator[list[int]]:
             signal.signal(s, handler)
     if received:
         signal.raise_signal(received[0])
+
+
+#: The Snakemake process that started a workflow job, as ``PID:START`` (its start time
+#: in clock ticks after boot, so that a reused PID is not taken for it); set by the
+#: Snakefile (:func:`process_identity`), inherited by the jobs' processes.
+PARENT_ENV = "TENNIS_STROKE_SNAKEMAKE"
+#: Seconds between two looks at it.
+WATCH_INTERVAL = 0.5
+
+
+def process_identity(pid: int) -> str:
+    """``PID:START`` of process ``pid`` (START empty where ``/proc`` is not there)."""
+    try:
+        with open(f"/proc/{pid}/stat") as file:
+            stat = file.read()
+    except OSError:
+        return f"{pid}:"
+    return f"{pid}:{stat.rsplit(')', 1)[1].split()[19]}"
+
+
+def _alive(identity: str) -> bool:
+    pid = int(identity.split(":")[0])
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:
+        pass
+    return identity.endswith(":") or process_identity(pid) == identity
+
+
+@contextlib.contextmanager
+def stop_with_snakemake() -> Iterator[None]:
+    """Inside the block, the end of the Snakemake process named in :data:`PARENT_ENV`
+    (killed with SIGKILL, say) sends this process SIGTERM within :data:`WATCH_INTERVAL`
+    seconds: a job whose workflow died stops instead of computing on and writing its
+    output after it (a write in progress finishes first, :func:`deferred_signals`).
+    Nothing happens outside a workflow job."""
+    identity = os.environ.get(PARENT_ENV, "")
+    if not identity or not identity.split(":")[0].isdigit():
+        yield
+        return
+    done = threading.Event()
+
+    def watch() -> None:
+        while not done.wait(WATCH_INTERVAL):
+            if not _alive(identity):
+                sys.stderr.write(
+                    f"tennis-stroke job: its Snakemake (pid {identity.split(':')[0]}) ended: "
+                    "stopping\n"
+                )
+                os.kill(os.getpid(), signal.SIGTERM)
+                return
+
+    threading.Thread(target=watch, name="stop-with-snakemake", daemon=True).start()
+    try:
+        yield
+    finally:
+        done.set()

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..io.interrupts import Terminated, terminate_raises
+from ..io.interrupts import Terminated, stop_with_snakemake, terminate_raises
 from ..io.netcdf import write_netcdf
 from ..solver.settings import SolverSettings
 from .chunks import mark_chunk
@@ -37,9 +37,8 @@ def logged(log_path: str | Path) -> Iterator[None]:
     the problem and the log, and exit status 1 (Snakemake then reports the failed rule);
     SIGINT and SIGTERM end it with one line and status 130 or 143, no traceback.
     """
-    terminate_raises()
     Path(log_path).parent.mkdir(parents=True, exist_ok=True)
-    with open(log_path, "w") as log:
+    with terminate_raises(), stop_with_snakemake(), open(log_path, "w") as log:
         try:
             with contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
                 yield
