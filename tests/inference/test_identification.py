@@ -181,6 +181,15 @@ def _write(tmp_path, change):
         ),
         (lambda r: r["consistent"].update(max_abs_residual=0), "'consistent.max_abs_residual'"),
         (lambda r: r.update(extra=1), "Additional properties"),
+        # a duplicate fit unknown or reading planned 56 jobs
+        (
+            lambda r: r["fits"]["model"].update(unknowns=["k_contact", "k_contact"]),
+            "'fits.model.unknowns': ['k_contact', 'k_contact'] has non-unique elements",
+        ),
+        (
+            lambda r: r["fits"]["model"].update(discrete=["inertia", "inertia"]),
+            "'fits.model.discrete'",
+        ),
     ],
 )
 def test_bad_reading_space_is_one_line_naming_the_key(tmp_path, claims, change, message):
