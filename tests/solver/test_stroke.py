@@ -9,7 +9,7 @@ from conftest import FIG4_A, FIG4_B, coefficient_tup
 
 from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
 from tennis_stroke.model.dynamics import effective_mass, hit_offset
-from tennis_stroke.model.params import resolve_params
+from tennis_stroke.model.params import ParameterError, resolve_params
 from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
 from tennis_stroke.solver.reference import solve_stroke
 from tennis_stroke.solver.settings import S_RTOL
@@ -196,3 +196,37 @@ def test_fig4_strokes(stroke, t_contact, theta_c, omega1, omega2, v_out):
     assert res["omega1_contact"] == pytest.approx(omega1, abs=0.5)
     assert res["omega2_contact"] == pytest.approx(omega2, abs=0.5)
     assert res["v_out_kmh"] == pytest.approx(v_out, abs=1.0)
+
+
+@pytest.mark.parametrize(
+    "call, fragment",
+    [
+        (lambda: strike(90.0, 45.0, {"M2": True}), "parameter 'M2' must be a number"),
+        (lambda: strike(90.0, 45.0, {"M2": np.array([0.3, True], dtype=object)}), "'M2'"),
+        (lambda: strike(None, 45.0), "initial angle 'theta0' must be a number"),
+        (lambda: strike(True, 45.0), "initial angle 'theta0' must be a number"),
+        (lambda: strike("90", 45.0), "initial angle 'theta0' must be a number"),
+        (lambda: strike(90.0, np.array([45.0, "x"], dtype=object)), "'delta0'"),
+        (lambda: strike_batch([[90.0, 80.0], [70.0]], 45.0), "'theta0'"),
+        (lambda: strike_batch(np.zeros(3), np.zeros(2)), "do not broadcast"),
+        (lambda: strike_batch(90.0, 45.0, {"M2": [0.3, 0.4]}, threads=0), "threads"),
+        (lambda: strike_batch(90.0, 45.0, threads=-1), "threads must be a whole number"),
+        (lambda: strike_batch(90.0, 45.0, threads=1.7), "threads must be a whole number"),
+        (lambda: strike_batch(90.0, 45.0, threads="two"), "threads must be a whole number"),
+        (lambda: strike_batch(90.0, 45.0, threads=True), "threads must be a whole number"),
+        (lambda: strike(90.0, 45.0, settings={"rtol": 1e-9, "speed": 2}), "'speed'"),
+        (lambda: strike(90.0, 45.0, settings="DOP853"), "settings must be a SolverSettings"),
+    ],
+)
+def test_every_refused_input_is_a_parameter_error(call, fragment):
+    """Booleans are not numbers (True was taken for 1 kg), threads are validated, and
+    every refusal is the documented ParameterError with one line naming the input."""
+    with pytest.raises(ParameterError) as raised:
+        call()
+    assert fragment in str(raised.value) and "\n" not in str(raised.value)
+
+
+def test_settings_given_as_a_mapping_are_the_same_settings():
+    as_mapping = strike(90.0, 45.0, settings={"rtol": 1e-9, "atol": 1e-9})
+    as_object = strike(90.0, 45.0, settings=SolverSettings(rtol=1e-9, atol=1e-9))
+    assert as_mapping == as_object

@@ -46,3 +46,60 @@ def test_a_run_of_one_method_compiles_no_other(tmp_path):
     cached = {p.name.split("-")[0] for p in tmp_path.rglob("*.nbi")}
     assert "_kernels.step_dop853" in cached
     assert not any("dp54" in name for name in cached), sorted(cached)
+
+
+STRIKE = "from tennis_stroke import strike; print(strike(90.0, 45.0)['v_out_kmh'].hex())"
+
+
+def _strike(cache):
+    return subprocess.run(
+        [sys.executable, "-c", STRIKE],
+        env={**os.environ, "NUMBA_CACHE_DIR": str(cache)},
+        capture_output=True,
+        text=True,
+        timeout=900,
+    )
+
+
+def _entry(cache, suffix):
+    """The cache file of the stroke batch's entry point (``stroke.solve_rows``)."""
+    (path,) = [p for p in cache.rglob(f"stroke.solve_rows-*{suffix}")][:1]
+    return path
+
+
+DAMAGES = {
+    "a truncated index": lambda c: _entry(c, ".nbi").write_bytes(
+        _entry(c, ".nbi").read_bytes()[:40]
+    ),
+    "a data file of garbage": lambda c: _entry(c, ".nbc").write_bytes(b"\x80garbage" * 100),
+    "a lost data file (the marker would lie)": lambda c: _entry(c, ".nbc").unlink(),
+}
+
+
+def test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line(tmp_path):
+    """A truncated index or a data file of garbage gave a 40-line traceback through numba's
+    caching on every call, as the marker still said the cache was complete; a lost data
+    file made the process compile in place.  Each is now one line on stderr, the same
+    number, and a healthy cache for the next process."""
+    first = _strike(tmp_path)
+    assert first.returncode == 0 and "tennis-stroke" not in first.stderr, first.stderr[-2000:]
+    for what, damage in DAMAGES.items():
+        damage(tmp_path)
+        healed = _strike(tmp_path)
+        assert healed.returncode == 0, (what, healed.stderr[-2000:])
+        assert healed.stdout == first.stdout, what
+        lines = [line for line in healed.stderr.splitlines() if line.strip()]
+        assert len(lines) == 1 and "cleared and compiled again" in lines[0], (what, lines)
+        assert "Traceback" not in healed.stderr
+        after = _strike(tmp_path)
+        assert after.stdout == first.stdout and after.stderr == "", (what, after.stderr)
+
+
+def test_the_cache_subfolder_is_numbas():
+    from numba.core.caching import _CacheLocator
+
+    from tennis_stroke._cache import compiled_sources
+    from tennis_stroke.solver.compiled import cache_subfolder
+
+    for source in compiled_sources():
+        assert cache_subfolder(source) == _CacheLocator.get_suitable_cache_subpath(str(source))

@@ -187,14 +187,46 @@ MODEL_OPTIONS: dict[str, Reading] = {
 CHOICES: dict[str, Reading] = {**READINGS, **MODEL_OPTIONS}
 
 
-def _as_float_array(name: str, value: object) -> np.ndarray:
+def _has_bool(value: object) -> bool:
+    if isinstance(value, (bool, np.bool_)):
+        return True
+    if isinstance(value, (list, tuple)):
+        return any(_has_bool(v) for v in value)
+    if isinstance(value, np.ndarray):
+        return value.dtype.kind == "b" or (
+            value.dtype == object and any(_has_bool(v) for v in value.ravel())
+        )
+    return False
+
+
+def real_array(what: str, value: object) -> np.ndarray:
+    """``value`` as an array of finite floats, or :class:`ParameterError` naming ``what``:
+    a boolean, a string, None or an array holding one is not a number (numpy would take
+    ``True`` for 1 and ``'2'`` for 2), nor is a ragged list."""
+    bad = ParameterError(f"{what} must be a number or an array of numbers, got {_brief(value)}")
+    if value is None or isinstance(value, (str, bytes)) or _has_bool(value):
+        raise bad
     try:
-        arr = np.asarray(value, dtype=float)
+        arr = np.asarray(value)
+        if arr.dtype == object:
+            arr = np.asarray(arr.tolist())
     except (TypeError, ValueError):
-        raise ParameterError(f"parameter {name!r} must be a number, got {value!r}") from None
+        raise bad from None
+    if arr.dtype.kind not in "iuf":
+        raise bad
+    arr = arr.astype(float)
     if not np.all(np.isfinite(arr)):
-        raise ParameterError(f"parameter {name!r} must be finite, got {value!r}")
+        raise ParameterError(f"{what} must be finite, got {_brief(value)}")
     return arr
+
+
+def _brief(value: object) -> str:
+    text = repr(value)
+    return text if len(text) <= 60 else text[:57] + "..."
+
+
+def _as_float_array(name: str, value: object) -> np.ndarray:
+    return real_array(f"parameter {name!r}", value)
 
 
 def _check_bounds(spec: ParamSpec, arr: np.ndarray) -> None:

@@ -22,9 +22,12 @@ from __future__ import annotations
 
 import fcntl
 import hashlib
+import importlib
 import os
+import shutil
 import subprocess
 import sys
+import traceback
 from pathlib import Path
 
 from .._cache import compiled_sources
@@ -54,33 +57,131 @@ def _marker(group: str) -> Path | None:
     return Path(cache) / f"compiled-{group.replace(':', '-')}-{digest.hexdigest()[:16]}"
 
 
+def _cache_trouble(exc: BaseException) -> bool:
+    """Whether ``exc`` was raised while numba read its on-disk cache (a damaged file)."""
+    return any(
+        Path(frame.filename).parts[-3:] == ("numba", "core", "caching.py")
+        for frame in traceback.extract_tb(exc.__traceback__)
+    )
+
+
+def _say(text: str) -> None:
+    sys.stderr.write(f"tennis-stroke: {text}\n")
+
+
+def _clear(marker: Path) -> None:
+    """Remove this checkout's cached functions and markers from the cache folder of
+    ``marker`` (other checkouts of the same sources keep theirs): numba keeps a source
+    folder's functions in a subfolder named after that folder's path."""
+    folder, suffix = marker.parent, marker.name.rsplit("-", 1)[1]
+    for path in folder.glob(f"compiled-*-{suffix}"):
+        path.unlink(missing_ok=True)
+    for source in compiled_sources():
+        shutil.rmtree(folder / cache_subfolder(source), ignore_errors=True)
+
+
+def cache_subfolder(source: Path) -> str:
+    """The subfolder of ``NUMBA_CACHE_DIR`` in which numba caches the functions of
+    ``source``: numba's ``_CacheLocator.get_suitable_cache_subpath`` (the source folder's
+    name and the SHA-1 of its absolute path), written out here so that this module does
+    not import numba (tests/solver/test_warmup.py compares the two)."""
+    parent = os.path.dirname(os.path.abspath(source))
+    return f"{os.path.basename(parent)}_{hashlib.sha1(parent.encode()).hexdigest()}"
+
+
+def _compile(group: str, marker: Path) -> None:
+    """Compile ``group`` into the cache in a process of its own (under the folder's lock),
+    unless ``marker`` says it is there; a compile that trips over a damaged cache file
+    clears the folder and compiles again."""
+    try:
+        marker.parent.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise CompileCacheError(
+            f"cannot use the compiled code's cache folder {str(marker.parent)!r}: "
+            f"{exc.strerror} (set NUMBA_CACHE_DIR or XDG_CACHE_HOME to a folder)"
+        ) from None
+    with open(marker.parent / ".compile.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        for attempt in (1, 2):
+            if marker.exists():
+                return
+            done = subprocess.run(
+                [sys.executable, "-m", "tennis_stroke.solver.warmup", group],
+                env={**os.environ, ENV: "0"},
+                capture_output=True,
+                text=True,
+            )
+            if done.returncode == 0:
+                marker.touch()
+                return
+            last = (done.stderr.strip().splitlines() or ["(no output)"])[-1]
+            if attempt == 1 and "numba/core/caching.py" in done.stderr:
+                _say(
+                    f"the compiled code's cache in {str(marker.parent)!r} is damaged "
+                    f"({last}): cleared, compiling again"
+                )
+                _clear(marker)
+                continue
+            raise RuntimeError(f"compiling the solver failed: {last}")
+
+
+def _heal(group: str, marker: Path, why: str) -> None:
+    """Clear the cache folder of ``marker`` and compile ``group`` into it again."""
+    with open(marker.parent / ".compile.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        _clear(marker)
+    _say(f"the compiled code's cache in {str(marker.parent)!r} {why}: cleared and compiled again")
+    _compile(group, marker)
+
+
 def ensure_compiled(group: str) -> None:
     """Make sure numba's cache holds the entry points of ``group`` (compiling them in a
-    subprocess if not)."""
+    subprocess if not), and load them in this process.
+
+    The load is checked: a cache file that cannot be read (truncated, emptied, garbage)
+    or an entry point missing from a cache said complete (numba then compiles in this
+    process) clears the cache and compiles it again, in one line on stderr.
+    """
     if group not in GROUPS:
         raise ValueError(f"unknown group of compiled entry points {group!r}")
     if group in _done or os.environ.get(ENV) == "0":
         return
     marker = _marker(group)
-    if marker is not None and not marker.exists():
-        try:
-            marker.parent.mkdir(parents=True, exist_ok=True)
-        except OSError as exc:
-            raise CompileCacheError(
-                f"cannot use the compiled code's cache folder {str(marker.parent)!r}: "
-                f"{exc.strerror} (set NUMBA_CACHE_DIR or XDG_CACHE_HOME to a folder)"
-            ) from None
-        with open(marker.parent / ".compile.lock", "w") as lock:
-            fcntl.flock(lock, fcntl.LOCK_EX)
-            if not marker.exists():
-                done = subprocess.run(
-                    [sys.executable, "-m", "tennis_stroke.solver.warmup", group],
-                    env={**os.environ, ENV: "0"},
-                    capture_output=True,
-                    text=True,
-                )
-                if done.returncode != 0:
-                    last = (done.stderr.strip().splitlines() or ["(no output)"])[-1]
-                    raise RuntimeError(f"compiling the solver failed: {last}")
-                marker.touch()
-    _done.add(group)
+    if marker is None:  # no cache: numba compiles in this process
+        _done.add(group)
+        return
+    _compile(group, marker)
+    _done.add(group)  # the loading calls below come back here
+    try:
+        _load(group, marker)
+    except BaseException:
+        _done.discard(group)
+        raise
+
+
+class CompileInPlace(Exception):
+    """numba was about to compile in this process: the cache lacks an entry point
+    (raised by :func:`tennis_stroke.solver.stroke.refusing_compiles`)."""
+
+
+def _load(group: str, marker: Path) -> None:
+    """Load ``group`` from the cache in this process by calling it once
+    (:func:`tennis_stroke.solver.warmup.load`); a cache file numba cannot read, or a
+    compile in place (refused before it starts), clears this checkout's cache and
+    compiles it again in a process of its own, then loads.
+
+    The warm-up module is imported by name: it imports the modules that call
+    :func:`ensure_compiled`, so a static import here would close a cycle."""
+    warmup = importlib.import_module(".warmup", __package__)
+    try:
+        warmup.load(group)
+        return
+    except CompileInPlace:
+        why = "lacked an entry point it was said to hold"
+    except Exception as exc:
+        if not _cache_trouble(exc):
+            raise
+        first = str(exc).splitlines()[0] if str(exc) else ""
+        why = f"is damaged ({type(exc).__name__}: {first})"
+    _heal(group, marker, why)
+    warmup.load(group)

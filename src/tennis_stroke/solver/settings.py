@@ -3,7 +3,8 @@
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field
+from collections.abc import Mapping
+from dataclasses import asdict, dataclass, field, fields
 
 import numpy as np
 
@@ -154,3 +155,31 @@ class SolverSettings:
 
 def _is_number(value: object) -> bool:
     return isinstance(value, int | float | np.integer | np.floating) and not isinstance(value, bool)
+
+
+def solver_settings(value: object) -> SolverSettings:
+    """``value`` as :class:`SolverSettings`: None gives the defaults, a mapping its
+    keyword arguments; anything else is refused with :class:`SolverSettingError`."""
+    if value is None:
+        return SolverSettings()
+    if isinstance(value, SolverSettings):
+        return value
+    if isinstance(value, Mapping):
+        unknown = sorted(set(map(str, value)) - {f.name for f in fields(SolverSettings)})
+        if unknown:
+            raise SolverSettingError(
+                unknown[0],
+                f"unknown solver setting {unknown[0]!r} (known: "
+                f"{', '.join(f.name for f in fields(SolverSettings))})",
+            )
+        return SolverSettings(**value)
+    raise SolverSettingError(
+        "settings", f"settings must be a SolverSettings or a mapping, got {value!r}"
+    )
+
+
+def thread_count(value: object) -> int:
+    """``value`` as a number of threads (a whole number >= 1), or :class:`ParameterError`."""
+    if not (_is_number(value) and math.isfinite(value) and value == int(value) and value >= 1):
+        raise ParameterError(f"threads must be a whole number >= 1, got {value!r}")
+    return int(value)

@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from concurrent.futures import ThreadPoolExecutor
 
 import numba
@@ -61,9 +61,9 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.impact import instant_contact
-from ..model.params import ParameterError, resolve_params
+from ..model.params import ParameterError, real_array, resolve_params
 from ._kernels import N_STAGES_BY_ID, coefficient_tuple
-from .compiled import ensure_compiled
+from .compiled import CompileInPlace, ensure_compiled
 from .integrate import (
     HISTORY_COLS,
     N_STATS,
@@ -118,7 +118,27 @@ from .settings import (
     S_RTOL,
     S_TMAX,
     SolverSettings,
+    solver_settings,
+    thread_count,
 )
+
+
+@contextlib.contextmanager
+def refusing_compiles() -> Iterator[None]:
+    """Inside the block numba may load compiled code from its cache but not compile:
+    a compile raises :class:`~tennis_stroke.solver.compiled.CompileInPlace` before it
+    starts (numba's ``numba:compile`` event), so the process keeps only cached code."""
+    from numba.core import event
+
+    class Refuse(event.Listener):
+        def on_start(self, ev):
+            raise CompileInPlace()
+
+        def on_end(self, ev):
+            pass
+
+    with event.install_listener("numba:compile", Refuse()):
+        yield
 
 
 @njit(**JIT)
@@ -349,13 +369,13 @@ def solve_coefficients(
     progress : bool
         Show a tqdm progress bar (in blocks of :data:`PROGRESS_BLOCK` strokes).
     """
-    settings = settings or SolverSettings()
+    settings = solver_settings(settings)
+    n_threads = (
+        default_threads() if threads is None else min(thread_count(threads), default_threads())
+    )
     ensure_compiled(f"batch:{settings.method}")
     method = METHOD_IDS[settings.method]
     st = settings.as_array()
-    n_threads = default_threads()
-    if threads is not None:
-        n_threads = max(1, min(int(threads), n_threads))
     cf_rows = np.ascontiguousarray(cf_rows, dtype=float)
     n = cf_rows.shape[0]
     out = np.empty((n, N_OUT))
@@ -405,14 +425,19 @@ def strike_batch(
         The fields of :data:`RESULT_FIELDS`, each of the broadcast shape.
     """
     resolved = resolve_params(params)
-    th = np.asarray(theta0_deg, dtype=float)
-    de = np.asarray(delta0_deg, dtype=float)
-    for name, arr in (("theta0", th), ("delta0", de)):
-        if not np.all(np.isfinite(arr)):
-            raise ParameterError(f"initial angle {name!r} must be finite")
-    shape = np.broadcast_shapes(
-        th.shape, de.shape, *(np.shape(v) for v in resolved.values() if not isinstance(v, str))
-    )
+    th = real_array("initial angle 'theta0'", theta0_deg)
+    de = real_array("initial angle 'delta0'", delta0_deg)
+    shapes = [
+        th.shape,
+        de.shape,
+        *(np.shape(v) for v in resolved.values() if not isinstance(v, str)),
+    ]
+    try:
+        shape = np.broadcast_shapes(*shapes)
+    except ValueError:
+        raise ParameterError(
+            f"the initial angles and parameter arrays do not broadcast to one shape: {shapes}"
+        ) from None
     cf_rows = coefficients(resolved, th, de)
     out = solve_coefficients(cf_rows, settings, threads, progress)
     return results_from_output(out, shape)

@@ -1,6 +1,7 @@
 """Compile (and cache) one group of the solver's entry points: ``python -m
 tennis_stroke.solver.warmup GROUP`` (:func:`tennis_stroke.solver.compiled.ensure_compiled`
-runs it in a process of its own).
+runs it in a process of its own, then calls :func:`warm_up` in its own process to load
+the group from the cache and check the load).
 """
 
 from __future__ import annotations
@@ -15,11 +16,12 @@ def warm_up(group: str) -> None:
 
     from ..model.dynamics import coefficients
     from ..model.params import resolve_params
-    from .reference import free_swing, solve_stroke
     from .settings import SolverSettings
     from .stroke import solve_contact, strike_batch
 
-    if group == "reference":
+    if group == "reference":  # scipy's path: imported only here
+        from .reference import free_swing, solve_stroke
+
         solve_stroke(120.0, 81.5, rtol=1e-6, atol=1e-6)
         free_swing(120.0, 81.5, 0.05)
         return
@@ -30,6 +32,16 @@ def warm_up(group: str) -> None:
     else:
         cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
         solve_contact(cf_row, np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0]), 0.01, settings)
+
+
+def load(group: str) -> None:
+    """:func:`warm_up` in this process with numba's compiling refused: the entry points
+    load from the cache, or :class:`~tennis_stroke.solver.compiled.CompileInPlace` says
+    the cache lacks one (:func:`tennis_stroke.solver.compiled.ensure_compiled`)."""
+    from .stroke import refusing_compiles
+
+    with refusing_compiles():
+        warm_up(group)
 
 
 if __name__ == "__main__":
