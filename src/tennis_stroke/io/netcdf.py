@@ -11,6 +11,7 @@ truncated file.
 from __future__ import annotations
 
 import errno
+import json
 import os
 import platform
 import subprocess
@@ -75,8 +76,22 @@ def git_commit() -> str:
             check=True,
         )
     except (OSError, subprocess.SubprocessError):
-        return "unknown"
+        return installed_commit()
     return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")
+
+
+def installed_commit() -> str:
+    """The commit an installed (non-editable) copy was built from, where pip recorded it
+    (``pip install git+URL@REV``: PEP 610's ``direct_url.json``), else ``"unknown"``; the
+    version is in the ``source`` attribute either way."""
+    import importlib.metadata
+
+    try:
+        text = importlib.metadata.distribution("tennis-stroke").read_text("direct_url.json")
+        commit = json.loads(text or "{}").get("vcs_info", {}).get("commit_id")
+    except (importlib.metadata.PackageNotFoundError, ValueError, AttributeError):
+        commit = None
+    return f"{commit} (installed)" if commit else "unknown"
 
 
 def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[str, object]:
