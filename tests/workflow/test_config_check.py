@@ -7,7 +7,12 @@ import yaml
 from conftest import ROOT, run_snakemake, workdir
 
 from tennis_stroke.io.config_files import ConfigFileError, load_yaml
-from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
+from tennis_stroke.pipeline.config_check import (
+    canonical,
+    config_errors,
+    load_schema,
+    numbers_from_strings,
+)
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -26,6 +31,13 @@ def _set(config, path, value):
 _DELETE = object()
 
 BAD = [  # (path, value, fragment of the message)
+    # the same stroke or tolerance twice computes the same numbers twice
+    (("fig4", "strokes"), [[120.0, 81.5], [120.0, 81.5]], "'fig4.strokes': [[120.0, 81.5], "),
+    (
+        ("solver_study", "compiled_tolerances"),
+        [1e-8, 1e-8],
+        "'solver_study.compiled_tolerances': [1e-08, 1e-08] has non-unique elements",
+    ),
     # a range whose step does not land on its stop (it ran past it: tau = [0, 0.5])
     (
         ("torque_delay", "fig9", "tau"),
@@ -268,3 +280,53 @@ def test_every_reading_of_the_model_runs_the_ladder():
         config = copy.deepcopy(GOOD)
         config["model"] = model
         assert config_errors(config, SCHEMA) == []
+
+
+def _checked(config):
+    from snakemake.utils import validate
+
+    config = copy.deepcopy(config)
+    validate(config, str(SCHEMA), set_default=True)
+    return canonical(config, load_schema(SCHEMA))
+
+
+def test_the_shipped_config_is_already_canonical():
+    """The schema lists the keys in config/config.yaml's order, so canonical() changes no
+    job's params for the paper's configuration (no rerun after this change)."""
+    shipped = load_yaml(ROOT / "config" / "config.yaml")
+    from snakemake.utils import validate
+
+    validate(shipped, str(SCHEMA), set_default=True)
+    assert repr(canonical(shipped, load_schema(SCHEMA))) == repr(shipped)
+
+
+@pytest.mark.parametrize(
+    "edit",
+    [
+        lambda c: c["torque_delay"]["base_stroke"].update(C2=5),
+        lambda c: c["solver"].update(rtol=c["solver"].pop("rtol")),  # rtol after atol
+        lambda c: c.update(solver=c.pop("solver")),  # the section last
+        lambda c: c["angle_maps"]["theta0"].update(start=60),
+        lambda c: c["fig4"].update(strokes=[[120, 81.5], [75, 39]]),
+    ],
+)
+def test_equal_values_spelled_differently_are_one_config(edit):
+    """C2: 5 and C2: 5.0, or two keys in another order, gave other job params (33 jobs
+    planned for the same values)."""
+    shipped = load_yaml(ROOT / "config" / "config.yaml")
+    edited = copy.deepcopy(shipped)
+    edit(edited)
+    assert repr(_checked(edited)) == repr(_checked(shipped))
+
+
+def test_canonical_keeps_integers_booleans_and_sorts_free_keys():
+    shipped = load_yaml(ROOT / "config" / "config.yaml")
+    config = copy.deepcopy(shipped)
+    config["model"] = {"M2": 1, "L1": 0.3, "inertia": "rod"}
+    out = _checked(config)
+    assert list(out["model"]) == ["L1", "M2", "inertia"] and out["model"]["M2"] == 1.0
+    assert isinstance(out["model"]["M2"], float)
+    assert isinstance(out["chunks"]["angle_map"], int)  # an integer key stays one
+    assert out["solver_study"]["stability"]["cases"][0][1] == float(
+        shipped["solver_study"]["stability"]["cases"][0][1]
+    )

@@ -360,7 +360,7 @@ def planned_after_edit(moved, module: str, old: str | None = None, new: str = ""
 
 def test_an_edit_of_the_identification_reruns_only_inference_claims_and_report(moved):
     planned = planned_after_edit(moved, "inference/identification.py")
-    assert planned == {*INFERENCE_RULES, "gather_map", "claims", "figure", "report"}
+    assert planned == {*INFERENCE_RULES, "gather_map", "claims", "figure", "report_page", "report"}
 
 
 def test_a_step_of_fig9_reruns_fig9_its_check_claims_and_report_only(moved):
@@ -370,17 +370,32 @@ def test_a_step_of_fig9_reruns_fig9_its_check_claims_and_report_only(moved):
     done = moved("-n", "--config", "torque_delay={fig9: {tau: {step: 0.02}}}")
     assert done.returncode == 0, done.stderr[-2000:]
     planned = planned_jobs(done.stdout + done.stderr)
-    assert set(planned) == {"fig9", "gather_map", "claims_validation", "claims", "figure", "report"}
+    assert set(planned) == {
+        "fig9",
+        "gather_map",
+        "claims_validation",
+        "claims",
+        "figure",
+        "report_page",
+        "report",
+    }
     assert planned["claims_validation"] == 1 and planned["gather_map"] == 1
 
 
 def test_an_edit_of_the_figures_reruns_the_figures_and_the_report_only(moved):
-    assert planned_after_edit(moved, "replication/figures.py") == {"figure", "report"}
+    assert planned_after_edit(moved, "replication/figures.py") == {
+        "figure",
+        "report_page",
+        "report",
+    }
 
 
 def test_an_edit_of_the_report_template_reruns_the_report(moved):
     """The page's template is the report's code although no module imports it."""
-    assert planned_after_edit(moved, "replication/templates/report.html.j2") == {"report"}
+    assert planned_after_edit(moved, "replication/templates/report.html.j2") == {
+        "report_page",
+        "report",
+    }
 
 
 def test_a_new_long_name_reruns_no_map_chunk_and_no_inference_job(moved):
@@ -399,24 +414,37 @@ def test_an_edit_of_a_solver_module_reruns_every_simulation(moved):
     assert model_rows | INFERENCE_RULES <= planned
 
 
-def test_a_result_deleted_by_hand_is_rebuilt_when_named_as_a_target(moved):
-    """Snakemake alone says "Nothing to be done" (snakemake/snakemake#1978); make report
-    names every result (tennis_stroke.pipeline.targets), which plans its job again."""
-    from tennis_stroke.pipeline.targets import targets
-
-    claims = moved.work / "results" / "claims.csv"
-    saved, stat = claims.read_bytes(), claims.stat()
-    claims.unlink()
-    # the targets first: an option taking several values would swallow them
-    command = snakemake_command(targets(), moved.work, "-n")
-    command[command.index("-s") + 1] = str(moved.snakefile)
+@pytest.mark.parametrize("lost", ["results/claims.csv", "results/strokes/fig4.nc"])
+def test_snakemake_report_rebuilds_a_result_lost_by_hand(moved, lost):
+    """Snakemake alone said "Nothing to be done" for a lost intermediate file
+    (snakemake/snakemake#1978): the target rule report names every result as an input
+    and has no output of its own, so `snakemake -j2 report` plans the lost file's job."""
+    path = moved.work / lost
+    saved, stat = path.read_bytes(), path.stat()
+    path.unlink()
     try:
-        done = subprocess.run(command, capture_output=True, text=True, timeout=600)
+        done = moved("-n")
     finally:
-        claims.write_bytes(saved)
-        os.utime(claims, ns=(stat.st_atime_ns, stat.st_mtime_ns))
+        path.write_bytes(saved)
+        os.utime(path, ns=(stat.st_atime_ns, stat.st_mtime_ns))
     assert done.returncode == 0, done.stderr[-2000:]
-    assert set(planned_jobs(done.stdout + done.stderr)) == {"claims", "report"}
+    planned = set(planned_jobs(done.stdout + done.stderr))
+    producer = {"results/claims.csv": "claims", "results/strokes/fig4.nc": "fig4"}[lost]
+    assert {producer, "claims", "report_page", "report"} <= planned, planned
+
+
+def test_equal_values_spelled_differently_plan_no_job(moved):
+    """C2: 5 for 5.0, and a section's keys in another order, planned 33 jobs: the config
+    is put in one spelling before it becomes params (pipeline.config_check.canonical)."""
+    tiny = yaml.safe_load((moved.work / "config" / "config.yaml").read_text())
+    section = tiny["torque_delay"]
+    section["base_stroke"]["C2"] = int(section["base_stroke"]["C2"])
+    reordered = dict(reversed(list(section.items())))
+    solver = {"atol": 5.0e-8, "rtol": 5e-08, "method": "DOP853"}  # the defaults, reordered
+    assert "solver" not in tiny
+    done = moved("-n", "--config", override("torque_delay", reordered), override("solver", solver))
+    output = done.stdout + done.stderr
+    assert done.returncode == 0 and planned_jobs(output) == {}, output[-3000:]
 
 
 def test_a_truncated_result_is_named_before_any_job(moved):
@@ -437,3 +465,60 @@ def test_a_truncated_result_is_named_before_any_job(moved):
         f"({len(saved) // 2} of its {len(saved)} bytes)): remove it and run make report (it "
         "names every result as a target, so it is rebuilt)"
     ]
+
+
+def test_a_checkout_under_a_folder_with_a_space_runs_its_jobs(tmp_path):
+    """Snakemake runs a script job as `{python} {script}` without quoting the
+    interpreter's path: under "my dir" every job died with 'bash: .../my: No such file or
+    directory' (status 127).  The checkout is reached through a folder whose name has a
+    space, a non-ASCII letter and a quote; its interpreter runs one job."""
+    from tiny import TINY, TINY_READINGS
+
+    python = Path(sys.executable)
+    if not python.is_relative_to(ROOT):
+        pytest.skip(f"the interpreter {python} is not in the checkout (make install puts it there)")
+    odd = tmp_path / "my dir é 'q' \"x\""
+    odd.mkdir()
+    (odd / "tennis").symlink_to(ROOT)
+    work = workdir(tmp_path / "work", TINY, TINY_READINGS)
+    command = [
+        str(odd / "tennis" / python.relative_to(ROOT)),
+        "-m",
+        "snakemake",
+        "-f",
+        "results/strokes/fig4.nc",
+        "-s",
+        str(odd / "tennis" / "Snakefile"),
+        "--directory",
+        str(work),
+        "--cores",
+        "1",
+    ]
+    done = subprocess.run(command, capture_output=True, text=True, timeout=600)
+    assert done.returncode == 0, done.stderr[-3000:]
+    assert (work / "results" / "strokes" / "fig4.nc").stat().st_size > 0
+
+
+def test_a_differing_installed_copy_is_refused_before_any_job(tiny_run, tmp_path):
+    """With `pip install .` the jobs import the copy in site-packages: an edit of the
+    checkout reran jobs that then ran the unedited copy.  A copy that differs from the
+    checkout is refused in one line before any job (a dry run only warns)."""
+    copy = tmp_path / "site" / "tennis_stroke"
+    shutil.copytree(
+        ROOT / "src" / "tennis_stroke", copy, ignore=shutil.ignore_patterns("__pycache__")
+    )
+    (copy / "replication" / "figures.py").write_text(
+        (copy / "replication" / "figures.py").read_text() + "# an older copy\n"
+    )
+    env = {**os.environ, "PYTHONPATH": str(copy.parent)}
+    command = snakemake_command("report", tiny_run, "--cores", "1")
+    done = subprocess.run(command, capture_output=True, text=True, timeout=600, env=env)
+    lines = [line for line in done.stderr.splitlines() if "tennis-stroke" in line]
+    assert done.returncode == 1 and "Traceback" not in done.stderr, done.stderr[-2000:]
+    assert lines == [
+        f"tennis-stroke error: the jobs would import the tennis_stroke installed at "
+        f"{str(copy)!r}, whose replication/figures.py differs from this checkout's: install "
+        "the checkout editable (make install, or pip install -e .)"
+    ]
+    dry = subprocess.run([*command, "-n"], capture_output=True, text=True, timeout=600, env=env)
+    assert dry.returncode == 0 and "tennis-stroke warning: the jobs would import" in dry.stderr

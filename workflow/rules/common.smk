@@ -28,8 +28,19 @@ from tennis_stroke.experiments.specs import (
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
 from tennis_stroke.inference.validation import group_config
-from tennis_stroke.pipeline.config_check import config_errors, numbers_from_strings
+from tennis_stroke.pipeline.config_check import (
+    canonical,
+    config_errors,
+    load_schema,
+    numbers_from_strings,
+)
+from tennis_stroke.io.interrupts import PARENT_ENV, process_identity
 from tennis_stroke.pipeline import params as job_params
+from tennis_stroke.pipeline.checkout import (
+    installed_difference,
+    runs_no_code,
+    shell_safe,
+)
 from tennis_stroke.pipeline.scenarios import (
     FOLDER as SCENARIO_FOLDER,
     ScenarioError,
@@ -41,7 +52,7 @@ from tennis_stroke.pipeline.scenarios import (
     resolved_results,
     scenario_config,
 )
-from tennis_stroke.pipeline.targets import damaged_results
+from tennis_stroke.pipeline.targets import damaged_results, targets
 from tennis_stroke.replication.registry import FIGURES
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
@@ -50,13 +61,17 @@ config.update(numbers_from_strings(config))
 # of the paper's configuration: taken out before it is checked.
 _ADHOC_SCENARIOS = config.pop("scenarios", None)
 # One line naming the key and the rule it breaks, before any job starts (no traceback).
-_errors = config_errors(
-    config, Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
-)
+SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
+_errors = config_errors(config, SCHEMA)
 if _errors:
     sys.stderr.write(f"tennis-stroke config error: {_errors[0]}\n")
     sys.exit(1)
 validate(config, "../schemas/config.schema.yaml", set_default=True)
+# One spelling per value (C2: 5 is 5.0, keys in the schema's order): equal settings, equal
+# job params, no rerun.
+_canonical = canonical(config, load_schema(SCHEMA))
+config.clear()
+config.update(_canonical)
 # The claims (config/claims.yaml), checked before any job: ids, result files,
 # measurements and their arguments, tolerances (else they fail after every simulation).
 _errors = claim_errors("config/claims.yaml")
@@ -77,7 +92,6 @@ except ReadingSpaceError as _exc:
 # as the paper's configuration is, before any job: their configurations by name.  A bad
 # scenario never stops the paper's run: it is named in one warning line, and asking for
 # any of its files is refused in one line (rule unknown_scenario).
-SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
 SCENARIO_ERRORS = {}
 try:
     SCENARIOS = load_scenarios("config/scenarios.yaml", _ADHOC_SCENARIOS)
@@ -118,6 +132,27 @@ if _damaged:
 #: (Snakemake does not see code changes in an imported package).
 SCRIPTS = Path(workflow.basedir) / "workflow" / "scripts"
 PACKAGE_DIR = Path(workflow.basedir) / "src" / "tennis_stroke"
+# The jobs must run the checkout's code: an installed copy that differs would run stale
+# code while the reruns follow the checkout's edits.  Refused when jobs would run; a dry
+# run (or --touch) runs no code and only warns.
+_differs = installed_difference(INSTALLED, PACKAGE_DIR)
+if _differs is not None:
+    _line = (
+        f"the jobs would import the tennis_stroke installed at {str(INSTALLED)!r}, whose "
+        f"{_differs} differs from this checkout's: install the checkout editable (make "
+        "install, or pip install -e .)"
+    )
+    if not runs_no_code(sys.argv[1:]):
+        sys.stderr.write(f"tennis-stroke error: {_line}\n")
+        sys.exit(1)
+    sys.stderr.write(f"tennis-stroke warning: {_line}\n")
+# Snakemake runs a script job as `{sys.executable} {script}` without quoting the
+# interpreter's path: quoted here, a checkout under a folder with a space runs
+# (tennis_stroke.pipeline.checkout; docs/workflow.md).
+sys.executable = shell_safe(sys.executable)
+# Each job stops when this Snakemake process ends (killed, say) instead of computing on
+# and writing after it (tennis_stroke.io.interrupts.stop_with_snakemake).
+os.environ[PARENT_ENV] = process_identity(os.getpid())
 #: The table of experiments: a simulation job gets its row as params (function, flags,
 #: config values), so editing another row reruns nothing of it.
 TABLE = PACKAGE_DIR / "experiments" / "specs.py"

@@ -27,7 +27,13 @@ rule claims:
         "../scripts/claims.py"
 
 
+# What users ask for: the page and every result (see rule all in the Snakefile).
 rule report:
+    input:
+        targets(),
+
+
+rule report_page:
     input:
         figures=expand("results/figures/{name}.png", name=sorted(FIGURES)),
         claims="results/claims.csv",

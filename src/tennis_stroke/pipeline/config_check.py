@@ -301,8 +301,69 @@ def _ladder_errors(config: Mapping, model: Mapping) -> Iterator[str]:
             yield f"config key 'model_ladder.rungs.{i}': {exc} (rule: a model the solver runs)"
 
 
+def _resolved(schema: Mapping, root: Mapping) -> Mapping:
+    """``schema`` with its local ``$ref`` and ``allOf`` parts merged in (one level each)."""
+    out = dict(schema)
+    ref = out.pop("$ref", None)
+    if ref is not None:
+        target = root
+        for part in ref.removeprefix("#/").split("/"):
+            target = target[part]
+        out = {**_resolved(target, root), **out}
+    for part in out.pop("allOf", ()):
+        out = {**_resolved(part, root), **out}
+    return out
+
+
+def _is_number(schema: Mapping) -> bool:
+    kinds = schema.get("type")
+    kinds = [kinds] if isinstance(kinds, str) else list(kinds or ())
+    return "number" in kinds and "integer" not in kinds
+
+
+#: Config sections whose keys the schema does not name and whose numbers are all real:
+#: the model overrides (every model parameter is a real number; a reading is a string).
+REAL_SECTIONS = {("model",)}
+
+
+def canonical(node, schema: Mapping, root: Mapping | None = None, path: tuple = ()):
+    """``node`` (a checked config) in one spelling per value, so that equal settings give
+    equal job params (Snakemake reruns a job whose params' text changed):
+
+    - an integer where the schema says ``number`` becomes a float (``5`` is ``5.0``;
+      YAML's ``1e3`` is already ``1000.0``); booleans stay booleans;
+    - a mapping's keys follow the schema's ``properties`` order, then the keys it does not
+      name in sorted order;
+    - every number of a :data:`REAL_SECTIONS` section is a float.
+    """
+    root = schema if root is None else root
+    schema = _resolved(schema, root)
+    if isinstance(node, Mapping):
+        properties = schema.get("properties", {})
+        order = [key for key in properties if key in node]
+        order += sorted((key for key in node if key not in properties), key=str)
+        return {
+            key: canonical(node[key], properties.get(key, {}), root, (*path, key)) for key in order
+        }
+    if isinstance(node, list):
+        prefix = schema.get("prefixItems", [])
+        return [
+            canonical(v, prefix[i] if i < len(prefix) else schema.get("items", {}), root, path)
+            for i, v in enumerate(node)
+        ]
+    real = _is_number(schema) or any(path[: len(s)] == s for s in REAL_SECTIONS)
+    if real and isinstance(node, int) and not isinstance(node, bool):
+        return float(node)
+    return node
+
+
+def load_schema(schema_path: str | Path) -> dict:
+    """The config schema (``workflow/schemas/config.schema.yaml``) as data."""
+    return yaml.safe_load(Path(schema_path).read_text())
+
+
 def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:
     """Every problem of ``config`` as one-line messages (empty: the config is good)."""
-    schema = yaml.safe_load(Path(schema_path).read_text())
+    schema = load_schema(schema_path)
     errors = list(_schema_errors(config, schema))
     return errors or list(_semantic_errors(config)) or list(_memory_errors(config))

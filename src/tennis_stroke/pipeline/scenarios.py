@@ -27,7 +27,7 @@ import yaml
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, plain, shown
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
-from .config_check import config_errors, numbers_from_strings
+from .config_check import canonical, config_errors, load_schema, numbers_from_strings
 from .params import changed_results, reads
 
 #: A scenario's name: a folder name on every system, and a Snakemake wildcard value.
@@ -93,7 +93,7 @@ def scenario_config(
     errors = config_errors(config, schema)
     if errors:
         raise ScenarioError(f"scenario {name!r}: {errors[0]}")
-    return config
+    return canonical(config, load_schema(schema))
 
 
 def load_scenarios(path: str | Path, extra: Mapping | None = None) -> dict[str, dict]:

@@ -2,9 +2,11 @@
 
 Snakemake (7.7 and later) does not rebuild an intermediate file deleted by hand while
 the files after it are present and up to date (``rm results/claims.csv; snakemake -n
-report`` says "Nothing to be done": snakemake/snakemake#1978); a file named as a target is
-rebuilt.  ``make report`` therefore names the report and every result, figure and the
-claims table: ``python -m tennis_stroke.pipeline.targets`` prints them, one per line.
+report`` said "Nothing to be done": snakemake/snakemake#1978): it stops at a job whose
+output is up to date.  The target rules ``report`` and ``all`` therefore have no output
+and take the page and every result, figure and table as inputs (:func:`targets`), so
+``snakemake -j2 report`` plans the job of a missing one; ``python -m
+tennis_stroke.pipeline.targets`` prints them, one per line.
 
 A damaged result file (truncated, or garbage) is no better than a missing one, but
 Snakemake would take it for up to date: the workflow refuses to run over one, naming it
