@@ -58,4 +58,4 @@ kernels: $(STAMP)
 	$(BIN)/python tools/generate_kernels.py
 
 clean:
-	rm -rf results report .snakemake
+	rm -rf results report logs benchmarks/workflow .snakemake

@@ -1,6 +1,7 @@
 """The ``tennis-stroke`` command: one stroke (``strike``), a grid of strokes (``sweep``),
 the check of the claims table (``claims``), the readings fitted to both fit sets of
-``config/readings.yaml`` (``identify``).
+``config/readings.yaml`` (``identify``), what a config key drives (``config explain``)
+and a what-if scenario beside the paper (``whatif``).
 
 Bad input ends with one line ``tennis-stroke: error: ...`` on stderr and exit status 2,
 before any output file is created; Ctrl-C ends with one line and exit status 130.
@@ -116,7 +117,9 @@ def angle(text: str) -> float:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="tennis-stroke", description=__doc__.splitlines()[0])
+    # the module docstring's first paragraph, without its reST markup
+    summary = " ".join(__doc__.split("\n\n")[0].split()).replace("``", "")
+    parser = _Parser(prog="tennis-stroke", description=summary)
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
 
@@ -128,13 +131,30 @@ def build_parser() -> argparse.ArgumentParser:
             metavar="KEY=VALUE",
             help="override a model parameter (SI units) or a reading",
         )
-        p.add_argument("--method", default="DOP853", help="DOP853 (default) or DP54")
+        p.add_argument(
+            "--method",
+            default="DOP853",
+            metavar="{DOP853,DP54}",
+            help="integrator (default DOP853)",
+        )
         p.add_argument("--rtol", type=float, default=None, help="relative tolerance")
         p.add_argument("--atol", type=float, default=None, help="absolute tolerance")
 
     strike = sub.add_parser("strike", help="simulate one stroke")
-    strike.add_argument("--theta0", type=angle, required=True, metavar="DEG")
-    strike.add_argument("--delta0", type=angle, required=True, metavar="DEG")
+    strike.add_argument(
+        "--theta0",
+        type=angle,
+        required=True,
+        metavar="DEG",
+        help="initial angle of rod 1 (arm) in degrees from -y, counter-clockwise positive",
+    )
+    strike.add_argument(
+        "--delta0",
+        type=angle,
+        required=True,
+        metavar="DEG",
+        help="initial angle of rod 2 relative to rod 1, phi0 - theta0, in degrees",
+    )
     strike.add_argument("--json", action="store_true", help="print one JSON object")
     common(strike)
 

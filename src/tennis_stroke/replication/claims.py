@@ -193,8 +193,9 @@ def check(
         if errors:
             raise ClaimsTableError(errors[0])
     failed = table[table["status"] == "fail"]
-    counts = table["status"].value_counts().to_dict()
-    print(f"claims: {counts}")
+    counts = table["status"].value_counts()
+    shown = ", ".join(f"{n} {status.replace('_', ' ')}" for status, n in counts.items())
+    print(f"claims: {len(table)} ({shown})")
     for _, row in failed.iterrows():
         print(
             f"FAIL {row['id']}: paper {row['paper_value']} {row['unit']}, reproduced "
