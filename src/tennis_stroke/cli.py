@@ -320,6 +320,7 @@ def _sweep(args: argparse.Namespace) -> int:
     from .io.netcdf import check_writable, result_dataset, write_netcdf
     from .model.params import resolve_params
     from .pipeline.memory import batch_bytes, check_memory, memory_limit, result_bytes
+    from .solver.results import OK
     from .solver.stroke import default_threads
 
     theta_spec = range_spec(args.theta0, "theta0")
@@ -358,7 +359,7 @@ def _sweep(args: argparse.Namespace) -> int:
         {"wall_time_s": wall, "command": " ".join(sys.argv)},
     )
     write_netcdf(ds, out)
-    n_ok = int((results["status"] == 0).sum())
+    n_ok = int((results["status"] == OK).sum())
     print(f"{out}: {results['status'].size} strokes ({n_ok} ok) in {wall:.2f} s")
     return 0
 

@@ -13,6 +13,8 @@ from fractions import Fraction
 
 import numpy as np
 
+from ..solver.results import OK
+
 #: Relative slack of a step count: a range whose span is within it of a whole number of
 #: steps lands on its stop (floating-point spans such as 0.3 / 0.0025).
 LANDING = 1e-9
@@ -97,7 +99,7 @@ def refine_peak(x: np.ndarray, v: np.ndarray) -> tuple[float, float]:
 
 def ok_speeds(res: Mapping[str, np.ndarray]) -> np.ndarray:
     """v_out with failed strokes as NaN."""
-    return np.where(res["status"] == 0, res["v_out_kmh"], np.nan)
+    return np.where(res["status"] == OK, res["v_out_kmh"], np.nan)
 
 
 def chunk_count(requested: int, rows: int) -> int:

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..solver.results import OK
 from ..solver.stroke import strike_batch
 from .grids import bracket_size
 
@@ -236,4 +237,4 @@ class StrokeObjective:
 
     def __call__(self, points: np.ndarray, index: np.ndarray) -> np.ndarray:
         res = self.strike(points, index)
-        return np.where(res["status"] == 0, res["v_out_kmh"], np.nan)
+        return np.where(res["status"] == OK, res["v_out_kmh"], np.nan)

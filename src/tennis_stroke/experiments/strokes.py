@@ -13,6 +13,7 @@ from ..io.units import cf_attrs
 from ..model.dynamics import coefficients, elbow_position
 from ..model.params import resolve_params
 from ..solver.reference import free_swing, solve_stroke
+from ..solver.results import OK
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike
 
@@ -56,7 +57,7 @@ def trajectories(
                 rtol=1e-10,
                 atol=1e-10,
                 follow_through=max(times[-1] - res["t_separation"], 0.0)
-                if res["status"] == 0
+                if res["status"] == OK
                 else 0.0,
             )
         sampled = ref.sample(times)

@@ -34,6 +34,8 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
+from scipy.sparse import coo_array
+from scipy.sparse.csgraph import connected_components
 
 from ..experiments.specs import PAPER_RESULTS
 from ..io.netcdf import labelled, provenance
@@ -178,25 +180,22 @@ def evaluate_ladder(
 
 def experiment_groups(claims: Sequence[Mapping], keys: Sequence[str]) -> list[list[str]]:
     """The result files the claims read, in groups of files that claims read together
-    (connected by the claims that read several; a rung is chosen for a whole group), in
-    the order of ``keys``."""
-    parent = {k: k for k in keys}
-
-    def root(k: str) -> str:
-        while parent[k] != k:
-            k = parent[k]
-        return k
-
-    read = set()
-    for claim in claims:
-        files = claim_files(claim)
-        read.update(files)
-        for other in files[1:]:
-            parent[root(other)] = root(files[0])
-    groups: dict[str, list[str]] = {}
-    for k in keys:
-        if k in read:
-            groups.setdefault(root(k), []).append(k)
+    (connected by the claims that read several: the connected components of that graph,
+    scipy's ``connected_components``; a rung is chosen for a whole group), in the order
+    of ``keys``."""
+    index = {k: i for i, k in enumerate(keys)}
+    read = sorted({index[f] for claim in claims for f in claim_files(claim)})
+    pairs = [
+        (index[files[0]], index[other]) for files in map(claim_files, claims) for other in files[1:]
+    ]
+    edges = np.array(pairs, dtype=int).reshape(-1, 2)
+    graph = coo_array(
+        (np.ones(len(edges)), (edges[:, 0], edges[:, 1])), shape=(len(keys), len(keys))
+    )
+    _, label = connected_components(graph, directed=False)
+    groups: dict[int, list[str]] = {}
+    for i in read:
+        groups.setdefault(label[i], []).append(keys[i])
     return list(groups.values())
 
 

@@ -13,10 +13,12 @@ from typing import Literal
 import numpy as np
 import xarray as xr
 
+from ..solver.results import OK
+
 
 def valid_v_out(ds: xr.Dataset) -> xr.DataArray:
     """v_out (km/h) of a result dataset with failed strokes as NaN."""
-    return ds["v_out"].where(ds["status"] == 0)
+    return ds["v_out"].where(ds["status"] == OK)
 
 
 def measure_delay_threshold(ds: xr.Dataset) -> float:

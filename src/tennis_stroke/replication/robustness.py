@@ -23,6 +23,7 @@ from ..inference.multiverse import (
     CLAIM_LEVEL,
 )
 from ..inference.reading_space import ReadingSpace
+from ..solver.results import OK
 
 #: Robustness classes with their meaning, in the order of config/readings.yaml.
 ROBUSTNESS_MEANING = {
@@ -131,7 +132,7 @@ def objective_gap(spec: Mapping[str, str], argument: float, files: Mapping[str, 
     """How far (km/h) the objective ``v_out`` of the file lies below its optimum at the
     paper's ``argument`` of coordinate ``coord`` (nearest grid point; the other
     coordinates at their best)."""
-    v = files[spec["file"]]["v_out"].where(files[spec["file"]]["status"] == 0)
+    v = files[spec["file"]]["v_out"].where(files[spec["file"]]["status"] == OK)
     at = v.sel({spec["coord"]: argument}, method="nearest")
     return float(v.max()) - float(at.max())
 

@@ -13,6 +13,7 @@ import xarray as xr
 from ..io.netcdf import provenance
 from ..io.units import cf_attrs
 from ..model.params import resolve_params
+from ..solver.results import OK
 from .sampling import REFERENCE, sample_strokes, stroke_params
 from .timing import compiled_cost
 
@@ -26,7 +27,7 @@ def ladder(strokes: Mapping[str, np.ndarray], repeats: int = 3) -> xr.Dataset:
     us_spring, spring = compiled_cost(th, de, params, None, repeats)
     impact_params = {**params, "contact_model": "impact"}
     us_impact, impact_res = compiled_cost(th, de, impact_params, None, repeats)
-    impact = np.where(impact_res["status"] == 0, impact_res["v_out_kmh"], np.nan)
+    impact = np.where(impact_res["status"] == OK, impact_res["v_out_kmh"], np.nan)
     ds = xr.Dataset(
         {
             "v_out_spring": (

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..solver.results import OK
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 
@@ -32,7 +33,7 @@ def sample_strokes(n: int, seed: int = 20261121) -> dict[str, np.ndarray]:
         res = strike_batch(
             draw["theta0"], draw["delta0"], {k: draw[k] for k in STROKE_PARAMS}, REFERENCE
         )
-        if res["status"] == 0:
+        if res["status"] == OK:
             for k in out:
                 out[k].append(draw[k])
     return {k: np.array(v) for k, v in out.items()}

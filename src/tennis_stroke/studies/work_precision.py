@@ -19,6 +19,7 @@ from ..io.netcdf import provenance
 from ..io.units import cf_attrs
 from ..model.params import resolve_params
 from ..solver.reference import solve_stroke
+from ..solver.results import OK
 from ..solver.rk4 import fixed_step_stroke
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
@@ -61,7 +62,7 @@ def work_precision(
             if family == "tennis_stroke":
                 st = SolverSettings(method=name, rtol=value, atol=value)
                 cost[mi, si], res = compiled_cost(th, de, params, st, repeats)
-                v, nfev, ok = res["v_out_kmh"], res["rhs_evals"], res["status"] == 0
+                v, nfev, ok = res["v_out_kmh"], res["rhs_evals"], res["status"] == OK
             else:
                 per, v, nfev, ok = [], np.full(n, np.nan), np.zeros(n), np.zeros(n, bool)
                 for i in range(n):
@@ -71,7 +72,7 @@ def work_precision(
                         r = solve_stroke(
                             th[i], de[i], p, method=name, rtol=value, atol=value
                         ).result
-                        ok[i] = r["status"] == 0
+                        ok[i] = r["status"] == OK
                     else:
                         r = fixed_step_stroke(th[i], de[i], p, value)
                         ok[i] = r["status"] == "ok"
