@@ -18,11 +18,10 @@ from collections.abc import Iterable
 from dataclasses import dataclass
 from pathlib import Path
 
-import jsonschema
 import numpy as np
 import yaml
 
-from ..io.config_files import ConfigFileError, load_yaml
+from ..io.config_files import ConfigFileError, load_yaml, schema_errors
 from ..model.params import PARAMETERS, READINGS, ParameterError, resolve_params
 
 #: The schema of the file, beside the workflow's config schema.
@@ -98,11 +97,6 @@ class ReadingSpace:
         return {c: g for g, spec in self.raw["quoting"].items() for c in spec.get("claims", [])}
 
 
-def _schema_error(error: jsonschema.ValidationError) -> str:
-    where = ".".join(str(p) for p in error.absolute_path) or "(top level)"
-    return f"readings key {where!r}: {error.message} (rule: {error.validator})"
-
-
 def _check(condition: bool, message: str) -> None:
     if not condition:
         raise ReadingSpaceError(message)
@@ -130,10 +124,9 @@ def load_reading_space(
         raw = load_yaml(path)
     except ConfigFileError as exc:
         raise ReadingSpaceError(str(exc)) from None
-    validator = jsonschema.Draft202012Validator(yaml.safe_load(Path(schema).read_text()))
-    errors = sorted(validator.iter_errors(raw), key=lambda e: list(e.absolute_path))
+    errors = schema_errors(raw, yaml.safe_load(Path(schema).read_text()), "readings")
     if errors:
-        raise ReadingSpaceError(_schema_error(errors[0]))
+        raise ReadingSpaceError(errors[0])
 
     discrete: dict[str, tuple[str, ...]] = {}
     for name, spec in raw["model"].items():

@@ -10,6 +10,7 @@ number in exponent form without a dot (``2e-3``, ``1e6``) is a number, as in YAM
 from __future__ import annotations
 
 import re
+from collections.abc import Mapping
 from pathlib import Path
 
 import yaml
@@ -76,3 +77,30 @@ def load_yaml(path: str | Path) -> object:
     except yaml.YAMLError as exc:
         problem = " ".join(str(exc).split())
         raise ConfigFileError(f"{path}: YAML syntax error: {problem}") from None
+
+
+def schema_errors(data: object, schema: Mapping, what: str) -> list[str]:
+    """Every place where ``data`` breaks the JSON ``schema``, one line each, in the order
+    of the keys: ``{what} key 'a.b' ...`` naming the key and the rule (``what``: config,
+    readings)."""
+    import jsonschema
+
+    validator = jsonschema.Draft202012Validator(schema)
+    out = []
+    for error in sorted(validator.iter_errors(data), key=lambda e: list(e.absolute_path)):
+        parts = list(error.absolute_path)
+        if error.validator == "required":
+            missing = error.message.split("'")[1]
+            out.append(f"{what} key {dotted_key([*parts, missing])!r} is missing (required)")
+        elif error.validator == "additionalProperties":
+            out.append(f"{what} key {dotted_key(parts)!r}: {error.message} (unknown key)")
+        else:
+            out.append(
+                f"{what} key {dotted_key(parts)!r}: {error.message} (rule: {error.validator})"
+            )
+    return out
+
+
+def dotted_key(parts) -> str:
+    """A config key's path as written in messages: ``a.b.0``."""
+    return ".".join(str(p) for p in parts) or "(top level)"

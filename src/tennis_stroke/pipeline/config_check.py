@@ -21,34 +21,15 @@ from collections.abc import Iterator, Mapping
 from decimal import Decimal
 from pathlib import Path
 
-import jsonschema
 import numpy as np
 import yaml
 
 from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
 from ..experiments.specs import EXPERIMENTS, ConfigKeyError, value_at
+from ..io.config_files import dotted_key, schema_errors
 from ..model.params import ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
 from .memory import WORD, MemoryLimitError, batch_bytes, check_memory, memory_limit, result_bytes
-
-
-def _path(parts) -> str:
-    return ".".join(str(p) for p in parts) or "(top level)"
-
-
-def _schema_errors(config: Mapping, schema: Mapping) -> Iterator[str]:
-    validator = jsonschema.Draft202012Validator(schema)
-    for error in sorted(validator.iter_errors(config), key=lambda e: list(e.absolute_path)):
-        if error.validator == "required":
-            missing = error.message.split("'")[1]
-            yield f"config key {_path([*error.absolute_path, missing])!r} is missing (required)"
-        elif error.validator == "additionalProperties":
-            yield (f"config key {_path(error.absolute_path)!r}: {error.message} (unknown key)")
-        else:
-            yield (
-                f"config key {_path(error.absolute_path)!r}: {error.message} "
-                f"(rule: {error.validator})"
-            )
 
 
 def _walk(node, parts=()) -> Iterator[tuple[tuple, object]]:
@@ -64,19 +45,19 @@ def _walk(node, parts=()) -> Iterator[tuple[tuple, object]]:
 def _semantic_errors(config: Mapping) -> Iterator[str]:
     for parts, node in _walk(config):
         if isinstance(node, float) and not math.isfinite(node):
-            yield f"config key {_path(parts)!r}: {node} is not a finite number (rule: finite)"
+            yield f"config key {dotted_key(parts)!r}: {node} is not a finite number (rule: finite)"
         if isinstance(node, Mapping) and {"start", "stop"} <= set(node):
             start, stop = node["start"], node["stop"]
             if isinstance(start, int | float) and isinstance(stop, int | float) and stop < start:
                 yield (
-                    f"config key {_path(parts)!r}: stop {stop} is below start {start} "
+                    f"config key {dotted_key(parts)!r}: stop {stop} is below start {start} "
                     "(rule: stop >= start)"
                 )
             step = node.get("step")
             numbers = all(isinstance(v, int | float) for v in (start, stop, step))
             if numbers and step > 0 and stop >= start and not lands_on_stop(start, stop, step):
                 yield (
-                    f"config key {_path(parts)!r}: step {step} does not land on stop {stop} "
+                    f"config key {dotted_key(parts)!r}: step {step} does not land on stop {stop} "
                     f"from start {start} (rule: a whole number of steps)"
                 )
         if (
@@ -88,7 +69,8 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
             and node[1] <= node[0]
         ):
             yield (
-                f"config key {_path(parts)!r}: {node} is empty or reversed (rule: lower < upper)"
+                f"config key {dotted_key(parts)!r}: {node} is empty or reversed "
+                "(rule: lower < upper)"
             )
     model = config.get("model") or {}
     for name, value in model.items() if isinstance(model, Mapping) else ():
@@ -365,5 +347,5 @@ def load_schema(schema_path: str | Path) -> dict:
 def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:
     """Every problem of ``config`` as one-line messages (empty: the config is good)."""
     schema = load_schema(schema_path)
-    errors = list(_schema_errors(config, schema))
+    errors = schema_errors(config, schema, "config")
     return errors or list(_semantic_errors(config)) or list(_memory_errors(config))
