@@ -57,10 +57,16 @@ def _marker(group: str) -> Path | None:
     return Path(cache) / f"compiled-{group.replace(':', '-')}-{digest.hexdigest()[:16]}"
 
 
+#: numba's module that reads and writes the on-disk cache: an error raised from it is a
+#: damaged cache file, in this process (a traceback frame) or in the compiling one (its
+#: stderr).
+CACHING_MODULE = "numba/core/caching.py"
+
+
 def _cache_trouble(exc: BaseException) -> bool:
     """Whether ``exc`` was raised while numba read its on-disk cache (a damaged file)."""
     return any(
-        Path(frame.filename).parts[-3:] == ("numba", "core", "caching.py")
+        Path(frame.filename).as_posix().endswith(CACHING_MODULE)
         for frame in traceback.extract_tb(exc.__traceback__)
     )
 
@@ -115,7 +121,7 @@ def _compile(group: str, marker: Path) -> None:
                 marker.touch()
                 return
             last = (done.stderr.strip().splitlines() or ["(no output)"])[-1]
-            if attempt == 1 and "numba/core/caching.py" in done.stderr:
+            if attempt == 1 and CACHING_MODULE in done.stderr:
                 _say(
                     f"the compiled code's cache in {str(marker.parent)!r} is damaged "
                     f"({last}): cleared, compiling again"
