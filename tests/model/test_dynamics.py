@@ -37,6 +37,7 @@ from tennis_stroke.model.dynamics import (
     mechanical_energy,
     rhs_angles,
     rhs_trig,
+    rod_points,
 )
 
 t = sp.symbols("t")
@@ -291,3 +292,25 @@ def test_coupling_factor_of_paper_reading():
     assert coefficient_row(collision_coupling="paper_eq8")[CF_COUPLING] == 2.0
     assert coefficient_row()[CF_A1] == pytest.approx(2.0 * 0.15 + 0.3 * 0.3)
     assert coefficient_row()[CF_A2] == pytest.approx(0.3 * 0.35)
+
+
+def test_the_stick_figure_has_the_rods_lengths_and_eq_10s_hitting_point():
+    """Wrist at L1 from the elbow, racket end at L2 from the wrist, the hitting point on
+    rod 2 at h2 + h_H, its x offset from the elbow Eq. 10's (hit_offset)."""
+    cf = coefficient_row(L1=0.35, L2=0.68, h_hit=0.12)
+    theta, phi = np.linspace(-2, 2, 7), np.linspace(-1, 3, 7)
+    xe, ye = np.linspace(-0.3, 0.2, 7), np.linspace(0.1, -0.4, 7)
+    p = rod_points(theta, phi, xe, ye, cf)
+    np.testing.assert_allclose(np.hypot(p["x_wrist"] - xe, p["y_wrist"] - ye), 0.35)
+    np.testing.assert_allclose(
+        np.hypot(p["x_racket"] - p["x_wrist"], p["y_racket"] - p["y_wrist"]), 0.68
+    )
+    np.testing.assert_allclose(
+        np.hypot(p["x_hit"] - p["x_wrist"], p["y_hit"] - p["y_wrist"]), 0.34 + 0.12
+    )
+    offsets = [hit_offset(np.sin(a), np.sin(b), cf) for a, b in zip(theta, phi, strict=True)]
+    np.testing.assert_allclose(p["x_hit"] - xe, offsets, rtol=1e-14)
+    # angles from -y, counter-clockwise: theta = 0 hangs straight down
+    down = rod_points(0.0, np.pi / 2, 0.0, 0.0, cf)
+    assert (down["x_wrist"], down["y_wrist"]) == pytest.approx((0.0, -0.35))
+    assert (down["x_racket"], down["y_racket"]) == pytest.approx((0.68, -0.35))

@@ -33,8 +33,19 @@ from .grids import axis_size, bracket_size
 
 #: Variables of every file of strokes (one per stroke result field).
 STROKE_VARIABLES = tuple(FILE_NAMES.get(k, k) for k in RESULT_FIELDS)
+#: The stick figure's points of a single stroke over time (the report animates them).
+POINTS = ("x_wrist", "y_wrist", "x_racket", "y_racket", "x_hit", "y_hit")
 #: Variables of the sampled curves of single strokes.
-CURVE_VARIABLES = ("omega1", "omega2", "theta", "phi", "x_elbow", "y_elbow")
+CURVE_VARIABLES = (
+    "omega1",
+    "omega2",
+    "theta",
+    "phi",
+    "x_elbow",
+    "y_elbow",
+    *POINTS,
+    "kinetic_energy",
+)
 #: The config keys of the Sec. V-VI base stroke (Fig. 9's curve, Figs. 10-14, Table I).
 SEC5_STROKE = {
     "L1": "torque_delay.L1",

@@ -10,16 +10,29 @@ import xarray as xr
 
 from ..io.netcdf import result_dataset
 from ..io.units import cf_attrs
-from ..model.dynamics import coefficients, elbow_position
+from ..model.dynamics import coefficients, elbow_position, mechanical_energy, rod_points
 from ..model.params import resolve_params
 from ..solver.reference import free_swing, solve_stroke
 from ..solver.results import OK
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike
+from .specs import CURVE_VARIABLES
 
 #: How the curves of omega(t) are drawn: the free swing without the ball (the paper
 #: computes the swing and the collision separately, Sec. II) or the stroke with the ball.
 CURVES = ("free_swing", "with_ball")
+
+
+def _rods_kinetic_energy(times: np.ndarray, sampled: Mapping, cf: np.ndarray) -> np.ndarray:
+    """Kinetic energy of the two rods in the lab frame (J) at ``times`` (NaN where the
+    curves are): :func:`~tennis_stroke.model.dynamics.mechanical_energy` without the ball."""
+    state = np.zeros(6)
+    out = np.full(len(times), np.nan)
+    for k, t in enumerate(times):
+        state[:4] = [sampled[v][k] for v in ("theta", "phi", "omega1", "omega2")]
+        if np.isfinite(state[:4]).all():
+            out[k] = mechanical_energy(float(t), state, cf, False)
+    return out
 
 
 def trajectories(
@@ -30,7 +43,8 @@ def trajectories(
     settings: SolverSettings,
     curves: str = "free_swing",
 ) -> xr.Dataset:
-    """Figs. 4, 10-12, 14: omega1, omega2, theta, phi and the elbow path over time.
+    """Figs. 4, 10-12, 14: omega1, omega2, theta, phi, the elbow path, the stick figure's
+    points (:data:`~tennis_stroke.experiments.specs.POINTS`) and the rods' kinetic energy over time.
 
     Each stroke is ``(theta0, delta0, extra params)``.  Curves come from the reference path
     (dense output up to ``times[-1]``): the free swing, or with ``curves="with_ball"``
@@ -39,7 +53,7 @@ def trajectories(
     """
     if curves not in CURVES:
         raise ValueError(f"curves must be one of {', '.join(CURVES)}, got {curves!r}")
-    samples = {k: [] for k in ("omega1", "omega2", "theta", "phi", "x_elbow", "y_elbow")}
+    samples = {k: [] for k in CURVE_VARIABLES}
     numbers: dict[str, list] = {}
     for theta0, delta0, extra in strokes:
         p = {**params, **extra}
@@ -69,6 +83,9 @@ def trajectories(
         path = np.array([elbow_position(t, cf) for t in times])
         samples["x_elbow"].append(path[:, 0])
         samples["y_elbow"].append(path[:, 1])
+        for key, value in rod_points(sampled["theta"], sampled["phi"], *path.T, cf).items():
+            samples[key].append(value)
+        samples["kinetic_energy"].append(_rods_kinetic_energy(times, sampled, cf))
     results = {k: np.asarray(v) for k, v in numbers.items()}
     ds = result_dataset(
         results,

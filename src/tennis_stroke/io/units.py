@@ -64,6 +64,13 @@ OTHER_VARIABLES: dict[str, tuple[str, str]] = {
     "phi": ("degree", "rod-2 angle from -y"),
     "x_elbow": ("m", "elbow x position"),
     "y_elbow": ("m", "elbow y position"),
+    "x_wrist": ("m", "wrist x position (end of rod 1)"),
+    "y_wrist": ("m", "wrist y position (end of rod 1)"),
+    "x_racket": ("m", "racket end x position (end of rod 2)"),
+    "y_racket": ("m", "racket end y position (end of rod 2)"),
+    "x_hit": ("m", "hitting point x position"),
+    "y_hit": ("m", "hitting point y position"),
+    "kinetic_energy": ("J", "kinetic energy of the two rods (lab frame)"),
     # speed-against-accuracy studies
     "method": ("1", "integrator"),
     "setting": ("1", "tolerance rtol = atol, or RK4 step (s)"),

@@ -260,6 +260,24 @@ def elbow_position(t, cf):
     return x + cf[CF_FX] * second, y + cf[CF_FY] * second
 
 
+def rod_points(theta, phi, x_elbow, y_elbow, cf) -> dict[str, np.ndarray]:
+    """The stick figure in the lab frame (m): the wrist (end of rod 1), the racket's end
+    (end of rod 2) and the hitting point (``h2 + h_H`` along rod 2, Eq. 10), from the
+    angles (rad, from ``-y``, counter-clockwise) and the elbow's position; numpy arrays
+    broadcast.  ``cf``: one stroke's coefficients (:func:`coefficients`)."""
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
+    l1, l2 = cf[CF_L1], 2.0 * cf[CF_H2]
+    x_w, y_w = x_elbow + l1 * st, y_elbow - l1 * ct
+    return {
+        "x_wrist": x_w,
+        "y_wrist": y_w,
+        "x_racket": x_w + l2 * sp,
+        "y_racket": y_w - l2 * cp,
+        "x_hit": x_w + cf[CF_LH] * sp,
+        "y_hit": y_w - cf[CF_LH] * cp,
+    }
+
+
 @njit(**JIT)
 def next_switch(t, cf, t_limit):
     """First switch of the wrist torque (``tau`` or ``C2_off``) after ``t`` (s), or
