@@ -53,6 +53,7 @@ from tennis_stroke.pipeline.scenarios import (
     scenario_config,
 )
 from tennis_stroke.pipeline.targets import damaged_results, targets
+from tennis_stroke.replication.marks import mark_values
 from tennis_stroke.replication.registry import FIGURES
 
 # Nested --config values arrive as strings: numbers again, as from the YAML file.
@@ -367,6 +368,16 @@ def figure_entry(wildcards):
     """A figure's registry entry as plain data (a param: editing one entry reruns its
     figure only)."""
     return plain(asdict(FIGURES[wildcards.name]))
+
+
+#: The declared claims by id (config/claims.yaml, checked above).
+DECLARED_CLAIMS = {c["id"]: c for c in load_claims("config/claims.yaml")}
+
+
+def figure_marks(wildcards):
+    """The paper's values of the claims a figure marks (a param: editing one of them in
+    config/claims.yaml reruns the figures that draw it, and no other)."""
+    return plain(mark_values(FIGURES[wildcards.name], DECLARED_CLAIMS))
 
 
 #: The paper's figures, drawn from the paper's experiments only: the figures a scenario

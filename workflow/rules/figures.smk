@@ -19,6 +19,7 @@ rule figure:
         name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
     params:
         figure=figure_entry,
+        marks=figure_marks,
         note="",
     script:
         "../scripts/figure.py"
@@ -38,6 +39,7 @@ rule scenario_figure:
         name=PAPER_FIGURE_NAMES,
     params:
         figure=figure_entry,
+        marks=figure_marks,
         note=scenario_figure_note,
     script:
         "../scripts/figure.py"

@@ -1,4 +1,5 @@
-"""Draw one figure from its result files (its registry entry is a param of the job)."""
+"""Draw one figure from its result files (its registry entry and the paper's values of
+the claims it marks are params of the job)."""
 
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.figures import draw
@@ -7,4 +8,4 @@ from tennis_stroke.replication.registry import Figure
 with logged(snakemake.log[0]):
     data = [p for p in snakemake.input if p.endswith(".nc")]
     figure = Figure(**snakemake.params.figure)
-    draw(figure, data, snakemake.output[0], note=snakemake.params.note)
+    draw(figure, data, snakemake.output[0], snakemake.params.note, snakemake.params.marks)

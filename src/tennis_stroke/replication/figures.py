@@ -8,7 +8,7 @@ come from the files' ``long_name`` and ``units`` attributes.
 from __future__ import annotations
 
 import textwrap
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
 
 import matplotlib
@@ -21,8 +21,6 @@ import xarray as xr  # noqa: E402
 from ..inference.measures import measure_delay_threshold, valid_v_out  # noqa: E402
 from ..io.netcdf import load_result  # noqa: E402
 from .registry import FIGURES, Figure  # noqa: E402
-
-DPI = 110
 
 
 def _label(da: xr.DataArray) -> str:
@@ -44,7 +42,7 @@ def angle_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     v = valid_v_out(d)
     _map(ax, v, "theta0", "delta0")
-    ax.contour(
+    lines = ax.contour(
         d["theta0"],
         d["delta0"],
         v.transpose("delta0", "theta0"),
@@ -52,6 +50,7 @@ def angle_map(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
         linewidths=0.5,
         levels=10,
     )
+    ax.clabel(lines, fontsize=7, fmt="%.0f")  # km/h
     ax.plot(d["theta0"], d["best_delta0"], "r-", lw=2, label="best delta0")
     ax.legend(loc="upper right")
     ax.set_title(title)
@@ -67,7 +66,13 @@ def omegas(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
         ax.plot(
             d["t"], d["omega1"][i], "--", color=line.get_color(), lw=1.2, label=f"omega1 {label}"
         )
-        ax.axvline(float(d["t_contact_start"][i]), color=line.get_color(), ls=":", lw=1)
+        ax.axvline(
+            float(d["t_contact_start"][i]),
+            color=line.get_color(),
+            ls=":",
+            lw=1,
+            label=f"contact starts {label}",
+        )
     ax.set_xlabel(_label(d["t"]))
     ax.set_ylabel("angular velocity (rad/s)")
     ax.legend(fontsize=8)
@@ -80,7 +85,8 @@ def mass_length(ds: Sequence[xr.Dataset], title: str, var: str) -> plt.Figure:
     d = ds[0]
     fig, ax = plt.subplots(figsize=(6.4, 4.8))
     _map(ax, d[var], "M2", "L1", cmap="viridis" if var == "v_out_best" else "magma")
-    ax.contour(d["M2"], d["L1"], d[var].transpose("L1", "M2"), colors="w", linewidths=0.5)
+    lines = ax.contour(d["M2"], d["L1"], d[var].transpose("L1", "M2"), colors="w", linewidths=0.5)
+    ax.clabel(lines, fontsize=7, fmt="%.0f")  # in the colour bar's unit
     ax.set_title(title)
     return fig
 
@@ -126,26 +132,37 @@ def v_tau(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
 
 
 def strobe(ds: Sequence[xr.Dataset], title: str, label: str) -> plt.Figure:
-    """Figs. 11-12: stick figures of rod 1 (blue) and rod 2 (black), contact in red."""
+    """Figs. 11-12: stick figures of rod 1 (blue) and rod 2 (black) from the file's
+    positions, the one at the contact start in red."""
     d = ds[0]
     i = int(np.flatnonzero(d["label"].values == label)[0])
-    p = {k.removeprefix("param_"): v for k, v in d.attrs.items() if k.startswith("param_")}
-    l1, l2 = p["L1"], p["L2"]
     fig, ax = plt.subplots(figsize=(5.5, 5.5))
     times = d["t"].values
     picks = np.linspace(0, np.flatnonzero(np.isfinite(d["theta"][i]))[-1], 17).astype(int)
     t_c = float(d["t_contact_start"][i])
-    for k in [*picks, int(np.argmin(np.abs(times - t_c)))]:
-        th, ph = np.radians(float(d["theta"][i, k])), np.radians(float(d["phi"][i, k]))
-        xe, ye = float(d["x_elbow"][i, k]), float(d["y_elbow"][i, k])
-        xw, yw = xe + l1 * np.sin(th), ye - l1 * np.cos(th)
-        xr_, yr = xw + l2 * np.sin(ph), yw - l2 * np.cos(ph)
-        contact = abs(times[k] - t_c) < 0.5 * (times[1] - times[0])
-        ax.plot([xe, xw], [ye, yw], color="r" if contact else "tab:blue", lw=2)
-        ax.plot([xw, xr_], [yw, yr], color="r" if contact else "k", lw=1.5)
+    contact = int(np.argmin(np.abs(times - t_c)))
+    for k in [*picks, contact]:
+        at = {v: float(d[v][i, k]) for v in d.data_vars if v.startswith(("x_", "y_"))}
+        first = k == picks[0]
+        ax.plot(
+            [at["x_elbow"], at["x_wrist"]],
+            [at["y_elbow"], at["y_wrist"]],
+            color="r" if k == contact else "tab:blue",
+            lw=2,
+            label="rod 1 (arm), every 1/16 of the stroke" if first else None,
+        )
+        ax.plot(
+            [at["x_wrist"], at["x_racket"]],
+            [at["y_wrist"], at["y_racket"]],
+            color="r" if k == contact else "k",
+            lw=1.5,
+            label="rod 2 (racket)" if first else None,
+        )
+    ax.plot([], [], color="r", lw=2, label=f"at the contact start, t = {t_c:.4f} s")
     ax.set_aspect("equal")
     ax.set_xlabel("x (m)")
     ax.set_ylabel("y (m)")
+    ax.legend(fontsize=7, loc="best")
     ax.set_title(f"{title} ({label} = {float(d['tau'][i]):g} s)")
     return fig
 
@@ -381,15 +398,6 @@ def ladder_cost(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     return fig
 
 
-def title(template: str, ds: xr.Dataset) -> str:
-    """A figure's title from its registry template and the values its file records:
-    the resolved parameters (``{L1}`` for ``param_L1``) and the other scalar global
-    attributes (``{theta0_deg}``)."""
-    context = {k: v for k, v in ds.attrs.items() if np.ndim(v) == 0}
-    context.update({k.removeprefix("param_"): v for k, v in context.items()})
-    return template.format(**context)
-
-
 #: The drawing functions by name (:attr:`tennis_stroke.replication.registry.Figure.draw`).
 DRAWERS: dict[str, Callable[..., plt.Figure]] = {
     fn.__name__: fn
@@ -413,17 +421,40 @@ DRAWERS: dict[str, Callable[..., plt.Figure]] = {
 }
 
 
+def paper_marks(ax, marks: Sequence[Mapping], axes: Sequence[str]) -> None:
+    """The paper's value of each mark (:func:`~tennis_stroke.replication.marks.mark_values`)
+    in red, labelled with its claim: a ring at a point, a dashed line across the axes."""
+    for mark in marks:
+        along_x = mark["axis"] == axes[0]
+        text = f"paper: {mark['claim']} = {mark['paper']:g}"
+        if mark["other_paper"] is None:
+            line = ax.axvline if along_x else ax.axhline
+            line(mark["paper"], color="r", ls="--", lw=1.2, label=text)
+            continue
+        x, y = (mark["paper"], mark["other_paper"])[:: 1 if along_x else -1]
+        text = f"paper: {mark['claim']} at ({x:g}, {y:g})"
+        ax.plot(x, y, "o", ms=10, mfc="none", mec="r", mew=2, label=text)
+    if marks:
+        ax.legend(fontsize=7, loc="best", framealpha=0.7)
+
+
 def draw(
-    figure: str | Figure, inputs: Sequence[str | Path], output: str | Path, note: str = ""
+    figure: str | Figure,
+    inputs: Sequence[str | Path],
+    output: str | Path,
+    note: str = "",
+    marks: Sequence[Mapping] = (),
 ) -> None:
     """Draw ``figure`` (a registry entry, or its name in :data:`FIGURES`) from its result
-    files into ``output`` (PNG); ``note`` (a scenario's changes) is a second title line."""
+    files into ``output`` (PNG); ``note`` (a scenario's changes) is a second title line;
+    ``marks``: the paper's values of its claims (drawn in red)."""
     figure = FIGURES[figure] if isinstance(figure, str) else figure
     datasets = [load_result(p) for p in inputs]
-    fig = DRAWERS[figure.draw](datasets, title(figure.title, datasets[0]), *figure.args)
+    fig = DRAWERS[figure.draw](datasets, figure.filled_title(datasets[0].attrs), *figure.args)
+    paper_marks(fig.axes[0], marks, figure.axes)
     if note:  # below the drawing's own title, wrapped to the figure's width
         ax = fig.axes[0]
         ax.set_title(ax.get_title() + "\n" + "\n".join(textwrap.wrap(note, 48)))
     fig.tight_layout()
-    fig.savefig(output, dpi=DPI)
+    fig.savefig(output, dpi=figure.dpi)
     plt.close(fig)

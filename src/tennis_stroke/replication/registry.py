@@ -13,9 +13,25 @@ Pure data: the Snakefile imports it without loading the plotting libraries.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
+import numpy as np
+
 from ..experiments.specs import RESULT_FILES
+
+
+@dataclass(frozen=True)
+class Mark:
+    """A claim drawn on a figure, at the paper's value and at ours.  Its value lies along
+    the coordinate ``axis``; the other coordinate is the argument ``at`` of the claim's
+    measure (``theta0`` of ``best_delta0``) or the value of the claim ``other`` (a
+    point), or neither (a line across the figure)."""
+
+    claim: str
+    axis: str
+    at: str | None = None
+    other: str | None = None
 
 
 @dataclass(frozen=True)
@@ -24,7 +40,9 @@ class Figure:
     ``inference``, ``ladder`` or ``study``), result files (keys of :data:`RESULT_FILES`),
     drawing function of :mod:`tennis_stroke.replication.figures` and its extra arguments,
     and its title: a template filled from the first file's attributes (``{L1}`` is
-    ``param_L1``), so a title never states a value the file does not hold."""
+    ``param_L1``), so a title never states a value the file does not hold.  ``marks``:
+    the claims drawn on it; ``axes``: the coordinates along its x and y axes (a map's or
+    a curve's, where marks and the page's view place values); ``dpi`` of the PNG."""
 
     name: str
     section: str
@@ -32,6 +50,24 @@ class Figure:
     draw: str
     title: str
     args: tuple = ()
+    marks: tuple[Mark, ...] = ()
+    axes: tuple[str, ...] = ()
+    dpi: int = 110
+
+    def __post_init__(self):
+        # a job's param gives the entry as plain data (dataclasses.asdict)
+        marks = tuple(m if isinstance(m, Mark) else Mark(**m) for m in self.marks)
+        object.__setattr__(self, "marks", marks)
+        object.__setattr__(self, "args", tuple(self.args))
+        object.__setattr__(self, "axes", tuple(self.axes))
+
+    def filled_title(self, attrs: Mapping) -> str:
+        """The title filled from a result file's attributes: the resolved parameters
+        (``{L1}`` for ``param_L1``) and the other scalar global attributes
+        (``{theta0_deg}``)."""
+        context = {k: v for k, v in attrs.items() if np.ndim(v) == 0}
+        context.update({k.removeprefix("param_"): v for k, v in context.items()})
+        return self.title.format(**context)
 
     @property
     def inputs(self) -> list[str]:
@@ -48,6 +84,8 @@ FIGURES: dict[str, Figure] = {
             ("fig2",),
             "angle_map",
             "Fig. 2: v_out over the initial angles: L1 = {L1:g} m",
+            axes=("theta0", "delta0"),
+            marks=(Mark("fig2_best_delta0_at_120", "delta0", at="theta0"),),
         ),
         Figure(
             "fig03_angle_map",
@@ -55,9 +93,25 @@ FIGURES: dict[str, Figure] = {
             ("fig3",),
             "angle_map",
             "Fig. 3: v_out over the initial angles: L1 = {L1:g} m",
+            axes=("theta0", "delta0"),
+            marks=(
+                Mark("fig3_best_delta0_at_120", "delta0", at="theta0"),
+                Mark("fig3_best_delta0_at_90", "delta0", at="theta0"),
+            ),
         ),
         Figure(
-            "fig04_omegas", "III", ("fig4",), "omegas", "Fig. 4: angular velocities of two strokes"
+            "fig04_omegas",
+            "III",
+            ("fig4",),
+            "omegas",
+            "Fig. 4: angular velocities of two strokes",
+            axes=("t", "omega"),
+            marks=(
+                Mark("fig4_omega2_a", "omega", other="fig4_t_a"),
+                Mark("fig4_omega2_b", "omega", other="fig4_t_b"),
+                Mark("fig4_omega1_a", "omega", other="fig4_t_a"),
+                Mark("fig4_omega1_b", "omega", other="fig4_t_b"),
+            ),
         ),
         Figure(
             "fig05_mass_length_vout",
@@ -66,6 +120,7 @@ FIGURES: dict[str, Figure] = {
             "mass_length",
             "Fig. 5: fastest v_out over (M2, L1)",
             ("v_out_best",),
+            axes=("M2", "L1"),
         ),
         Figure(
             "fig06_mass_length_theta_c",
@@ -74,6 +129,7 @@ FIGURES: dict[str, Figure] = {
             "mass_length",
             "Fig. 6: theta_c of the fastest stroke",
             ("theta_c",),
+            axes=("M2", "L1"),
         ),
         Figure(
             "fig07_torque_delay",
@@ -81,6 +137,8 @@ FIGURES: dict[str, Figure] = {
             ("fig7",),
             "delay_map",
             "Fig. 7: v_out over (C2, tau), theta0 = {theta0_deg:g}, delta0 = {delta0_deg:g}",
+            axes=("C2", "tau"),
+            marks=(Mark("fig7_threshold", "C2"),),
         ),
         Figure(
             "fig08_delay_delta0",
@@ -88,6 +146,8 @@ FIGURES: dict[str, Figure] = {
             ("fig8",),
             "delay_map",
             "Fig. 8: v_out over (delta0, tau), C2 = {C2:g} N m",
+            axes=("delta0", "tau"),
+            marks=(Mark("fig8_tau_opt", "tau", other="fig8_delta0_opt"),),
         ),
         Figure(
             "fig09_v_tau",
@@ -95,6 +155,8 @@ FIGURES: dict[str, Figure] = {
             ("fig9",),
             "v_tau",
             "Fig. 9: v_out over the delay tau: C2 = {C2:g} N m, L1 = {L1:g} m",
+            axes=("tau", "v_out"),
+            marks=(Mark("fig9_v_H", "v_out", other="fig9_tau_H"), Mark("fig9_v_L", "v_out")),
         ),
         Figure(
             "fig10_omegas_delay",
@@ -102,6 +164,7 @@ FIGURES: dict[str, Figure] = {
             ("delay",),
             "omegas",
             "Fig. 10: angular velocities for tau_L and tau_H",
+            axes=("t", "omega"),
         ),
         Figure(
             "fig11_strobe_tau_H",
@@ -125,6 +188,8 @@ FIGURES: dict[str, Figure] = {
             ("elbow_map",),
             "elbow_force",
             "Fig. 13: v_out over the elbow force direction and delay",
+            axes=("psi_F", "tau_F"),
+            marks=(Mark("fig13_best_direction", "psi_F"), Mark("fig14_worst_direction", "psi_F")),
         ),
         Figure(
             "fig14_elbow_paths",
@@ -139,6 +204,7 @@ FIGURES: dict[str, Figure] = {
             ("model_profiles", "elbow_force_profiles"),
             "score_profiles",
             "Identification: score along each unknown (the others refitted)",
+            dpi=160,
         ),
         Figure(
             "inference02_claims_readings",
@@ -153,6 +219,7 @@ FIGURES: dict[str, Figure] = {
             ("model_ladder",),
             "ladder_claims",
             "Model ladder: every claim under every rung",
+            dpi=160,
         ),
         Figure(
             "ladder02_cost_per_scene",
