@@ -32,6 +32,7 @@ from markdown_it import MarkdownIt
 from markupsafe import Markup
 
 from .._version import __version__
+from ..experiments.specs import PAPER_RESULTS
 from ..inference.claims import load_claims
 from ..inference.paper_config import PaperConfigError, departure_lines, read_record
 from ..io.config_files import load_yaml
@@ -41,6 +42,7 @@ from ..io.netcdf import git_commit, load_result
 from ..model.params import READINGS
 from .claims import ClaimsTableError, consistency_errors, read_table
 from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
+from .marks import mark_values
 from .registry import FIGURES
 from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING
 
@@ -64,7 +66,8 @@ UNIT_SHORT = {"degree": "deg", "1": ""}
 
 def _safe(html: str) -> Markup:
     """HTML this module wrote (pandas tables, which escape their cells; markdown-it-py
-    output with raw HTML disabled), inserted into the page as it is."""
+    output with raw HTML disabled; Bokeh's script and divs, whose data are JSON with
+    ``<`` escaped), inserted into the page as it is."""
     return Markup(html)
 
 
@@ -183,6 +186,7 @@ def _paper_sections(
             number = int(key[3:])
             blocks.append(
                 {
+                    "key": key,
                     "anchor": _anchor(name),
                     "heading": f"Fig. {number}",
                     "figure": figures[name],
@@ -195,6 +199,7 @@ def _paper_sections(
             key = _anchor(table).replace("-", "")
             blocks.append(
                 {
+                    "key": table,
                     "anchor": _anchor(f"{sid} {table}"),
                     "heading": table,
                     "figure": None,
@@ -509,6 +514,50 @@ def _figure_entry(path: str) -> dict:
     }
 
 
+#: The strokes animated on the page: the block (a figure's key or a table) and the file.
+STROKE_VIEWS = {"fig04": "fig4", "fig10": "delay", "Table I": "elbow"}
+
+
+def _interactive(
+    figures: Mapping[str, dict],
+    results: Sequence[str],
+    inference: Mapping[str, str],
+    claims: pd.DataFrame,
+    claims_yaml: str | None,
+) -> tuple[Markup, dict[str, Markup]]:
+    """The page's interactive views (:mod:`tennis_stroke.replication.views`): BokehJS and
+    the views' script for the page's head, and each view's div by name (a figure's name,
+    ``strokes-<block>``, ``multiverse``); nothing for a view whose file is not given."""
+    from . import views  # Bokeh: only the report job draws views
+
+    by_key = {k: p for k, rel in PAPER_RESULTS.items() for p in results if p.endswith(rel)}
+    declared = {c["id"]: c for c in load_claims(claims_yaml)} if claims_yaml else {}
+    ours = dict(zip(claims["id"], claims["reproduced_value"], strict=True))
+    made = {}
+    for name in figures:
+        figure = FIGURES[name]
+        if not all(k in by_key for k in figure.files):
+            continue
+        data = [load_result(by_key[k]) for k in figure.files]
+        marks = mark_values(figure, declared, ours) if declared else []
+        title = figure.filled_title(data[0].attrs)
+        view = views.figure_view(figure, data, title, marks)
+        if view is not None:
+            made[name] = view
+    for block, key in STROKE_VIEWS.items():
+        if key in by_key:
+            title = "Table I" if block == "Table I" else f"Fig. {int(block[3:])}"
+            made[f"strokes-{block}"] = views.stroke_view(
+                load_result(by_key[key]), f"strokes-{_anchor(block)}", title
+            )
+    if "robustness" in inference:
+        made["multiverse"] = views.multiverse_view(load_result(inference["robustness"]), claims)
+    if not made:
+        return Markup(""), {}
+    head, divs = views.page_views(made)
+    return _safe(head), {k: _safe(v) for k, v in divs.items()}
+
+
 def _checked_claims(claims_csv: str, claims_yaml: str | None) -> pd.DataFrame:
     """The claims table, checked (:func:`~tennis_stroke.replication.claims.read_table`)
     and, with the declared claims, consistent with them (a status edited by hand is
@@ -565,6 +614,11 @@ def build_report(
         "fit_ok": int((claims.status == "used_for_fit").sum()),
     }
     page_sections = _paper_sections(rows, paper_figures, statements, sections)
+    views_head, views = _interactive(paper_figures, results, inference, claims, statements_yaml)
+    for block in (b for s in page_sections for b in s["blocks"]):
+        name = block["figure"]["name"] if block.get("figure") else None
+        block["view"] = views.get(name) if name else None
+        block["strokes"] = views.get(f"strokes-{block.get('key')}")
     validation = _validation(claims, inference)
     robustness = _robustness(
         claims.assign(
@@ -617,6 +671,8 @@ def build_report(
         fits=_fit_tables(inference),
         robustness=robustness,
         validation=validation,
+        views_head=views_head,
+        multiverse=views.get("multiverse"),
         study_figures=[e for n, e in entries.items() if n.startswith("study")],
         study_tables=study_tables,
         ladder=ladder_summary(ladder_error, claims),

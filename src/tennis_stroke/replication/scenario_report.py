@@ -17,12 +17,14 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
+from markupsafe import Markup
 
 from .._version import __version__
 from ..inference.claims import load_claims
 from ..inference.paper_config import PaperConfigError, describe_departures, read_record
 from ..io.netcdf import git_commit, load_result
 from .claims import ClaimsTableError, read_table
+from .marks import mark_values
 from .registry import FIGURES
 from .report import ENVIRONMENT, UNIT_SHORT, ReportInputError, _figure_entry, _number
 
@@ -100,6 +102,27 @@ def claim_rows(scenario: pd.DataFrame, paper: pd.DataFrame | None) -> list[dict]
     return rows
 
 
+def _scenario_views(shown: Sequence[Mapping], declared: Sequence[Mapping], table: pd.DataFrame):
+    """The interactive view of each shown figure under the scenario (its files), its
+    marks at the paper's values and the scenario's: the page's head and divs by name."""
+    from . import views  # Bokeh: only the page jobs draw views
+
+    claims = {c["id"]: c for c in declared}
+    ours = dict(zip(table["id"], table["reproduced_value"].astype(float), strict=True))
+    made = {}
+    for f in shown:
+        figure = FIGURES[f["name"]]
+        if figure.draw not in views.MAP_VIEWS or len(f["files"]) != len(figure.files):
+            continue
+        data = [load_result(p) for p in f["files"]]
+        title = figure.filled_title(data[0].attrs)
+        made[f["name"]] = views.figure_view(figure, data, title, mark_values(figure, claims, ours))
+    if not made:
+        return Markup(""), {}
+    head, divs = views.page_views(made)
+    return Markup(head), {k: Markup(v) for k, v in divs.items()}
+
+
 def build_scenario_report(
     scenario: Mapping,
     figures: Sequence[Mapping],
@@ -130,12 +153,17 @@ def build_scenario_report(
             continue
         shown.append(
             {
+                "name": f["name"],
+                "files": [scenario for _, scenario in f.get("files", [])],
                 "title": title,
                 "changes": f["changes"],
                 "scenario": _figure_entry(f["scenario"]),
                 "paper": _figure_entry(f["paper"]) if Path(f["paper"]).is_file() else None,
             }
         )
+    views_head, views = _scenario_views(shown, declared, table)
+    for f in shown:
+        f["view"] = views.get(f["name"])
     rows = claim_rows(table, paper)
     html = ENVIRONMENT.get_template("scenario.html.j2").render(
         name=scenario["name"],
@@ -146,6 +174,7 @@ def build_scenario_report(
         rows=rows,
         moved=sum(r["moved"] for r in rows),
         paper_note=paper_note,
+        views_head=views_head,
         meta={
             "scenario": scenario["name"],
             "tennis_stroke version": __version__,

@@ -1,0 +1,270 @@
+"""The report's interactive views in a real browser (Debian's headless Chromium driven by
+Selenium through Debian's chromedriver; no browser download), the network off: what a
+reader hovers, picks and plays shows the result files' values."""
+
+import os
+import shutil
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from tennis_stroke.experiments.specs import RESULT_FILES
+from tennis_stroke.io.netcdf import load_result
+from tennis_stroke.replication import views
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+DRIVER = shutil.which("chromedriver")
+pytestmark = pytest.mark.skipif(
+    CHROMIUM is None or DRIVER is None,
+    reason="no chromium or chromedriver on PATH (.ci/run installs them)",
+)
+
+#: Every tooltip's text, through the shadow roots Bokeh draws them in.
+TOOLTIP_JS = """
+const out = [];
+const walk = (node) => {
+  if (node.shadowRoot) walk(node.shadowRoot);
+  for (const c of node.children || []) walk(c);
+  if (node.classList && node.classList.contains("bk-tooltip-content")) out.push(node.innerText);
+};
+walk(document.body);
+return out.filter((t) => t.trim());
+"""
+
+#: The screen position of the data point (x, y) of the plot named arguments[0].
+POSITION_JS = """
+const plot = Bokeh.documents[0].get_model_by_name(arguments[0]);
+const stack = [...Bokeh.index.roots];
+while (stack.length) {
+  const v = stack.pop();
+  if (v.model === plot) {
+    v.el.scrollIntoView({block: "center"});
+    const r = v.el.getBoundingClientRect();
+    return [r.left + v.frame.x_scale.compute(arguments[1]),
+            r.top + v.frame.y_scale.compute(arguments[2])];
+  }
+  stack.push(...(v.child_views ?? []));
+}
+return null;
+"""
+
+
+@pytest.fixture(scope="module")
+def browser():
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+
+    options = webdriver.ChromeOptions()
+    options.binary_location = CHROMIUM
+    for arg in (
+        "--headless=new",
+        "--no-sandbox",
+        "--disable-gpu",
+        "--window-size=1300,1000",
+        # the network off: any request would go to a dead proxy and log an error
+        "--proxy-server=127.0.0.1:9",
+        "--proxy-bypass-list=<-loopback>",
+    ):
+        options.add_argument(arg)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    driver = webdriver.Chrome(service=Service(DRIVER), options=options)
+    yield driver
+    driver.quit()
+
+
+def _open(driver, page: Path) -> float:
+    """Load ``page`` and wait until every view is drawn; the seconds it took."""
+    start = time.perf_counter()
+    driver.get(page.as_uri())
+    for _ in range(600):
+        if driver.execute_script(
+            "return typeof Bokeh !== 'undefined' && Bokeh.documents.length > 0"
+            " && Bokeh.documents[0].is_idle"
+        ):
+            return time.perf_counter() - start
+        time.sleep(0.05)
+    raise AssertionError("the views were not drawn within 30 s")
+
+
+def _after(driver, act: str, read: str, ready, *args):
+    """Run ``act`` (as a reader's change would), then ``read`` until ``ready`` of what it
+    returns (BokehJS runs CustomJS callbacks asynchronously)."""
+    driver.execute_script(act, *args)
+    for _ in range(100):
+        seen = driver.execute_script(read, *args)
+        if ready(seen):
+            return seen
+        time.sleep(0.05)
+    raise AssertionError(f"the page did not update: {seen}")
+
+
+def _hover(driver, plot: str, x: float, y: float) -> dict[str, str]:
+    """The tooltip of ``plot`` with the mouse on the data point (x, y), as label: value."""
+    from selenium.webdriver.common.actions.action_builder import ActionBuilder
+
+    sx, sy = driver.execute_script(POSITION_JS, plot, x, y)
+    action = ActionBuilder(driver)
+    action.pointer_action.move_to_location(int(round(sx)), int(round(sy)))
+    action.perform()
+    for _ in range(40):
+        texts = driver.execute_script(TOOLTIP_JS)
+        lines = [t for t in texts if "\t" in t or ":\n" in t]
+        if lines:
+            break
+        time.sleep(0.05)
+    pairs = [line.split(":", 1) for line in max(texts, key=len).split("\n") if ":" in line]
+    return {k.strip(): v.strip() for k, v in pairs}
+
+
+@pytest.fixture
+def page(tiny_run, tmp_path):
+    shutil.copy(tiny_run / "report/index.html", tmp_path / "index.html")
+    return tmp_path / "index.html"
+
+
+def test_the_page_draws_every_view_offline_without_a_console_error(browser, page):
+    seconds = _open(browser, page)
+    errors = [e for e in browser.get_log("browser") if e["level"] == "SEVERE"]
+    assert not errors, errors
+    names = browser.execute_script("return Bokeh.documents[0].roots().map((r) => r.name)")
+    assert {"fig02_angle_map", "fig09_v_tau", "fig13_elbow_force", "multiverse"} <= set(names)
+    assert {"strokes-fig04", "strokes-fig10", "strokes-table-i"} <= set(names)
+    print(f"drawn in {seconds:.2f} s")
+
+
+def _cells(ds, picks):
+    theta, delta = ds["theta0"].values, ds["delta0"].values
+    return [(float(theta[i]), float(delta[j])) for i, j in picks]
+
+
+def test_hovering_a_cell_of_fig2_shows_the_files_value(browser, page, tiny_run):
+    ds = load_result(tiny_run / RESULT_FILES["fig2"])
+    _open(browser, page)
+    n, m = ds.sizes["theta0"], ds.sizes["delta0"]
+    for theta0, delta0 in _cells(ds, [(1, 1), (n // 2, m // 2), (n - 2, m - 3)]):
+        shown = _hover(browser, "fig02_angle_map", theta0, delta0)
+        cell = ds.sel(theta0=theta0, delta0=delta0)
+        assert float(shown["theta0 (degree)"]) == pytest.approx(theta0)
+        assert float(shown["delta0 (degree)"]) == pytest.approx(delta0)
+        assert shown["v_out (km/h)"] == f"{float(cell['v_out']):.2f}"
+        assert shown["status"] == "ok"
+
+
+def test_the_hover_check_fails_on_a_view_whose_data_disagree(browser, tiny_run, tmp_path):
+    """The same check on a view drawn from a changed copy of the file: it sees the
+    change (so the test above can fail)."""
+    ds = load_result(tiny_run / RESULT_FILES["fig2"])
+    changed = ds.copy(deep=True)
+    changed["v_out"][2, 2] += 0.5
+    theta0, delta0 = _cells(ds, [(2, 2)])[0]
+    for data, equal in ((ds, True), (changed, False)):
+        view = views.map_view(data, "theta0", "delta0", "v_out", "t", "fig02_angle_map")
+        head, divs = views.page_views({"fig02_angle_map": view})
+        page = tmp_path / f"view-{equal}.html"
+        page.write_text(
+            f"<!DOCTYPE html><html><head>{head}</head><body>{divs['fig02_angle_map']}</body></html>"
+        )
+        _open(browser, page)
+        shown = _hover(browser, "fig02_angle_map", theta0, delta0)["v_out (km/h)"]
+        file_value = f"{float(ds['v_out'].sel(theta0=theta0, delta0=delta0)):.2f}"
+        assert (shown == file_value) is equal, (shown, file_value)
+
+
+def test_picking_a_reading_shows_its_claims(browser, page, tiny_run):
+    """A reading and a variant picked as a reader does: the claims table holds each
+    claim's value and verdict under them from results/robustness/claims.nc."""
+    ds = load_result(tiny_run / RESULT_FILES["robustness"])
+    _open(browser, page)
+    reading, variant = ds.sizes["reading"] - 1, ds.sizes["variant"] - 1
+    shown = _after(
+        browser,
+        """
+        const doc = Bokeh.documents[0];
+        doc.get_model_by_name("multiverse-variant").value = String(arguments[1]);
+        doc.get_model_by_name("multiverse-readings").selected.indices = [arguments[0]];
+        """,
+        """
+        const doc = Bokeh.documents[0];
+        const c = doc.get_model_by_name("multiverse-claims").data;
+        return {claim: [...c.claim], value: [...c.value], verdict: [...c.verdict],
+                title: doc.get_model_by_name("multiverse-title").text};
+        """,
+        lambda seen: seen["title"].startswith("Reading") and f"variant {variant}" in seen["title"],
+        reading,
+        variant,
+    )
+    expected = ds.isel(reading=reading, variant=variant)
+    assert shown["claim"] == [str(c) for c in ds["claim"].values]
+    np.testing.assert_array_equal(np.array(shown["value"], dtype=float), expected["value"])
+    assert shown["verdict"] == ["pass" if w else "fail" for w in expected["within"].values]
+    assert shown["title"].startswith(f"Reading {int(ds['reading'][reading])}, variant {variant}")
+
+
+def test_picking_a_claim_shows_the_readings_under_which_it_fails(browser, page, tiny_run):
+    ds = load_result(tiny_run / RESULT_FILES["robustness"])
+    _open(browser, page)
+    within = ds["within"].isel(variant=0).values
+    claim = int(np.argmax((within == 0).sum(axis=0)))  # the claim failing most often
+    marked = _after(
+        browser,
+        'Bokeh.documents[0].get_model_by_name("multiverse-claims").selected.indices'
+        " = [arguments[0]];",
+        'return [...Bokeh.documents[0].get_model_by_name("multiverse-readings")'
+        ".data.selected_claim];",
+        lambda seen: all(seen),
+        claim,
+    )
+    assert marked == ["passes" if w else "fails" for w in within[:, claim]]
+
+
+def test_the_animation_frame_at_a_time_shows_the_files_positions(browser, page, tiny_run):
+    ds = load_result(tiny_run / RESULT_FILES["delay"])
+    _open(browser, page)
+    k = ds.sizes["t"] // 2
+    frame = _after(
+        browser,
+        'Bokeh.documents[0].get_model_by_name("strokes-fig10-time").value = arguments[0];',
+        """
+        const doc = Bokeh.documents[0];
+        const now = doc.get_model_by_name("strokes-fig10-now").data;
+        return {xs: now.xs.map((a) => [...a]), ys: now.ys.map((a) => [...a]), t: [...now.t],
+                readout: doc.get_model_by_name("strokes-fig10-readout").text};
+        """,
+        lambda seen: seen["t"] and abs(seen["t"][0] - float(ds["t"][k])) < 1e-9,
+        float(ds["t"][k]),
+    )
+    for i in range(ds.sizes["stroke"]):
+        for axis in ("x", "y"):
+            expected = [float(ds[f"{axis}_{p}"][i, k]) for p in ("elbow", "wrist", "racket")]
+            assert frame[f"{axis}s"][i] == pytest.approx(expected, abs=1e-6)
+        energy = f"{float(ds['kinetic_energy'][i, k]):.2f} J"
+        assert f"{ds['label'].values[i]}: {energy}" in frame["readout"]
+    assert frame["t"][0] == pytest.approx(float(ds["t"][k]))
+
+
+def test_play_advances_the_time(browser, page):
+    _open(browser, page)
+    browser.execute_script(
+        "Bokeh.documents[0].get_model_by_name('strokes-fig04-play')"
+        ".trigger_event(new (Bokeh.require('core/bokeh_events').ButtonClick)())"
+    )
+    time.sleep(0.5)
+    value = browser.execute_script(
+        "return Bokeh.documents[0].get_model_by_name('strokes-fig04-time').value"
+    )
+    assert value > 0
+
+
+def test_a_screenshot_of_a_hovered_map_for_a_person(browser, page, tiny_run, tmp_path):
+    """Not a check: a picture of what a reader sees (REPORT_SCREENSHOTS keeps it)."""
+    ds = load_result(tiny_run / RESULT_FILES["fig2"])
+    _open(browser, page)
+    theta0, delta0 = _cells(ds, [(ds.sizes["theta0"] // 2, ds.sizes["delta0"] // 2)])[0]
+    _hover(browser, "fig02_angle_map", theta0, delta0)
+    shots = Path(os.environ.get("REPORT_SCREENSHOTS", tmp_path))
+    shots.mkdir(parents=True, exist_ok=True)
+    shot = shots / "report-hover-fig2.png"
+    assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 0
+    print(f"screenshot: {shot}")

@@ -1,0 +1,148 @@
+"""The report's interactive views hold the result files' values: the maps' cells, the
+strokes' positions, every claim under every reading; the marks name declared claims."""
+
+import numpy as np
+import pandas as pd
+import pytest
+import xarray as xr
+from bokeh.models import ColumnDataSource, CustomJS
+from conftest import ROOT
+
+from tennis_stroke.experiments.specs import RESULT_FILES
+from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.inference.measures import valid_v_out
+from tennis_stroke.io.netcdf import load_result
+from tennis_stroke.replication import views
+from tennis_stroke.replication.marks import mark_values
+from tennis_stroke.replication.registry import FIGURES, Figure, Mark
+
+CLAIMS = {c["id"]: c for c in load_claims(ROOT / "config/claims.yaml")}
+
+
+def _source(model, name: str) -> ColumnDataSource:
+    return next(m for m in model.select({"type": ColumnDataSource}) if m.name == name)
+
+
+def test_every_mark_names_a_declared_claim_and_its_coordinate():
+    """Each mark's values are the paper's (config/claims.yaml) and ours; the other
+    coordinate is the measure's argument or the other claim's value."""
+    ours = {c: 1000.0 + i for i, c in enumerate(CLAIMS)}
+    marked = 0
+    for figure in FIGURES.values():
+        for mark, entry in zip(figure.marks, mark_values(figure, CLAIMS, ours), strict=True):
+            marked += 1
+            assert entry["paper"] == CLAIMS[mark.claim]["paper_value"]
+            assert entry["ours"] == ours[mark.claim]
+            if mark.at:
+                assert (
+                    entry["other_paper"]
+                    == entry["other_ours"]
+                    == CLAIMS[mark.claim]["measure"][mark.at]
+                )
+            elif mark.other:
+                assert entry["other_paper"] == CLAIMS[mark.other]["paper_value"]
+                assert entry["other_ours"] == ours[mark.other]
+            else:
+                assert entry["other_paper"] is None
+    assert marked >= 10
+
+
+@pytest.mark.parametrize(
+    ("mark", "named"),
+    [(Mark("no_such_claim", "delta0"), "no_such_claim"), (Mark("fig9_v_H", "v", at="x"), "x")],
+)
+def test_a_mark_of_an_undeclared_claim_or_argument_is_named(mark, named):
+    figure = Figure("fig99_x", "III", ("fig2",), "angle_map", "t", marks=(mark,))
+    with pytest.raises(KeyError, match=named):
+        mark_values(figure, CLAIMS)
+
+
+@pytest.mark.parametrize(("step", "decimals"), [(0.25, 2), (0.5, 1), (2.0, 0), (0.0025, 4)])
+def test_a_coordinate_is_written_with_the_decimals_its_step_needs(step, decimals):
+    assert views._decimals(step) == decimals
+
+
+def test_a_map_view_holds_every_cell_of_the_file(tiny_run):
+    """float32 of the file's v_out (failed strokes NaN), its status codes, cell for cell;
+    a changed value is seen."""
+    ds = load_result(tiny_run / RESULT_FILES["fig2"])
+    ds["status"][0, 0] = 5  # a failed stroke: no value, its status
+    p = views.map_view(ds, "theta0", "delta0", "v_out", "t", "fig02_angle_map")
+    data = _source(p, "fig02_angle_map-map").data
+    expected = valid_v_out(ds).transpose("delta0", "theta0").values.astype(np.float32)
+    np.testing.assert_array_equal(data["image"][0], expected)
+    assert np.isnan(data["image"][0][0, 0])
+    np.testing.assert_array_equal(data["status"][0], ds["status"].values.T)
+    changed = ds.copy(deep=True)
+    changed["v_out"][1, 1] += 0.01
+    other = views.map_view(changed, "theta0", "delta0", "v_out", "t", "x")
+    assert not np.array_equal(_source(other, "x-map").data["image"][0], expected, equal_nan=True)
+
+
+def test_a_map_over_an_uneven_axis_is_refused(tiny_run):
+    ds = load_result(tiny_run / RESULT_FILES["fig2"])
+    theta = ds["theta0"].values.copy()
+    theta[-1] += 0.1 * (theta[1] - theta[0])
+    with pytest.raises(ValueError, match="theta0 is not uniform"):
+        views.map_view(ds.assign_coords(theta0=theta), "theta0", "delta0", "v_out", "t", "x")
+
+
+def test_the_stroke_view_holds_the_files_positions(tiny_run):
+    ds = load_result(tiny_run / RESULT_FILES["fig4"])
+    layout = views.stroke_view(ds, "s", "Fig. 4")
+    curves = _source(layout, "s-curves").data
+    now = _source(layout, "s-now").data
+    for i in range(ds.sizes["stroke"]):
+        for var in ("x_elbow", "y_wrist", "x_racket", "omega2", "kinetic_energy"):
+            np.testing.assert_array_equal(curves[f"{var}_{i}"], ds[var].values[i].astype("f4"))
+        first = [float(ds[v].values[i, 0]) for v in ("x_elbow", "x_wrist", "x_racket")]
+        assert now["xs"][i] == pytest.approx(first, abs=1e-6)
+
+
+def test_the_multiverse_view_holds_every_claim_under_every_reading(tiny_run):
+    ds = load_result(tiny_run / RESULT_FILES["robustness"])
+    claims = pd.read_csv(tiny_run / "results/claims.csv", keep_default_na=False)
+    layout = views.multiverse_view(ds, claims)
+    (pick,) = {m for m in layout.select({"type": CustomJS}) if "data" in m.args}
+    data = pick.args["data"]
+    values = _source(layout, "multiverse-values").data
+    order = ds.transpose("reading", "variant", "claim")
+    np.testing.assert_array_equal(values["value"], order["value"].values.ravel())
+    np.testing.assert_array_equal(values["within"], order["within"].values.ravel())
+    readings = _source(layout, "multiverse-readings").data
+    held = np.array([f == "" for f in claims.set_index("id").loc[data["claim"], "fit_set"]])
+    within = order["within"].values[:, 0, :].astype(bool)
+    np.testing.assert_array_equal(readings["passed"], (within & held).sum(axis=1))
+    default = _source(layout, "multiverse-claims").data["default"]
+    np.testing.assert_array_equal(
+        default, claims.set_index("id").loc[data["claim"], "reproduced_value"].astype(float)
+    )
+
+
+def test_every_figure_with_a_view_gets_one(tiny_run):
+    """The maps of Figs. 2-3, 5-9 and 13 (the issue's list) have views."""
+    with_views = [n for n, f in FIGURES.items() if f.draw in views.MAP_VIEWS]
+    assert [n[:5] for n in with_views] == [
+        "fig02",
+        "fig03",
+        "fig05",
+        "fig06",
+        "fig07",
+        "fig08",
+        "fig09",
+        "fig13",
+    ]
+    for name in with_views:
+        figure = FIGURES[name]
+        data = [xr.open_dataset(tiny_run / RESULT_FILES[k]) for k in figure.files]
+        view = views.figure_view(figure, data, "t", mark_values(figure, CLAIMS))
+        assert _source(view, f"{name}-map").data
+
+
+def test_text_in_a_view_is_escaped(tiny_run):
+    """A stroke's label from a file, shown in the view, never ends the page's script."""
+    ds = load_result(tiny_run / RESULT_FILES["fig4"])
+    hostile = "</script><script>alert(1)</script>"
+    ds = ds.assign_coords(label=("stroke", [hostile] * ds.sizes["stroke"]))
+    head, divs = views.page_views({"s": views.stroke_view(ds, "s", "t")})
+    assert hostile not in head and "alert(1)" in head
