@@ -51,6 +51,23 @@ return null;
 """
 
 
+#: The rendered rows of the data table named arguments[0]: each row's cell texts.
+ROWS_JS = """
+const table = Bokeh.documents[0].get_model_by_name(arguments[0]);
+const stack = [...Bokeh.index.roots];
+while (stack.length) {
+  const v = stack.pop();
+  if (v.model === table) {
+    const root = v.shadow_el ?? v.el.shadowRoot ?? v.el;
+    return [...root.querySelectorAll(".slick-row")].map(
+      (r) => [...r.querySelectorAll(".slick-cell")].map((c) => c.innerText.trim()));
+  }
+  stack.push(...(v.child_views ?? []));
+}
+return null;
+"""
+
+
 @pytest.fixture(scope="module")
 def browser():
     from selenium import webdriver
@@ -200,6 +217,11 @@ def test_picking_a_reading_shows_its_claims(browser, page, tiny_run):
     np.testing.assert_array_equal(np.array(shown["value"], dtype=float), expected["value"])
     assert shown["verdict"] == ["pass" if w else "fail" for w in expected["within"].values]
     assert shown["title"].startswith(f"Reading {int(ds['reading'][reading])}, variant {variant}")
+    # and the rows a reader sees: the table redrawn, each visible claim's verdict
+    rows = browser.execute_script(ROWS_JS, "multiverse-claim-table")
+    verdicts = dict(zip(shown["claim"], shown["verdict"], strict=True))
+    assert len(rows) >= 5
+    assert all(r[5] == verdicts[r[0]] for r in rows), rows[:3]
 
 
 def test_picking_a_claim_shows_the_readings_under_which_it_fails(browser, page, tiny_run):

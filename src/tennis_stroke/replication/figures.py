@@ -438,6 +438,25 @@ def paper_marks(ax, marks: Sequence[Mapping], axes: Sequence[str]) -> None:
         ax.legend(fontsize=7, loc="best", framealpha=0.7)
 
 
+def drawn(
+    figure: Figure,
+    inputs: Sequence[str | Path],
+    note: str = "",
+    marks: Sequence[Mapping] = (),
+) -> plt.Figure:
+    """``figure`` (a registry entry) drawn from its result files: the drawing function's
+    figure, the paper's ``marks`` in red, ``note`` (a scenario's changes) as a second
+    title line."""
+    datasets = [load_result(p) for p in inputs]
+    fig = DRAWERS[figure.draw](datasets, figure.filled_title(datasets[0].attrs), *figure.args)
+    paper_marks(fig.axes[0], marks, figure.axes)
+    if note:  # below the drawing's own title, wrapped to the figure's width
+        ax = fig.axes[0]
+        ax.set_title(ax.get_title() + "\n" + "\n".join(textwrap.wrap(note, 48)))
+    fig.tight_layout()
+    return fig
+
+
 def draw(
     figure: str | Figure,
     inputs: Sequence[str | Path],
@@ -446,15 +465,8 @@ def draw(
     marks: Sequence[Mapping] = (),
 ) -> None:
     """Draw ``figure`` (a registry entry, or its name in :data:`FIGURES`) from its result
-    files into ``output`` (PNG); ``note`` (a scenario's changes) is a second title line;
-    ``marks``: the paper's values of its claims (drawn in red)."""
+    files into ``output`` (PNG, at the entry's dpi): :func:`drawn`."""
     figure = FIGURES[figure] if isinstance(figure, str) else figure
-    datasets = [load_result(p) for p in inputs]
-    fig = DRAWERS[figure.draw](datasets, figure.filled_title(datasets[0].attrs), *figure.args)
-    paper_marks(fig.axes[0], marks, figure.axes)
-    if note:  # below the drawing's own title, wrapped to the figure's width
-        ax = fig.axes[0]
-        ax.set_title(ax.get_title() + "\n" + "\n".join(textwrap.wrap(note, 48)))
-    fig.tight_layout()
+    fig = drawn(figure, inputs, note, marks)
     fig.savefig(output, dpi=figure.dpi)
     plt.close(fig)

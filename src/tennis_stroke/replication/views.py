@@ -547,6 +547,7 @@ for (let c = 0; c < nc; c++) {
 const d = {...claims.data}
 d.value = value; d.verdict = verdict
 claims.data = d
+claim_table.view.change.emit()  // a DataTable redraws its rows on its view's change
 // readings: claims passed under the variant, and the picked claim's failures
 const sel = claims.selected.indices.length ? claims.selected.indices[0] : null
 const nr = readings.data.reading.length
@@ -562,6 +563,7 @@ for (let i = 0; i < nr; i++) {
 const rd = {...readings.data}
 rd.passed = passed; rd.selected_claim = fails
 readings.data = rd
+reading_table.view.change.emit()
 const lo = Math.min(...passed), hi = Math.max(...passed)
 const ld = {...lines.data}
 ld.color = ld.row.map((row, i) => {
@@ -695,6 +697,8 @@ def multiverse_view(ds: xr.Dataset, claims: pd.DataFrame, name: str = "multivers
         args={
             "readings": readings,
             "claims": claim_source,
+            "reading_table": reading_table,
+            "claim_table": claim_table,
             "variant": variant,
             "lines": lines,
             "title": heading,
