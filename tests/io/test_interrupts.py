@@ -53,6 +53,32 @@ def test_a_signal_during_a_write_waits_for_it_and_keeps_the_old_file(
     assert sorted(p.name for p in tmp_path.iterdir()) == ["map.nc"]
 
 
+@pytest.mark.parametrize("made", [1, 2], ids=["the writability probe", "the write's file"])
+def test_a_signal_as_a_temporary_file_is_made_leaves_none(tmp_path, monkeypatch, made):
+    """SIGTERM right after a temporary file beside the output is made (the probe of
+    check_writable, then the write's own): nothing is left, the old file is kept.  Before,
+    the signal came before the deferral began and the file stayed (a workflow run's
+    SIGTERM, CI 2026-12-03)."""
+    path = tmp_path / "map.nc"
+    path.write_bytes(b"the earlier result")
+    real, calls = netcdf.temporary_beside, []
+
+    def signalled(target):
+        tmp = real(target)
+        calls.append(tmp)
+        if len(calls) == made:
+            os.kill(os.getpid(), signal.SIGTERM)
+            time.sleep(0.01)  # delivered here, were it not deferred
+        return tmp
+
+    monkeypatch.setattr(netcdf, "temporary_beside", signalled)
+    with terminate_raises(), pytest.raises(Terminated):
+        netcdf.write_netcdf(_dataset(), path)
+    assert len(calls) == made
+    assert path.read_bytes() == b"the earlier result"
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["map.nc"]
+
+
 def test_sigterm_raises_terminated_after_the_deferred_block():
     with terminate_raises(), pytest.raises(Terminated):
         with deferred_signals() as received:

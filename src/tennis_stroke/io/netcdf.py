@@ -230,7 +230,8 @@ def check_writable(path: str | os.PathLike) -> Path:
     if not parent.is_dir():
         raise OutputError(f"output directory {str(parent)!r} does not exist")
     try:
-        temporary_beside(path).unlink()
+        with deferred_signals():  # a signal between making and removing it leaves nothing
+            temporary_beside(path).unlink()
     except OSError as exc:
         raise OutputError(f"cannot write to {str(parent)!r}: {exc.strerror}") from None
     return path
@@ -289,11 +290,13 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     process); then the temporary file is removed, ``path`` keeps what it held, and the
     signal takes effect."""
     path = check_writable(path)
-    try:
-        tmp = temporary_beside(path)
-    except OSError as exc:
-        raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
+    # the temporary file is made with the signals already deferred: a signal between its
+    # making and the deferral left it behind (a SIGTERM to a workflow run, seen in CI)
     with deferred_signals() as received:
+        try:
+            tmp = temporary_beside(path)
+        except OSError as exc:
+            raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
         try:
             _test_pause()
             cf_encoded(ds).to_netcdf(tmp, engine="netcdf4")
