@@ -15,11 +15,14 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import shutil
 import statistics
 import sys
 import time
 from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests"))
+
+from chromium import CHROMIUM, DRIVER, chromium  # noqa: E402
 
 IDLE_JS = """
 const done = arguments[arguments.length - 1];
@@ -36,26 +39,10 @@ def main(argv: list[str] | None = None) -> int:
     parser.add_argument("--runs", type=int, default=5)
     args = parser.parse_args(argv)
     page = Path(args.page).resolve()
-    chromium, driver_path = shutil.which("chromium"), shutil.which("chromedriver")
-    if not page.is_file() or chromium is None or driver_path is None:
+    if not page.is_file() or CHROMIUM is None or DRIVER is None:
         print(f"bench_page: needs {page} (make report), chromium and chromedriver", file=sys.stderr)
         return 2
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    options = webdriver.ChromeOptions()
-    options.binary_location = chromium
-    for arg in (
-        "--headless=new",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--window-size=1280,1000",
-        "--proxy-server=127.0.0.1:9",
-        "--proxy-bypass-list=<-loopback>",
-    ):
-        options.add_argument(arg)
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver = webdriver.Chrome(service=Service(driver_path), options=options)
+    driver = chromium(1280, 1000)
     driver.set_script_timeout(60)
     times, errors = [], 0
     try:

@@ -9,84 +9,18 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from chromium import CHROMIUM, DRIVER, MISSING, ROWS_JS, chromium, hover_lines, wait_idle
 
 from tennis_stroke.experiments.specs import RESULT_FILES
 from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.replication import views
 
-CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
-DRIVER = shutil.which("chromedriver")
-pytestmark = pytest.mark.skipif(
-    CHROMIUM is None or DRIVER is None,
-    reason="no chromium or chromedriver on PATH (.ci/run installs them)",
-)
-
-#: Every tooltip's text, through the shadow roots Bokeh draws them in.
-TOOLTIP_JS = """
-const out = [];
-const walk = (node) => {
-  if (node.shadowRoot) walk(node.shadowRoot);
-  for (const c of node.children || []) walk(c);
-  if (node.classList && node.classList.contains("bk-tooltip-content")) out.push(node.innerText);
-};
-walk(document.body);
-return out.filter((t) => t.trim());
-"""
-
-#: The screen position of the data point (x, y) of the plot named arguments[0].
-POSITION_JS = """
-const plot = Bokeh.documents[0].get_model_by_name(arguments[0]);
-const stack = [...Bokeh.index.roots];
-while (stack.length) {
-  const v = stack.pop();
-  if (v.model === plot) {
-    v.el.scrollIntoView({block: "center"});
-    const r = v.el.getBoundingClientRect();
-    return [r.left + v.frame.x_scale.compute(arguments[1]),
-            r.top + v.frame.y_scale.compute(arguments[2])];
-  }
-  stack.push(...(v.child_views ?? []));
-}
-return null;
-"""
-
-
-#: The rendered rows of the data table named arguments[0]: each row's cell texts.
-ROWS_JS = """
-const table = Bokeh.documents[0].get_model_by_name(arguments[0]);
-const stack = [...Bokeh.index.roots];
-while (stack.length) {
-  const v = stack.pop();
-  if (v.model === table) {
-    const root = v.shadow_el ?? v.el.shadowRoot ?? v.el;
-    return [...root.querySelectorAll(".slick-row")].map(
-      (r) => [...r.querySelectorAll(".slick-cell")].map((c) => c.innerText.trim()));
-  }
-  stack.push(...(v.child_views ?? []));
-}
-return null;
-"""
+pytestmark = pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason=MISSING)
 
 
 @pytest.fixture(scope="module")
 def browser():
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-
-    options = webdriver.ChromeOptions()
-    options.binary_location = CHROMIUM
-    for arg in (
-        "--headless=new",
-        "--no-sandbox",
-        "--disable-gpu",
-        "--window-size=1300,1000",
-        # the network off: any request would go to a dead proxy and log an error
-        "--proxy-server=127.0.0.1:9",
-        "--proxy-bypass-list=<-loopback>",
-    ):
-        options.add_argument(arg)
-    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    driver = webdriver.Chrome(service=Service(DRIVER), options=options)
+    driver = chromium()
     yield driver
     driver.quit()
 
@@ -95,14 +29,8 @@ def _open(driver, page: Path) -> float:
     """Load ``page`` and wait until every view is drawn; the seconds it took."""
     start = time.perf_counter()
     driver.get(page.as_uri())
-    for _ in range(600):
-        if driver.execute_script(
-            "return typeof Bokeh !== 'undefined' && Bokeh.documents.length > 0"
-            " && Bokeh.documents[0].is_idle"
-        ):
-            return time.perf_counter() - start
-        time.sleep(0.05)
-    raise AssertionError("the views were not drawn within 30 s")
+    wait_idle(driver)
+    return time.perf_counter() - start
 
 
 def _after(driver, act: str, read: str, ready, *args):
@@ -115,24 +43,6 @@ def _after(driver, act: str, read: str, ready, *args):
             return seen
         time.sleep(0.05)
     raise AssertionError(f"the page did not update: {seen}")
-
-
-def _hover(driver, plot: str, x: float, y: float) -> dict[str, str]:
-    """The tooltip of ``plot`` with the mouse on the data point (x, y), as label: value."""
-    from selenium.webdriver.common.actions.action_builder import ActionBuilder
-
-    sx, sy = driver.execute_script(POSITION_JS, plot, x, y)
-    action = ActionBuilder(driver)
-    action.pointer_action.move_to_location(int(round(sx)), int(round(sy)))
-    action.perform()
-    for _ in range(40):
-        texts = driver.execute_script(TOOLTIP_JS)
-        lines = [t for t in texts if "\t" in t or ":\n" in t]
-        if lines:
-            break
-        time.sleep(0.05)
-    pairs = [line.split(":", 1) for line in max(texts, key=len).split("\n") if ":" in line]
-    return {k.strip(): v.strip() for k, v in pairs}
 
 
 @pytest.fixture
@@ -161,7 +71,7 @@ def test_hovering_a_cell_of_fig2_shows_the_files_value(browser, page, tiny_run):
     _open(browser, page)
     n, m = ds.sizes["theta0"], ds.sizes["delta0"]
     for theta0, delta0 in _cells(ds, [(1, 1), (n // 2, m // 2), (n - 2, m - 3)]):
-        shown = _hover(browser, "fig02_angle_map", theta0, delta0)
+        shown = hover_lines(browser, "fig02_angle_map", theta0, delta0)
         cell = ds.sel(theta0=theta0, delta0=delta0)
         assert float(shown["theta0 (degree)"]) == pytest.approx(theta0)
         assert float(shown["delta0 (degree)"]) == pytest.approx(delta0)
@@ -184,7 +94,7 @@ def test_the_hover_check_fails_on_a_view_whose_data_disagree(browser, tiny_run, 
             f"<!DOCTYPE html><html><head>{head}</head><body>{divs['fig02_angle_map']}</body></html>"
         )
         _open(browser, page)
-        shown = _hover(browser, "fig02_angle_map", theta0, delta0)["v_out (km/h)"]
+        shown = hover_lines(browser, "fig02_angle_map", theta0, delta0)["v_out (km/h)"]
         file_value = f"{float(ds['v_out'].sel(theta0=theta0, delta0=delta0)):.2f}"
         assert (shown == file_value) is equal, (shown, file_value)
 
@@ -284,7 +194,7 @@ def test_a_screenshot_of_a_hovered_map_for_a_person(browser, page, tiny_run, tmp
     ds = load_result(tiny_run / RESULT_FILES["fig2"])
     _open(browser, page)
     theta0, delta0 = _cells(ds, [(ds.sizes["theta0"] // 2, ds.sizes["delta0"] // 2)])[0]
-    _hover(browser, "fig02_angle_map", theta0, delta0)
+    hover_lines(browser, "fig02_angle_map", theta0, delta0)
     shots = Path(os.environ.get("REPORT_SCREENSHOTS", tmp_path))
     shots.mkdir(parents=True, exist_ok=True)
     shot = shots / "report-hover-fig2.png"
