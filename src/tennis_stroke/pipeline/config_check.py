@@ -14,6 +14,8 @@ exits before any job starts.
 
 from __future__ import annotations
 
+import copy
+import functools
 import inspect
 import math
 import os
@@ -340,8 +342,16 @@ def canonical(node, schema: Mapping, root: Mapping | None = None, path: tuple = 
 
 
 def load_schema(schema_path: str | Path) -> dict:
-    """The config schema (``workflow/schemas/config.schema.yaml``) as data."""
-    return yaml.safe_load(Path(schema_path).read_text())
+    """The config schema (``workflow/schemas/config.schema.yaml``) as data (read once per
+    process while the file is unchanged: the live explorer checks every setting)."""
+    path = Path(schema_path).resolve()
+    stat = path.stat()
+    return copy.deepcopy(_parsed_schema(path, stat.st_mtime_ns, stat.st_size))
+
+
+@functools.lru_cache(maxsize=4)
+def _parsed_schema(path: Path, mtime_ns: int, size: int) -> dict:
+    return yaml.safe_load(path.read_text())
 
 
 def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:

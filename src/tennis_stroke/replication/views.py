@@ -28,6 +28,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import pandas as pd
 import xarray as xr
+from bokeh.core.properties import value as fixed_text
 from bokeh.embed import components
 from bokeh.layouts import column, row
 from bokeh.models import (
@@ -96,32 +97,59 @@ def _status_names(ds: xr.Dataset) -> dict[int, str]:
 
 
 #: Hover of a map cell: the coordinate of column i / row j, the value, the status name.
+#: The grid (first value, step, decimals) is read from the image's source, so a view
+#: whose source is given a finer grid (the live explorer) hovers it right.
 _CELL_JS = """
-const ij = special_vars.image_index
-if (format === "x") return (x0 + ij.i * dx).toFixed(xd)
-if (format === "y") return (y0 + ij.j * dy).toFixed(yd)
+const ij = special_vars.image_index, g = src.data
+if (format === "x") return (g.x0[0] + ij.i * g.dx[0]).toFixed(g.xd[0])
+if (format === "y") return (g.y0[0] + ij.j * g.dy[0]).toFixed(g.yd[0])
 if (format === "status") return (names[value] ?? String(value))
 return Number.isFinite(value) ? value.toFixed(2) : "none (failed stroke)"
 """
 
 
-def _cell_hover(image, tooltips, x: tuple[float, float], y: tuple[float, float], names):
-    """The hover of a map's image: each cell's coordinates from its column and row (``x``,
-    ``y``: the first value and the step), written with the decimals the step needs."""
+def _cell_hover(image, source: ColumnDataSource, tooltips, names):
+    """The hover of a map's image: each cell's coordinates from its column and row and
+    the grid of ``source`` (:func:`map_data`), written with the decimals the step needs."""
     cell = CustomJSHover(
-        args={
-            "x0": float(x[0]),
-            "dx": x[1],
-            "xd": _decimals(x[1]),
-            "y0": float(y[0]),
-            "dy": y[1],
-            "yd": _decimals(y[1]),
-            "names": {str(k): v for k, v in names.items()},
-        },
+        args={"src": source, "names": {str(k): v for k, v in names.items()}},
         code=_CELL_JS,
     )
     formatters = {"@image": cell, "@status": cell}
     return HoverTool(renderers=[image], tooltips=tooltips, formatters=formatters)
+
+
+def map_data(ds: xr.Dataset, x: str, y: str, var: str, extra: Sequence[str] = ()) -> dict:
+    """The image source of a map of ``var`` over ``(x, y)``: the values (float32, failed
+    strokes NaN), the status codes (int8), the variables ``extra``, and the grid (first
+    value, step, decimals of each axis; the image's corner and size)."""
+    da = valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
+    xs, ys = ds[x].values.astype(float), ds[y].values.astype(float)
+    dx, dy = _step(xs, x), _step(ys, y)
+    data = {"image": [da.transpose(y, x).values.astype(np.float32)]}
+    if "status" in ds:
+        data["status"] = [ds["status"].transpose(y, x).values.astype(np.int8)]
+    for key in extra:
+        data[key] = [ds[key].transpose(y, x).values.astype(np.float32)]
+    grid = {
+        "x0": xs[0],
+        "dx": dx,
+        "xd": _decimals(dx),
+        "y0": ys[0],
+        "dy": dy,
+        "yd": _decimals(dy),
+        "left": xs[0] - dx / 2,
+        "bottom": ys[0] - dy / 2,
+        "dw": dx * len(xs),
+        "dh": dy * len(ys),
+    }
+    return data | {k: [v] for k, v in grid.items()}
+
+
+def value_range(image: np.ndarray) -> tuple[float, float]:
+    """The colour range of a map: its finite values' (0 to 1 without any)."""
+    finite = image[np.isfinite(image)]
+    return (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
 
 
 def map_view(
@@ -136,26 +164,22 @@ def map_view(
     extra: Sequence[str] = (),
 ):
     """A map of ``var`` over ``(x, y)`` (failed strokes blank), ``line`` (a variable over
-    ``x``, the best ``y`` per column) drawn on top, and the figure's ``marks``
-    (:func:`~tennis_stroke.replication.marks.mark_values`); hover also reads the
-    variables ``extra``.  The image's source is named ``<name>-map``."""
-    da = valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
-    xs, ys = ds[x].values.astype(float), ds[y].values.astype(float)
-    dx, dy = _step(xs, x), _step(ys, y)
-    data = {"image": [da.transpose(y, x).values.astype(np.float32)]}
+    ``x``, the best ``y`` per column, source ``<name>-line``) drawn on top, and the
+    figure's ``marks`` (:func:`~tennis_stroke.replication.marks.mark_values`); hover also
+    reads the variables ``extra``.  The image's source (:func:`map_data`) is named
+    ``<name>-map``, its colour mapper ``<name>-colors``."""
+    data = map_data(ds, x, y, var, extra)
     tooltips = [(_short(ds[x]), "@image{x}"), (_short(ds[y]), "@image{y}")]
     tooltips.append((_short(ds[var]), "@image{value}"))
     if "status" in ds:
-        data["status"] = [ds["status"].transpose(y, x).values.astype(np.int8)]
         tooltips.append(("status", "@status{status}"))
-    for key in extra:
-        data[key] = [ds[key].transpose(y, x).values.astype(np.float32)]
-        tooltips.append((_short(ds[key]), f"@{key}{{0.00}}"))
+    tooltips += [(_short(ds[key]), f"@{key}{{0.00}}") for key in extra]
     source = ColumnDataSource(data, name=f"{name}-map")
+    left, bottom = data["left"][0], data["bottom"][0]
     p = bokeh_figure(
         title=title,
-        x_range=(xs[0] - dx / 2, xs[-1] + dx / 2),
-        y_range=(ys[0] - dy / 2, ys[-1] + dy / 2),
+        x_range=(left, left + data["dw"][0]),
+        y_range=(bottom, bottom + data["dh"][0]),
         x_axis_label=_label(ds[x]),
         y_axis_label=_label(ds[y]),
         tools=TOOLS,
@@ -163,26 +187,28 @@ def map_view(
         height=460,
         name=name,
     )
-    finite = data["image"][0][np.isfinite(data["image"][0])]
+    low, high = value_range(data["image"][0])
     mapper = LinearColorMapper(
         palette=Magma256 if var == "theta_c" else Viridis256,
-        low=float(finite.min()) if finite.size else 0.0,
-        high=float(finite.max()) if finite.size else 1.0,
+        low=low,
+        high=high,
         nan_color="lightgray",
+        name=f"{name}-colors",
     )
     image = p.image(
         image="image",
         source=source,
-        x=xs[0] - dx / 2,
-        y=ys[0] - dy / 2,
-        dw=dx * len(xs),
-        dh=dy * len(ys),
+        x="left",
+        y="bottom",
+        dw="dw",
+        dh="dh",
         color_mapper=mapper,
     )
     p.add_layout(image.construct_color_bar(title=_label(ds[var]), width=10), "right")
-    p.add_tools(_cell_hover(image, tooltips, (xs[0], dx), (ys[0], dy), _status_names(ds)))
+    p.add_tools(_cell_hover(image, source, tooltips, _status_names(ds)))
     if line is not None:
-        p.line(xs, ds[line].values, color="red", line_width=2, legend_label=f"ours: {line}")
+        best = ColumnDataSource({"x": ds[x].values, "y": ds[line].values}, name=f"{name}-line")
+        p.line("x", "y", source=best, color="red", line_width=2, legend_label=f"ours: {line}")
         p.legend.location = "top_right"
         p.legend.background_fill_alpha = 0.6
     _draw_marks(p, marks, x, y)
@@ -193,16 +219,7 @@ def curve_view(
     ds: xr.Dataset, x: str, var: str, title: str, name: str, marks: Sequence[Mapping] = ()
 ):
     """Fig. 9: ``var`` along ``x`` (failed strokes blank), hover on every sample."""
-    v = valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
-    names = _status_names(ds)
-    source = ColumnDataSource(
-        {
-            "x": ds[x].values,
-            "v": v.values,
-            "status": [names.get(int(s), str(int(s))) for s in ds["status"].values],
-        },
-        name=f"{name}-map",
-    )
+    source = ColumnDataSource(curve_data(ds, x, var), name=f"{name}-map")
     p = bokeh_figure(
         title=title,
         x_axis_label=_label(ds[x]),
@@ -227,6 +244,18 @@ def curve_view(
     )
     _draw_marks(p, marks, x, var, ours_color="black")
     return p
+
+
+def curve_data(ds: xr.Dataset, x: str, var: str) -> dict:
+    """The source of a curve of ``var`` along ``x``: the values (failed strokes NaN) and
+    each sample's status by name."""
+    v = valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
+    names = _status_names(ds)
+    return {
+        "x": ds[x].values,
+        "v": v.values,
+        "status": [names.get(int(s), str(int(s))) for s in ds["status"].values],
+    }
 
 
 def _draw_marks(p, marks: Sequence[Mapping], x: str, y: str, ours_color: str = OURS_COLOR):
@@ -351,23 +380,23 @@ const t = slider.value
 const T = curves.data.t
 let k = Math.round((t - T[0]) / (T[1] - T[0]))
 k = Math.max(0, Math.min(T.length - 1, k))
-const n = info.label.length
+const I = info.data, n = I.label.length
 const xs = [], ys = [], bx = [], by = [], energy = []
 for (let s = 0; s < n; s++) {
   const c = (v) => curves.data[v + "_" + s][k]
   xs.push([c("x_elbow"), c("x_wrist"), c("x_racket")])
   ys.push([c("y_elbow"), c("y_wrist"), c("y_racket")])
-  const tc = info.t_contact_start[s], ts = info.t_separation[s]
+  const tc = I.t_contact_start[s], ts = I.t_separation[s]
   // the ball: in along +x at ball_speed to the hitting point at the contact start,
   // held there during the contact, out along -x at v_out after the separation
-  let x = info.x_hit_contact[s], y = info.y_hit_contact[s]
-  if (t < tc) x -= info.ball_speed[s] * (tc - t)
-  else if (t > ts) x -= info.v_out_ms[s] * (t - ts)
+  let x = I.x_hit_contact[s], y = I.y_hit_contact[s]
+  if (t < tc) x -= I.ball_speed[s] * (tc - t)
+  else if (t > ts) x -= I.v_out_ms[s] * (t - ts)
   bx.push(x); by.push(y)
   const e = c("kinetic_energy")
-  energy.push(info.label[s] + ": " + (Number.isFinite(e) ? e.toFixed(2) + " J" : "n/a"))
+  energy.push(I.label[s] + ": " + (Number.isFinite(e) ? e.toFixed(2) + " J" : "n/a"))
 }
-now.data = {xs: xs, ys: ys, color: info.color, label: info.label,
+now.data = {xs: xs, ys: ys, color: I.color, label: I.label,
             t: Array(n).fill(T[k]), x_ball: bx, y_ball: by}
 cursor.location = T[k]
 readout.text = "t = " + T[k].toFixed(4) + " s; kinetic energy of the rods: " + energy.join(", ")
@@ -403,15 +432,22 @@ def _stroke_data(ds: xr.Dataset, picks: Sequence[int]) -> tuple[dict, dict]:
     return curves, info
 
 
-def _plane(now: ColumnDataSource, curves: Mapping, info: Mapping, title: str, name: str):
+def _plane_ranges(curves: Mapping, pad: float = 0.1) -> dict[str, tuple[float, float]]:
+    """The plane's x and y ranges: every point of the strokes, ``pad`` (m) around."""
+    out = {}
+    for axis_name in "xy":
+        values = np.concatenate([v for k, v in curves.items() if k.startswith(f"{axis_name}_")])
+        out[axis_name] = (float(np.nanmin(values)) - pad, float(np.nanmax(values)) + pad)
+    return out
+
+
+def _plane(now, source, curves: Mapping, info: Mapping, title: str, name: str):
     """The stick figures and the ball of the current frame, each racket end's path."""
-    xs = np.concatenate([v for k, v in curves.items() if k.startswith("x_")])
-    ys = np.concatenate([v for k, v in curves.items() if k.startswith("y_")])
-    pad = 0.1
+    ranges = _plane_ranges(curves)
     plane = bokeh_figure(
         title=f"{title}: the strokes in the plane",
-        x_range=(float(np.nanmin(xs)) - pad, float(np.nanmax(xs)) + pad),
-        y_range=(float(np.nanmin(ys)) - pad, float(np.nanmax(ys)) + pad),
+        x_range=ranges["x"],
+        y_range=ranges["y"],
         match_aspect=True,
         x_axis_label="x (m)",
         y_axis_label="y (m)",
@@ -423,14 +459,20 @@ def _plane(now: ColumnDataSource, curves: Mapping, info: Mapping, title: str, na
     plane.multi_line("xs", "ys", source=now, line_color="color", line_width=4)
     plane.scatter("x_ball", "y_ball", source=now, size=9, color="color", line_color="black")
     for n, (label, color) in enumerate(zip(info["label"], info["color"], strict=True)):
-        path = (curves[f"x_racket_{n}"], curves[f"y_racket_{n}"])
-        plane.line(*path, color=color, alpha=0.25, legend_label=f"{label} (racket end's path)")
+        plane.line(
+            f"x_racket_{n}",
+            f"y_racket_{n}",
+            source=source,
+            color=color,
+            alpha=0.25,
+            legend_label=f"{label} (racket end's path)",
+        )
     plane.legend.label_text_font_size = "9px"
     plane.legend.background_fill_alpha = 0.6
     return plane
 
 
-def _omegas(source: ColumnDataSource, info: Mapping, cursor: Span):
+def _omegas(source: ColumnDataSource, info: Mapping, cursor: Span, name: str):
     """omega2 and omega1 of every stroke, its contact window shaded, the time's cursor."""
     p = bokeh_figure(
         title="omega2 (solid) and omega1 (dashed); contact shaded",
@@ -439,6 +481,7 @@ def _omegas(source: ColumnDataSource, info: Mapping, cursor: Span):
         toolbar_location=None,
         width=420,
         height=420,
+        name=f"{name}-omegas",
     )
     for n, (label, color) in enumerate(zip(info["label"], info["color"], strict=True)):
         p.line(
@@ -459,7 +502,13 @@ def _omegas(source: ColumnDataSource, info: Mapping, cursor: Span):
         )
         window = (info["t_contact_start"][n], info["t_separation"][n])
         p.add_layout(
-            BoxAnnotation(left=window[0], right=window[1], fill_color=color, fill_alpha=0.15)
+            BoxAnnotation(
+                left=window[0],
+                right=window[1],
+                fill_color=color,
+                fill_alpha=0.15,
+                name=f"{name}-contact-{n}",
+            )
         )
     p.legend.label_text_font_size = "9px"
     p.legend.location = "top_left"
@@ -471,7 +520,8 @@ def stroke_view(ds: xr.Dataset, name: str, title: str):
     """The strokes of a file animated: the arm, the racket and the ball in the plane, the
     omega curves with a cursor and the contact windows shaded, the kinetic energy read
     out; play, pause and a time scrubber.  The current frame's source is named
-    ``<name>-now``, the scrubber ``<name>-time``."""
+    ``<name>-now``, the scrubber ``<name>-time`` (:func:`update_stroke_view` shows other
+    strokes in it)."""
     curves, info = _stroke_data(ds, range(ds.sizes["stroke"]))
     t = curves["t"]
     source = ColumnDataSource(curves, name=f"{name}-curves")
@@ -495,7 +545,7 @@ def stroke_view(ds: xr.Dataset, name: str, title: str):
         args={
             "slider": slider,
             "curves": source,
-            "info": info,
+            "info": ColumnDataSource(info, name=f"{name}-info"),
             "now": now,
             "cursor": cursor,
             "readout": readout,
@@ -505,8 +555,42 @@ def stroke_view(ds: xr.Dataset, name: str, title: str):
     slider.js_on_change("value", frame)
     play = CustomJS(args={"slider": slider, "button": button}, code=_PLAY_JS)
     button.js_on_event("button_click", play)
-    plots = row(_plane(now, curves, info, title, name), _omegas(source, info, cursor))
+    plane = _plane(now, source, curves, info, title, name)
+    plots = row(plane, _omegas(source, info, cursor, name))
     return column(row(button, slider), plots, readout, name=name)
+
+
+def update_stroke_view(view, ds: xr.Dataset, title: str) -> None:
+    """Show the strokes of ``ds`` in a :func:`stroke_view` made for as many strokes (the
+    live explorer's picked stroke): its data, ranges, contact windows, labels and title
+    replaced, the time back at the start."""
+    name = view.name
+    curves, info = _stroke_data(ds, range(ds.sizes["stroke"]))
+    pick = view.select_one
+    info_source = pick({"name": f"{name}-info"})
+    if len(info_source.data["label"]) != len(info["label"]):
+        raise ValueError(
+            f"{name} shows {len(info_source.data['label'])} strokes, not {len(info['label'])}"
+        )
+    pick({"name": f"{name}-curves"}).data = curves
+    info_source.data = info
+    pick({"name": f"{name}-now"}).data = _first_frame(curves, info)
+    plane = pick({"name": f"{name}-plane"})
+    ranges = _plane_ranges(curves)
+    plane.x_range.update(start=ranges["x"][0], end=ranges["x"][1])
+    plane.y_range.update(start=ranges["y"][0], end=ranges["y"][1])
+    plane.title.text = f"{title}: the strokes in the plane"
+    for n, item in enumerate(plane.legend[0].items):
+        item.label = fixed_text(f"{info['label'][n]} (racket end's path)")
+    omegas = pick({"name": f"{name}-omegas"})
+    for n, label in enumerate(info["label"]):
+        window = (info["t_contact_start"][n], info["t_separation"][n])
+        pick({"name": f"{name}-contact-{n}"}).update(left=window[0], right=window[1])
+        omegas.legend[0].items[2 * n].label = fixed_text(f"omega2 {label}")
+        omegas.legend[0].items[2 * n + 1].label = fixed_text(f"omega1 {label}")
+    t0 = float(curves["t"][0])
+    pick({"name": f"{name}-time"}).value = t0
+    pick({"name": f"{name}-readout"}).text = f"t = {t0:.4f} s; press Play or drag the time"
 
 
 def _first_frame(curves: Mapping, info: Mapping) -> dict[str, list]:
