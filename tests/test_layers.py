@@ -28,6 +28,7 @@ LAYERS = {
     "replication": 6,
     "pipeline": 7,
     "cli": 7,
+    "live": 7,
     "__init__": 7,
 }
 

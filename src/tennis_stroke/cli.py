@@ -1,7 +1,7 @@
 """The ``tennis-stroke`` command: one stroke (``strike``), a grid of strokes (``sweep``),
 the check of the claims table (``claims``), the readings fitted to both fit sets of
 ``config/readings.yaml`` (``identify``), what a config key drives (``config explain``)
-and a what-if scenario beside the paper (``whatif``).
+a what-if scenario beside the paper (``whatif``) and the live explorer (``explore``).
 
 Bad input ends with one line ``tennis-stroke: error: ...`` on stderr and exit status 2,
 before any output file is created; Ctrl-C ends with one line and exit status 130.
@@ -234,6 +234,29 @@ def build_parser() -> argparse.ArgumentParser:
     )
     whatif.add_argument("-j", "--cores", type=int, default=2, help="snakemake --cores (2)")
     whatif.add_argument("-n", "--dry-run", action="store_true", help="plan only (snakemake -n)")
+    explore = sub.add_parser(
+        "explore",
+        help="a live explorer in the browser: change a parameter, see Figs. 2-3 and 9 and "
+        "their claims recomputed",
+    )
+    explore.add_argument(
+        "--figure",
+        choices=("fig2", "fig3", "fig9"),
+        default="fig2",
+        help="the map shown: Fig. 2 (L1 0.3 m) or Fig. 3 (0.4 m; also for fig9); default fig2",
+    )
+    explore.add_argument(
+        "--port", type=int, default=None, help="the port (default: a free one, printed)"
+    )
+    explore.add_argument(
+        "--host",
+        default="127.0.0.1",
+        help="the address to serve on (default 127.0.0.1, this machine only; another one "
+        "exposes the explorer to whoever reaches it)",
+    )
+    explore.add_argument(
+        "--threads", type=int, default=None, help="solver threads (default: every core)"
+    )
     return parser
 
 
@@ -508,6 +531,20 @@ def main(argv: Sequence[str] | None = None) -> int:
         return _main(argv)
 
 
+def _explore(args: argparse.Namespace) -> int:
+    from pathlib import Path
+
+    if not Path("Snakefile").is_file() or not Path("config/config.yaml").is_file():
+        raise ValueError(f"no Snakefile in {Path.cwd()}: run explore from the project's folder")
+    if args.port is not None and not 0 < args.port < 65536:
+        raise ValueError(f"--port {args.port}: a port is 1 to 65535")
+    if args.threads is not None and args.threads < 1:
+        raise ValueError(f"--threads {args.threads}: at least 1")
+    from .live.server import serve
+
+    return serve(Path.cwd(), args.figure, args.host, args.port, args.threads)
+
+
 def _main(argv: Sequence[str] | None) -> int:
     from .io.interrupts import Terminated
 
@@ -524,6 +561,7 @@ def _main(argv: Sequence[str] | None) -> int:
             "identify": _identify,
             "config": _config,
             "whatif": _whatif,
+            "explore": _explore,
         }
         try:
             return commands[args.command](args)

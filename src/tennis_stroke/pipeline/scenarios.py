@@ -194,3 +194,23 @@ def describe(key: str, old, new) -> str:
 
 def _shown(value) -> str:
     return "default" if value is None else shown(value)
+
+
+def save_scenario(
+    path: str | Path, name: str, overrides: Mapping, base: Mapping, schema: str | Path
+) -> Path:
+    """Declare scenario ``name`` with ``overrides`` at the end of ``path``
+    (``config/scenarios.yaml``; its comments kept), after checking it as a declared one
+    is (:func:`scenario_config`); a name already declared is refused.  Returns the path."""
+    path = Path(path)
+    declared = load_scenarios(path)
+    if name in declared:
+        raise ScenarioError(f"scenario {name!r} is already declared in {path}: pick another name")
+    scenario_config(base, name, overrides, schema)
+    text = path.read_text() if path.is_file() else ""
+    block = yaml.safe_dump({name: plain(dict(overrides))}, default_flow_style=None, sort_keys=True)
+    separator = "" if not text or text.endswith("\n") else "\n"
+    temporary = path.with_name(f".{path.name}.saving")
+    temporary.write_text(f"{text}{separator}{block}")
+    temporary.replace(path)  # whole or not at all
+    return path

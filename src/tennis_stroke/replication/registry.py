@@ -253,6 +253,11 @@ FIGURES: dict[str, Figure] = {
 }
 
 
+#: The figures the live explorer recomputes (``tennis-stroke explore --figure``, by the
+#: name it takes): the report says how to open each live.
+LIVE = {"fig02_angle_map": "fig2", "fig03_angle_map": "fig3", "fig09_v_tau": "fig9"}
+
+
 def paper_figure(name: str) -> str:
     """The registry name of one of the paper's figures from what a user types: its name
     (``fig09_v_tau``) or number (``fig9``, ``fig09``); raises KeyError naming them."""

@@ -43,7 +43,7 @@ from ..model.params import READINGS
 from .claims import ClaimsTableError, consistency_errors, read_table
 from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
 from .marks import mark_values
-from .registry import FIGURES
+from .registry import FIGURES, LIVE
 from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING
 
 #: The page template, rendered with autoescape.
@@ -618,6 +618,7 @@ def build_report(
     for block in (b for s in page_sections for b in s["blocks"]):
         name = block["figure"]["name"] if block.get("figure") else None
         block["view"] = views.get(name) if name else None
+        block["live"] = LIVE.get(name) if block["view"] else None
         block["strokes"] = views.get(f"strokes-{block.get('key')}")
     validation = _validation(claims, inference)
     robustness = _robustness(

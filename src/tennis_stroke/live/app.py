@@ -1,0 +1,452 @@
+"""The live explorer's page: one Bokeh document per browser session, its controls, its
+views and the work that recomputes them.
+
+A change of a control recomputes, in this order, each stage pushed to the page as soon
+as it is done: the map at the coarse level, Fig. 9's curve, the map at the full level,
+the picked stroke, the claims (:mod:`tennis_stroke.replication.explorer` computes each).
+Every server shares one worker thread (the solver's own threads use the cores): a
+session's request waits for it, and work for a setting that a newer one replaced is
+dropped between two stages or two row blocks of a map, so rapid changes pile up
+nothing (at most one running and one waiting request per session and kind).  A failed
+stage shows one line in the page; the server keeps serving.
+"""
+
+from __future__ import annotations
+
+import threading
+import time
+from collections.abc import Callable, Mapping
+from concurrent.futures import ThreadPoolExecutor
+from dataclasses import dataclass, field
+from functools import partial
+from pathlib import Path
+
+import numpy as np
+from bokeh.events import Tap
+from bokeh.layouts import column, row
+from bokeh.models import (
+    Button,
+    ColumnDataSource,
+    CustomJS,
+    DataTable,
+    Div,
+    NumberFormatter,
+    Select,
+    Spinner,
+    TableColumn,
+    TextInput,
+)
+
+from ..inference.claims import load_claims
+from ..inference.reading_space import claims_and_readings
+from ..pipeline.scenarios import ScenarioError, save_scenario, scenario_config
+from ..replication import explorer
+from ..replication.marks import mark_values
+from ..replication.registry import FIGURES as REGISTRY
+from ..replication.views import (
+    curve_data,
+    curve_view,
+    map_data,
+    map_view,
+    stroke_view,
+    update_stroke_view,
+    value_range,
+)
+
+#: The one worker of every session (see the module's docstring).
+_WORKER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tennis-stroke-explore")
+#: The registry figure of each map (its title and the paper's marks).
+_MAP_FIGURES = {"fig2": "fig02_angle_map", "fig3": "fig03_angle_map"}
+#: Records in the browser when each map is drawn (``window.__explore_maps``; the frame
+#: after its data arrived): what the benchmark and the browser tests time and wait for.
+_PROBE_JS = """
+const d = source.data, seen = {generation: d.generation[0], level: d.level[0]}
+requestAnimationFrame(() => (window.__explore_maps = window.__explore_maps || []).push(
+  {...seen, t: performance.now()}))
+"""
+
+
+@dataclass
+class Shared:
+    """What every session of one server reads: the paper's configuration, the claims the
+    views test, the files a saved scenario goes to, the map's figure, the threads."""
+
+    config: dict
+    claims: list
+    declared: dict
+    fit_of_claim: dict
+    figure: str
+    scenarios: Path
+    schema: Path
+    threads: int | None = None
+    stopping: threading.Event = field(default_factory=threading.Event)
+
+    @classmethod
+    def load(cls, config, claims_path, readings_path, scenarios, schema, figure, threads=None):
+        claims, space = claims_and_readings(claims_path, readings_path)
+        declared = {c["id"]: c for c in load_claims(claims_path)}
+        return cls(
+            config,
+            explorer.view_claims(claims),
+            declared,
+            dict(space.fit_of_claim()),
+            figure,
+            Path(scenarios),
+            Path(schema),
+            threads,
+        )
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip().splitlines()
+    return f"{type(exc).__name__}: {text[0] if text else ''}"
+
+
+class Session:
+    """One browser session: its controls' values, its views and its requests."""
+
+    def __init__(self, shared: Shared, doc):
+        self.shared, self.doc = shared, doc
+        self.controls = explorer.controls(shared.config, shared.figure)
+        self.values = {c.key: c.paper for c in self.controls}
+        self.generation = {"all": 0, "stroke": 0}
+        self._queued = {"all": False, "stroke": False}
+        self._lock = threading.Lock()
+        self._resetting = False
+        self.picked: tuple[float, float] | None = None
+        self.stroke = None  # the picked stroke's view, once a point is picked
+        self.fig = explorer.FIGURES[shared.figure][0]
+        config = self._config()
+        started = time.perf_counter()
+        ds = explorer.map_level(config, shared.figure, "coarse", threads=shared.threads)
+        curve = explorer.fig9_curve(config, shared.threads)
+        self._build(ds, curve)
+        self.status.text = f"coarse map in {time.perf_counter() - started:.2f} s"
+        self.request("all", skip=("coarse", "fig9"))
+
+    # -- the page ---------------------------------------------------------------------
+
+    def _build(self, ds, curve) -> None:
+        registry = REGISTRY[_MAP_FIGURES[self.fig]]
+        marks = mark_values(registry, self.shared.declared)
+        title = f"{registry.title.split(':')[0]} live: v_out over (theta0, delta0)"
+        self.map = map_view(
+            ds, "theta0", "delta0", "v_out", title, "explore-map", marks, "best_delta0"
+        )
+        self.map_source = self.map.select_one({"name": "explore-map-map"})
+        self.map_colors = self.map.select_one({"name": "explore-map-colors"})
+        self.map_line = self.map.select_one({"name": "explore-map-line"})
+        self.map_source.data = self._map_data(ds, 0)
+        self.map_source.js_on_change(
+            "data", CustomJS(args={"source": self.map_source}, code=_PROBE_JS)
+        )
+        self.map.on_event(Tap, self._tap)
+        self.map.width = 560
+        fig9 = REGISTRY["fig09_v_tau"]
+        self.curve = curve_view(
+            curve,
+            "tau",
+            "v_out",
+            "Fig. 9 live: v_out over tau",
+            "explore-fig9",
+            mark_values(fig9, self.shared.declared),
+        )
+        self.curve_source = self.curve.select_one({"name": "explore-fig9-map"})
+        self.curve.width = 460
+        self.status = Div(text="", name="explore-status", width=900)
+        self.error = Div(
+            text="",
+            name="explore-error",
+            width=900,
+            styles={"color": "#b00020", "font-weight": "bold"},
+        )
+        self.claims_source = ColumnDataSource(self._claims_data(None), name="explore-claims")
+        self.claims_table = DataTable(
+            source=self.claims_source,
+            columns=[
+                TableColumn(field="id", title="claim", width=200),
+                TableColumn(field="quantity", title="quantity", width=260),
+                TableColumn(
+                    field="paper_value", title="paper", formatter=NumberFormatter(format="0.0[000]")
+                ),
+                TableColumn(
+                    field="reproduced_value",
+                    title="here",
+                    formatter=NumberFormatter(format="0.0[000]"),
+                ),
+                TableColumn(
+                    field="tolerance",
+                    title="tolerance",
+                    formatter=NumberFormatter(format="0.0[000]"),
+                ),
+                TableColumn(field="unit", title="unit"),
+                TableColumn(field="status", title="verdict"),
+            ],
+            width=900,
+            height=28 * (len(self.shared.claims) + 1),
+            index_position=None,
+            name="explore-claims-table",
+        )
+        self.claims_source.js_on_change(
+            "data", CustomJS(args={"table": self.claims_table}, code="table.view.change.emit()")
+        )
+        self.stroke_status = Div(
+            text="<i>Click a point of the map to play its stroke.</i>", name="explore-stroke-status"
+        )
+        self.stroke_box = column(Div(), name="explore-stroke-box")
+        panel = self._controls()
+        views = column(
+            self.status,
+            self.error,
+            row(self.map, self.curve),
+            self.claims_table,
+            self.stroke_status,
+            self.stroke_box,
+        )
+        self.doc.add_root(row(panel, views))
+        self.doc.title = "tennis-stroke explore"
+
+    def _widget(self, control: explorer.Control):
+        paper = control.paper
+        unit = f" ({control.unit})" if control.unit not in ("", "1") else ""
+        title = f"{control.label}{unit} · paper {paper}"
+        if control.choices:
+            widget = Select(
+                title=title,
+                value=str(paper),
+                options=list(control.choices),
+                width=170,
+                name=control.key,
+            )
+        else:
+            widget = Spinner(
+                title=title,
+                value=float(paper),
+                low=control.low,
+                high=control.high,
+                step=control.step or 0.01,
+                width=170,
+                name=control.key,
+                format="0[.]00000",
+            )
+        widget.description = control.note or None
+        widget.on_change("value", partial(self._changed, control))
+        return widget
+
+    def _controls(self):
+        groups: dict[str, list] = {}
+        for control in self.controls:
+            section = control.key.split(".")[0]
+            group = {
+                "model": "Model" if not control.choices else "Readings and model",
+                "solver": "Solver",
+            }.get(section, "The figures' own values")
+            groups.setdefault(group, []).append(self._widget(control))
+        self.widgets = {w.name: w for ws in groups.values() for w in ws}
+        reset = Button(label="Reset to the default reading", name="explore-reset", width=170)
+        reset.on_click(self._reset)
+        self.scenario_name = TextInput(
+            title="Save these settings as scenario",
+            width=170,
+            placeholder="a name",
+            name="explore-scenario-name",
+        )
+        save = Button(label="Save as scenario", name="explore-save", width=170)
+        save.on_click(self._save)
+        self.saved = Div(text="", width=380, name="explore-saved")
+        parts = [reset]
+        for group, widgets in groups.items():
+            parts.append(Div(text=f"<b>{group}</b>"))
+            parts += [row(*widgets[i : i + 2]) for i in range(0, len(widgets), 2)]
+        parts += [self.scenario_name, save, self.saved]
+        return column(
+            *parts, width=400, height=1100, styles={"overflow-y": "auto", "overflow-x": "hidden"}
+        )
+
+    # -- data of the views ------------------------------------------------------------
+
+    @staticmethod
+    def _map_data(ds, generation: int, level: str = "coarse") -> dict:
+        data = map_data(ds, "theta0", "delta0", "v_out")
+        return data | {"level": [level], "generation": [generation]}
+
+    def _claims_data(self, table) -> dict:
+        keys = ("id", "quantity", "unit", "paper_value", "reproduced_value", "tolerance", "status")
+        if table is None:
+            return {
+                "id": [c["id"] for c in self.shared.claims],
+                "quantity": [c["quantity"] for c in self.shared.claims],
+                "unit": [c["unit"] for c in self.shared.claims],
+                "paper_value": [float(c["paper_value"]) for c in self.shared.claims],
+                "reproduced_value": [np.nan] * len(self.shared.claims),
+                "tolerance": [float(c["tolerance"]) for c in self.shared.claims],
+                "status": ["computing"] * len(self.shared.claims),
+            }
+        return {k: list(table[k]) for k in keys}
+
+    # -- events -----------------------------------------------------------------------
+
+    def _config(self) -> dict:
+        """The configuration at the controls' values, checked as a scenario's is."""
+        overrides = explorer.overrides(self.shared.config, self.values)
+        try:
+            return scenario_config(self.shared.config, "explore", overrides, self.shared.schema)
+        except ScenarioError as exc:
+            raise explorer.ExplorerError(str(exc).removeprefix("scenario 'explore': ")) from None
+
+    def _changed(self, control: explorer.Control, attr, old, new) -> None:
+        if str(new) == str(self.values[control.key]):  # a value put back: nothing to do
+            return
+        if new is None or (not control.choices and not np.isfinite(float(new))):
+            self.widgets[control.key].value = old
+            return
+        if not control.choices and (
+            (control.low is not None and new < control.low)
+            or (control.high is not None and new > control.high)
+        ):
+            self.error.text = (
+                f"{control.label}: {new} is outside [{control.low}, {control.high}]; kept {old}"
+            )
+            self.widgets[control.key].value = old
+            return
+        self.values[control.key] = new
+        if not self._resetting:
+            self.request("all")
+
+    def _reset(self) -> None:
+        self._resetting = True
+        try:
+            for control in self.controls:
+                widget = self.widgets[control.key]
+                widget.value = str(control.paper) if control.choices else float(control.paper)
+        finally:
+            self._resetting = False
+        self.request("all")
+
+    def _tap(self, event) -> None:
+        data = self.map_source.data
+        dx, dy = data["dx"][0], data["dy"][0]
+        i = int(np.clip(round((event.x - data["x0"][0]) / dx), 0, data["image"][0].shape[1] - 1))
+        j = int(np.clip(round((event.y - data["y0"][0]) / dy), 0, data["image"][0].shape[0] - 1))
+        self.picked = (
+            float(round(data["x0"][0] + i * dx, 6)),
+            float(round(data["y0"][0] + j * dy, 6)),
+        )
+        self.request("stroke")
+
+    def _save(self) -> None:
+        name = self.scenario_name.value.strip()
+        overrides = explorer.overrides(self.shared.config, self.values)
+        try:
+            path = save_scenario(
+                self.shared.scenarios, name, overrides, self.shared.config, self.shared.schema
+            )
+        except ScenarioError as exc:
+            self.saved.text = f"not saved: {exc}"
+            return
+        self.saved.text = (
+            f"saved scenario <code>{name}</code> to <code>{path}</code>; its page: "
+            f"<code>snakemake -j2 report/scenarios/{name}/index.html</code>"
+        )
+
+    # -- the work ---------------------------------------------------------------------
+
+    def request(self, kind: str, skip: tuple[str, ...] = ()) -> None:
+        """Recompute ``kind`` (``all`` or ``stroke``) at the current values; work still
+        running for older values is dropped at its next stage or block."""
+        self.generation[kind] += 1
+        self.status.text = "computing ..."
+        with self._lock:
+            if self._queued[kind]:
+                return
+            self._queued[kind] = True
+        _WORKER.submit(self._work, kind, skip)
+
+    def _stale(self, kind: str, generation: int) -> bool:
+        return self.shared.stopping.is_set() or self.generation[kind] != generation
+
+    def _work(self, kind: str, skip: tuple[str, ...]) -> None:
+        with self._lock:
+            self._queued[kind] = False
+        generation = self.generation[kind]
+        stale = partial(self._stale, kind, generation)
+        started = time.perf_counter()
+        try:
+            config = self._config()
+            for stage, compute in self._stages(kind, config, stale):
+                if stage in skip:
+                    continue
+                if stale():
+                    return
+                result = compute()
+                if result is None or stale():
+                    return
+                shown = getattr(self, f"_show_{stage}")
+                elapsed = time.perf_counter() - started
+                self._push(kind, generation, partial(shown, result, generation, elapsed))
+        except Exception as exc:  # one line in the page, the server keeps serving
+            self._push(kind, generation, partial(self._show_error, _first_line(exc)))
+
+    def _stages(self, kind: str, config: Mapping, stale) -> list[tuple[str, Callable]]:
+        figure, threads = self.shared.figure, self.shared.threads
+        picked = self.picked
+        stroke = ("stroke", lambda: explorer.stroke_at(config, figure, *picked))
+        if kind == "stroke":
+            return [stroke] if picked else []
+        stages = [
+            ("coarse", lambda: explorer.map_level(config, figure, "coarse", stale, threads)),
+            ("fig9", lambda: explorer.fig9_curve(config, threads)),
+            ("full", lambda: explorer.map_level(config, figure, "full", stale, threads)),
+        ]
+        if picked:
+            stages.append(stroke)
+        claims = self.shared.claims, self.shared.fit_of_claim
+        stages.append(("claims", lambda: explorer.claims_table(config, *claims, threads)))
+        return stages
+
+    def _push(self, kind: str, generation: int, show: Callable[[], None]) -> None:
+        def guarded():
+            if self.generation[kind] == generation:  # a newer request: not shown
+                show()
+
+        self.doc.add_next_tick_callback(guarded)
+
+    def _show_coarse(self, ds, generation, elapsed, level="coarse") -> None:
+        self.error.text = ""
+        data = self._map_data(ds, generation, level)
+        self.map_colors.update(
+            **dict(zip(("low", "high"), value_range(data["image"][0]), strict=True))
+        )
+        self.map_source.data = data
+        self.map_line.data = {"x": ds["theta0"].values, "y": ds["best_delta0"].values}
+        shape = data["image"][0].shape[::-1]
+        self.status.text = f"{level} map ({shape[0]} x {shape[1]}) in {elapsed:.2f} s"
+
+    def _show_full(self, ds, generation, elapsed) -> None:
+        self._show_coarse(ds, generation, elapsed, "full")
+
+    def _show_fig9(self, ds, generation, elapsed) -> None:
+        self.curve_source.data = curve_data(ds, "tau", "v_out")
+
+    def _show_stroke(self, ds, generation, elapsed) -> None:
+        theta0, delta0 = self.picked
+        title = f"The stroke at theta0 = {theta0:g}, delta0 = {delta0:g} deg"
+        self.stroke_status.text = f"stroke computed in {elapsed:.2f} s"
+        if self.stroke is None:
+            self.stroke = stroke_view(ds, "explore-stroke", title)
+            self.stroke_box.children = [self.stroke]
+        else:  # the same view, other data: the browser redraws, builds nothing
+            update_stroke_view(self.stroke, ds, title)
+
+    def _show_claims(self, table, generation, elapsed) -> None:
+        self.claims_source.data = self._claims_data(table)
+        self.status.text += f"; claims in {elapsed:.2f} s"
+
+    def _show_error(self, line: str) -> None:
+        self.error.text = line
+        self.status.text = "failed: the views show the last setting that computed"
+
+
+def make_document(shared: Shared, doc) -> None:
+    """A new browser session's document (Bokeh's application function)."""
+    Session(shared, doc)

@@ -1,0 +1,96 @@
+"""Serve the live explorer: a Bokeh server on 127.0.0.1 (another address only when asked,
+with a warning), its websocket open only to pages of the served address, stopped by
+SIGINT or SIGTERM with one line.  The compiled solver is loaded once, before the URL is
+printed (the first stroke of the server), not per request."""
+
+from __future__ import annotations
+
+import signal
+import socket
+import sys
+from collections.abc import Callable
+from functools import partial
+from pathlib import Path
+
+from bokeh.application import Application
+from bokeh.application.handlers.function import FunctionHandler
+from bokeh.server.server import Server
+
+from ..io.config_files import load_yaml
+from ..replication import explorer
+from . import app
+
+#: Exit statuses after SIGINT and SIGTERM (128 + the signal, as a shell reports them).
+EXIT = {signal.SIGINT: 130, signal.SIGTERM: 143}
+LOCALHOST = "127.0.0.1"
+
+
+def free_port(host: str) -> int:
+    """A port no one listens on at ``host`` now."""
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.bind((host, 0))
+        return int(s.getsockname()[1])
+
+
+def origins(host: str, port: int) -> list[str]:
+    """The origins whose pages may open the explorer's websocket: the served address
+    (and ``localhost`` for 127.0.0.1)."""
+    names = [host, "localhost"] if host == LOCALHOST else [host]
+    return [f"{name}:{port}" for name in names]
+
+
+def serve(
+    root: Path,
+    figure: str = "fig2",
+    host: str = LOCALHOST,
+    port: int | None = None,
+    threads: int | None = None,
+    say: Callable[[str], None] = print,
+) -> int:
+    """Serve the explorer of the project at ``root`` (its ``config/`` and the workflow's
+    schema) until SIGINT or SIGTERM; returns the exit status (130 or 143)."""
+    config = load_yaml(root / "config" / "config.yaml")
+    shared = app.Shared.load(
+        config,
+        root / "config" / "claims.yaml",
+        root / "config" / "readings.yaml",
+        root / "config" / "scenarios.yaml",
+        root / "workflow" / "schemas" / "config.schema.yaml",
+        figure,
+        threads,
+    )
+    explorer.map_level(config, figure, "coarse", threads=threads)  # load the compiled code
+    port = port or free_port(host)
+    server = Server(
+        Application(FunctionHandler(partial(app.make_document, shared))),
+        address=host,
+        port=port,
+        allow_websocket_origin=origins(host, port),
+    )
+    server.start()
+    if host != LOCALHOST:
+        say(
+            f"tennis-stroke explore: warning: serving on {host}: anyone who reaches this "
+            "address can use the explorer and save scenarios into config/scenarios.yaml"
+        )
+    say(f"tennis-stroke explore: http://{host}:{port}/ (Ctrl-C stops)")
+    received: list[int] = []
+
+    def stop(signum: int) -> None:
+        received.append(signum)
+        shared.stopping.set()  # running work ends at its next block
+        server.io_loop.stop()
+
+    loop = server.io_loop.asyncio_loop
+    for signum in EXIT:
+        loop.add_signal_handler(signum, stop, signum)
+    try:
+        server.io_loop.start()
+    finally:
+        for signum in EXIT:
+            loop.remove_signal_handler(signum)
+        server.stop()
+    signum = received[0] if received else signal.SIGINT
+    say(f"tennis-stroke explore: stopped ({signal.Signals(signum).name})")
+    sys.stdout.flush()
+    return EXIT[signum]

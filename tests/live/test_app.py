@@ -1,0 +1,218 @@
+"""A live explorer session in one process (a stand-in for Bokeh's document that runs what
+the server would run on its next tick): what a change, a reset, a bad value, a failing
+stage and a burst of changes do to its views and its work."""
+
+import threading
+import time
+
+import numpy as np
+import pytest
+from conftest import ROOT
+
+from tennis_stroke.experiments.specs import merged
+from tennis_stroke.io.config_files import load_yaml
+from tennis_stroke.live import app
+from tennis_stroke.replication import explorer
+from tennis_stroke.solver.stroke import strike_batch
+
+
+class Document:
+    """What a session uses of a Bokeh document; the next-tick callbacks run at once, in
+    the order they are added, like the server's loop runs them."""
+
+    def __init__(self):
+        self.roots, self.title, self.lock = [], "", threading.Lock()
+
+    def add_root(self, model):
+        self.roots.append(model)
+
+    def add_next_tick_callback(self, callback):
+        with self.lock:
+            callback()
+
+
+@pytest.fixture(scope="module")
+def shared(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("explore")
+    config = merged(
+        load_yaml(ROOT / "config" / "config.yaml"),
+        {
+            "angle_maps": {
+                "theta0": {"start": 110.0, "stop": 112.0, "step": 1.0},
+                "delta0": {"start": 10.0, "stop": 14.0, "step": 1.0},
+            },
+            "torque_delay": {"fig9": {"tau": {"start": 0.0, "stop": 0.2, "step": 0.05}}},
+        },
+    )
+    (folder / "scenarios.yaml").write_text("# scenarios\n")
+    return app.Shared.load(
+        config,
+        ROOT / "config" / "claims.yaml",
+        ROOT / "config" / "readings.yaml",
+        folder / "scenarios.yaml",
+        ROOT / "workflow" / "schemas" / "config.schema.yaml",
+        "fig2",
+        threads=1,
+    )
+
+
+def settle(session, seconds=60.0):
+    """Wait until the worker has nothing left for the session."""
+    done = threading.Event()
+    app._WORKER.submit(done.set)  # one worker: runs after everything queued before it
+    assert done.wait(seconds)
+    while any(session._queued.values()):
+        done.clear()
+        app._WORKER.submit(done.set)
+        assert done.wait(seconds)
+
+
+def test_a_change_shows_the_strokes_at_the_new_setting(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+    session.widgets["model.M2"].value = 0.35
+    settle(session)
+    data = session.map_source.data
+    assert data["level"] == ["full"] and data["generation"] == [2]
+    theta, delta = np.arange(110.0, 112.01, 0.25), np.arange(10.0, 14.01, 0.5)
+    expected = strike_batch(theta[:, None], delta[None, :], {"M2": 0.35, "L1": 0.3})
+    np.testing.assert_array_equal(data["image"][0], expected["v_out_kmh"].T.astype(np.float32))
+    assert session.claims_source.data["status"][0] in ("pass", "fail", "used_for_fit")
+    assert "full map (9 x 9)" in session.status.text and session.error.text == ""
+
+
+def test_a_value_out_of_bounds_is_refused_and_the_old_kept(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+    before = session.generation["all"]
+    session.widgets["model.M2"].value = -1.0
+    assert session.widgets["model.M2"].value == 0.3
+    assert "M2: -1.0 is outside" in session.error.text
+    assert session.generation["all"] == before  # nothing recomputed
+
+
+def test_failed_strokes_show_as_failed_never_as_numbers(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+    session.widgets["model.C1"].value = -25.0  # the elbow torque backwards
+    settle(session)
+    data = session.map_source.data
+    failed = data["status"][0] != 0
+    assert failed.any()
+    assert np.isnan(data["image"][0][failed]).all()
+    assert np.isfinite(data["image"][0][~failed]).all()
+
+
+def test_a_failing_stage_is_one_line_and_the_next_change_computes(shared, monkeypatch):
+    session = app.Session(shared, Document())
+    settle(session)
+
+    def broken(*args, **kwargs):
+        raise RuntimeError("the solver broke\nsecond line")
+
+    with monkeypatch.context() as m:
+        m.setattr(explorer, "fig9_curve", broken)
+        session.widgets["model.M2"].value = 0.4
+        settle(session)
+    assert session.error.text == "RuntimeError: the solver broke"
+    assert session.map_source.data["level"] == ["coarse"]  # the stage before it was shown
+    session.widgets["model.M2"].value = 0.41
+    settle(session)
+    assert session.error.text == "" and session.map_source.data["level"] == ["full"]
+
+
+def test_ten_rapid_changes_compute_the_last_and_pile_up_nothing(shared, monkeypatch):
+    session = app.Session(shared, Document())
+    settle(session)
+    computed = []
+    real = explorer.map_level
+
+    def counted(config, figure, level, stale=lambda: False, threads=None):
+        computed.append((config["model"]["M2"], level))
+        time.sleep(0.05)  # slower than the changes arrive
+        return real(config, figure, level, stale, threads)
+
+    monkeypatch.setattr(explorer, "map_level", counted)
+    threads = threading.active_count()
+    for n in range(10):
+        session.widgets["model.M2"].value = 0.31 + 0.01 * n
+    assert sum(session._queued.values()) <= 1  # one request waits, whatever the burst
+    settle(session)
+    assert threading.active_count() <= threads + 1
+    assert session.map_source.data["generation"] == [session.generation["all"]]
+    assert computed[-2:] == [(0.4, "coarse"), (0.4, "full")]
+    assert len(computed) <= 4  # the first (maybe) and the last: no stale setting's map
+
+
+def test_reset_returns_every_control_to_the_default_reading(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+    session.widgets["model.M2"].value = 0.35
+    session.widgets["model.inertia"].value = "paper_text"
+    session.widgets["solver.rtol"].value = "1e-06"
+    settle(session)
+    session._reset()
+    settle(session)
+    for control in session.controls:
+        assert str(session.widgets[control.key].value) == str(
+            control.paper if control.choices else float(control.paper)
+        )
+    assert explorer.overrides(shared.config, session.values) == {}
+
+
+def test_a_picked_point_plays_its_stroke(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+
+    class Tap:
+        x, y = 111.1, 12.4
+
+    session._tap(Tap)
+    settle(session)
+    assert session.picked == (111.0, 12.5)  # the nearest point of the full grid
+    view = session.stroke_box.children[0]
+    assert view.name == "explore-stroke"
+    now = view.select_one({"name": "explore-stroke-now"})
+    assert now.data["label"] == ["theta0 111, delta0 12.5 deg"]
+
+
+def test_saving_the_settings_declares_a_scenario(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+    session.widgets["model.M2"].value = 0.35
+    session.scenario_name.value = "from_the_explorer"
+    session._save()
+    assert "saved scenario <code>from_the_explorer</code>" in session.saved.text
+    text = shared.scenarios.read_text()
+    assert text.startswith("# scenarios\n") and "from_the_explorer:" in text
+    session._save()
+    assert session.saved.text.startswith("not saved: scenario 'from_the_explorer' is already")
+
+
+def test_a_second_pick_shows_its_stroke_in_the_same_view(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+
+    class First:
+        x, y = 110.0, 11.0
+
+    class Second:
+        x, y = 112.0, 14.0
+
+    session._tap(First)
+    settle(session)
+    view = session.stroke
+    session._tap(Second)
+    settle(session)
+    assert session.stroke is view and session.stroke_box.children == [view]
+    expected = explorer.stroke_at(session._config(), "fig2", 112.0, 14.0)
+    now = view.select_one({"name": "explore-stroke-now"})
+    assert now.data["label"] == ["theta0 112, delta0 14 deg"]
+    info = view.select_one({"name": "explore-stroke-info"}).data
+    assert info["t_contact_start"] == [float(expected["t_contact_start"].values[0])]
+    curves = view.select_one({"name": "explore-stroke-curves"}).data
+    np.testing.assert_array_equal(
+        curves["omega2_0"], expected["omega2"].values[0].astype(np.float32)
+    )
+    plane = view.select_one({"name": "explore-stroke-plane"})
+    assert plane.title.text.startswith("The stroke at theta0 = 112, delta0 = 14 deg")

@@ -1,0 +1,238 @@
+"""The live explorer served for real (``tennis-stroke explore`` on a random port) and used
+from headless Chromium: a control moved shows the solver's strokes at the new setting, a
+clicked point plays its stroke, another origin's websocket is refused, and SIGINT or
+SIGTERM stops the server with one line."""
+
+import http.client
+import shutil
+import signal
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pytest
+from chromium import CHROMIUM, DRIVER, MISSING, POSITION_JS, chromium, wait_idle
+from conftest import ROOT
+
+from tennis_stroke.io.config_files import load_yaml
+from tennis_stroke.replication import explorer
+from tennis_stroke.solver.stroke import strike_batch
+
+EXPLORE = [sys.executable, "-m", "tennis_stroke.cli", "explore"]
+browser_needed = pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason=MISSING)
+
+#: The maps the page received since it opened (generation, level, time).
+MAPS_JS = "return window.__explore_maps || []"
+#: The label of the stroke the page plays (null before any).
+STROKE_LABEL_JS = """
+const box = Bokeh.documents[0].get_model_by_name("explore-stroke-box").children[0]
+const m = box.name ? Bokeh.documents[0].get_model_by_name(box.name + "-now") : null
+return m ? m.data.label[0] : null
+"""
+#: Set the control named arguments[0] to arguments[1], as a reader's entry does.
+SET_JS = "Bokeh.documents[0].get_model_by_name(arguments[0]).value = arguments[1]"
+
+
+def project(folder):
+    """A copy of what the explorer reads of a checkout (a saved scenario stays there)."""
+    (folder / "workflow" / "schemas").mkdir(parents=True)
+    shutil.copytree(ROOT / "config", folder / "config")
+    shutil.copy(ROOT / "workflow/schemas/config.schema.yaml", folder / "workflow/schemas")
+    shutil.copy(ROOT / "Snakefile", folder)
+    return folder
+
+
+def start(folder, *options):
+    """The explorer started in ``folder``; returns the process and its URL."""
+    from tennis_stroke.live.server import free_port
+
+    port = free_port("127.0.0.1")
+    proc = subprocess.Popen(
+        [*EXPLORE, "--port", str(port), *options],
+        cwd=folder,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    line = proc.stdout.readline()
+    assert line.strip() == f"tennis-stroke explore: http://127.0.0.1:{port}/ (Ctrl-C stops)", (
+        line + proc.stderr.read()
+    )
+    return proc, port
+
+
+@pytest.fixture(scope="module")
+def server(tmp_path_factory):
+    folder = project(tmp_path_factory.mktemp("explore"))
+    proc, port = start(folder)
+    yield folder, port
+    proc.send_signal(signal.SIGINT)
+    proc.communicate(timeout=30)
+
+
+@pytest.fixture(scope="module")
+def browser():
+    driver = chromium(1500, 1300, loopback=True)
+    yield driver
+    driver.quit()
+
+
+def open_page(driver, port):
+    driver.get(f"http://127.0.0.1:{port}/")
+    wait_idle(driver)
+
+
+def wait_map(driver, generation, level="full", seconds=60.0):
+    """The page's maps once the map of ``generation`` at ``level`` has arrived."""
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        maps = driver.execute_script(MAPS_JS)
+        if any(m["generation"] >= generation and m["level"] == level for m in maps):
+            return maps
+        time.sleep(0.05)
+    raise AssertionError(f"no {level} map of generation {generation}: {maps}")
+
+
+def page_map(driver) -> np.ndarray:
+    """The values the page's map holds, as (theta0, delta0)."""
+    rows = driver.execute_script(
+        "const d = Bokeh.documents[0].get_model_by_name('explore-map-map').data;"
+        "const im = d.image[0]; const [h, w] = im.shape;"
+        "const out = []; for (let j = 0; j < h; j++)"
+        " out.push(Array.from(im.slice(j * w, (j + 1) * w), (v) => Number.isNaN(v) ? null : v));"
+        "return out"
+    )
+    return np.array(rows, dtype=float).T
+
+
+@browser_needed
+def test_a_moved_control_shows_the_solver_s_strokes_at_the_new_setting(server, browser):
+    folder, port = server
+    open_page(browser, port)
+    browser.execute_script(SET_JS, "model.M2", 0.35)
+    maps = wait_map(browser, 2)  # the session's first request is the page's own (1)
+    assert [m["level"] for m in maps if m["generation"] == 2] == ["coarse", "full"]
+    shown = page_map(browser)
+    config = load_yaml(folder / "config" / "config.yaml")
+    theta, delta = explorer.map_axes(config, "fig2", "full")
+    expected = strike_batch(theta[:, None], delta[None, :], {"M2": 0.35, "L1": 0.3})
+    assert shown.shape == (241, 201)
+    np.testing.assert_array_equal(shown, expected["v_out_kmh"].astype(np.float32))
+    before = strike_batch(theta[:, None], delta[None, :], {"M2": 0.3, "L1": 0.3})
+    with pytest.raises(AssertionError):  # the check tells the settings apart
+        np.testing.assert_array_equal(shown, before["v_out_kmh"].astype(np.float32))
+
+
+@browser_needed
+def test_a_clicked_point_plays_its_stroke(server, browser):
+    from selenium.webdriver.common.actions.action_builder import ActionBuilder
+
+    _, port = server
+    open_page(browser, port)
+    sx, sy = browser.execute_script(POSITION_JS, "explore-map", 100.0, 30.0)
+    action = ActionBuilder(browser)
+    action.pointer_action.move_to_location(int(round(sx)), int(round(sy))).click()
+    action.perform()
+    end = time.monotonic() + 60
+    label = None
+    while time.monotonic() < end and label is None:
+        label = browser.execute_script(STROKE_LABEL_JS)
+        time.sleep(0.1)
+    assert label == "theta0 100, delta0 30 deg"
+    v_out = browser.execute_script(
+        "return Bokeh.documents[0].get_model_by_name('explore-stroke-readout').text"
+    )
+    assert v_out.startswith("t = 0.0000 s")
+
+
+def websocket_status(port, origin) -> int:
+    """The status of a websocket handshake to the explorer with ``origin``."""
+    conn = http.client.HTTPConnection("127.0.0.1", port, timeout=10)
+    conn.request(
+        "GET",
+        "/ws",
+        headers={
+            "Origin": origin,
+            "Upgrade": "websocket",
+            "Connection": "Upgrade",
+            "Sec-WebSocket-Key": "dGhlIHNhbXBsZSBub25jZQ==",
+            "Sec-WebSocket-Version": "13",
+        },
+    )
+    status = conn.getresponse().status
+    conn.close()
+    return status
+
+
+def test_a_websocket_from_another_origin_is_refused(server):
+    _, port = server
+    assert websocket_status(port, "http://evil.example") == 403
+    assert websocket_status(port, f"http://localhost:{port + 1}") == 403
+    assert websocket_status(port, f"http://127.0.0.1:{port}") != 403
+
+
+@pytest.mark.parametrize(
+    ("signum", "code", "name"), [(signal.SIGINT, 130, "SIGINT"), (signal.SIGTERM, 143, "SIGTERM")]
+)
+def test_a_signal_stops_the_server_with_one_line(tmp_path, signum, code, name):
+    proc, port = start(project(tmp_path))
+    assert websocket_status(port, "http://evil.example") == 403  # serving
+    sent = time.monotonic()
+    proc.send_signal(signum)
+    out, err = proc.communicate(timeout=30)
+    assert time.monotonic() - sent < 10
+    assert proc.returncode == code
+    assert out == f"tennis-stroke explore: stopped ({name})\n"
+    assert "Traceback" not in err
+
+
+@pytest.mark.parametrize(
+    ("options", "message"),
+    [
+        (["--port", "70000"], "--port 70000: a port is 1 to 65535"),
+        (["--threads", "0"], "--threads 0: at least 1"),
+        (["--figure", "fig5"], "invalid choice: 'fig5'"),
+    ],
+)
+def test_a_bad_option_is_one_line(tmp_path, options, message):
+    done = subprocess.run(
+        [*EXPLORE, *options], cwd=project(tmp_path), capture_output=True, text=True, timeout=60
+    )
+    assert done.returncode == 2 and message in done.stderr
+    assert len(done.stderr.strip().splitlines()) <= 2, done.stderr  # usage and the error
+
+
+def test_outside_a_checkout_the_explorer_says_where_to_run_it(tmp_path):
+    done = subprocess.run([*EXPLORE], cwd=tmp_path, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2
+    assert done.stderr.strip() == (
+        f"tennis-stroke: error: no Snakefile in {tmp_path}: run explore from the project's folder"
+    )
+
+
+#: The text input of the spinner named arguments[0].
+INPUT_JS = """
+const m = Bokeh.documents[0].get_model_by_name(arguments[0]);
+const stack = [...Bokeh.index.roots];
+while (stack.length) {
+  const v = stack.pop();
+  if (v.model === m) return v.shadow_el.querySelector("input");
+  stack.push(...(v.child_views ?? []));
+}
+return null;
+"""
+
+
+@browser_needed
+def test_a_value_out_of_bounds_cannot_be_typed(server, browser):
+    from selenium.webdriver.common.keys import Keys
+
+    _, port = server
+    open_page(browser, port)
+    field = browser.execute_script(INPUT_JS, "model.restitution")
+    field.send_keys(Keys.END + Keys.BACKSPACE * 12 + "2" + Keys.ENTER)
+    time.sleep(1.0)
+    value = "return Bokeh.documents[0].get_model_by_name('model.restitution').value"
+    assert browser.execute_script(value) == 1  # the spinner's upper bound
+    assert not any(m["generation"] >= 2 for m in browser.execute_script(MAPS_JS))
