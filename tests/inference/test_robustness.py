@@ -13,7 +13,7 @@ import yaml
 from tennis_stroke.inference import multiverse as mv
 from tennis_stroke.inference import robustness as ev
 from tennis_stroke.inference.claims import load_claims
-from tennis_stroke.inference.reading_space import load_reading_space
+from tennis_stroke.inference.reading_space import CLAIM_LEVEL, load_reading_space
 from tennis_stroke.replication import robustness as rb
 from tennis_stroke.replication.claims import evaluate
 from tennis_stroke.solver.settings import SolverSettings
@@ -33,7 +33,7 @@ def space(claims):
 
 def test_variants_are_every_claim_level_combination(space):
     cases = ev.variants(space)
-    assert len(cases) == np.prod([len(space.discrete[k]) for k in mv.CLAIM_LEVEL])
+    assert len(cases) == np.prod([len(space.discrete[k]) for k in CLAIM_LEVEL])
     assert len({tuple(c.values()) for c in cases}) == len(cases)
 
 
@@ -70,7 +70,7 @@ def synthetic(space, within, values=None, lead=None):
             "within": (("reading", "variant", "claim"), within.astype(np.int8)),
             "contact_lead_rule": ("reading", lead or ["quarter_period"] * n_read),
             "k_contact": ("reading", np.geomspace(200.0, 18000.0, n_read)),
-            **{k: ("variant", [c[k] for c in cases]) for k in mv.CLAIM_LEVEL},
+            **{k: ("variant", [c[k] for c in cases]) for k in CLAIM_LEVEL},
         },
         coords={"claim": ["a", "b", "c"][:n_claim]},
     )

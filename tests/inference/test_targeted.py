@@ -12,6 +12,7 @@ from tennis_stroke.experiments import maps, strokes
 from tennis_stroke.experiments.grids import axis
 from tennis_stroke.experiments.specs import EXPERIMENTS
 from tennis_stroke.inference import measures as ms
+from tennis_stroke.inference import search_plan
 from tennis_stroke.inference import targeted as tg
 from tennis_stroke.solver.settings import SolverSettings
 
@@ -91,8 +92,8 @@ def test_table1_numbers_are_the_strokes_of_the_workflow():
 def test_the_targeted_evaluation_reads_no_map_step():
     """targeted_config drops exactly the steps of UNREAD_STEPS, and changing one of them
     changes no targeted value (so the jobs that run it need not rerun)."""
-    stripped = tg.targeted_config(CONFIG)
-    for key in tg.UNREAD_STEPS:
+    stripped = search_plan.targeted_config(CONFIG)
+    for key in search_plan.UNREAD_STEPS:
         node = stripped
         for part in key.split("."):
             node = node[part]

@@ -27,7 +27,6 @@ from tennis_stroke.experiments.specs import (
 )
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
-from tennis_stroke.inference.validation import group_config
 from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,

@@ -163,7 +163,7 @@ rule claims_validation:
     threads: 1
     params:
         common=common_params(),
-        experiments=lambda w: group_config(config, w.group),
+        experiments=lambda w: job_params.group_config(config, w.group),
     script:
         "../scripts/claims_validation.py"
 

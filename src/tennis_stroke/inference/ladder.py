@@ -44,9 +44,10 @@ from ..solver.compiled import ensure_compiled
 from ..solver.settings import SolverSettings
 from ..solver.stroke import rhs_evaluations
 from .claims import claim_files, difference, measure, within
-from .multiverse import CURVE_FILES
+from .reading_space import CURVE_FILES
 from .robustness import files_of_reading
-from .targeted import SEARCHED, targeted_files
+from .search_plan import SEARCHED
+from .targeted import targeted_files
 
 #: The files whose claims are about the spring constant (no answer without the spring).
 SPRING_FILES = ("k_sensitivity",)

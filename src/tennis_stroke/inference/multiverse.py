@@ -33,15 +33,7 @@ from ..io.netcdf import labelled, provenance
 from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
 from .identification import elbow_simulator, model_simulator, residuals, targets
-from .reading_space import ReadingSpace
-
-#: The claim-level readings: each kept reading is evaluated under all their combinations.
-CLAIM_LEVEL = ("fig11_theta", "table1_omega", "figure_curves")
-#: Result files whose curves depend on ``figure_curves``.
-CURVE_FILES = ("fig4", "delay")
-#: Config keys the robustness analysis sets itself for every reading (the workflow does
-#: not pass them: changing them reruns none of its jobs).
-MULTIVERSE_SETS = ("figure_curves",)
+from .reading_space import CURVE_FILES, ReadingSpace
 
 
 class MultiverseError(ValueError):

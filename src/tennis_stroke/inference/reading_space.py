@@ -30,6 +30,15 @@ SCHEMA = Path(__file__).with_name("readings.schema.yaml")
 EXPERIMENT_UNKNOWNS = ("table1_tau_F", "fig6_L1_max")
 
 
+#: The claim-level readings: each kept reading is evaluated under all their combinations.
+CLAIM_LEVEL = ("fig11_theta", "table1_omega", "figure_curves")
+#: Result files whose curves depend on ``figure_curves``.
+CURVE_FILES = ("fig4", "delay")
+#: Config keys the robustness analysis sets itself for every reading (the workflow does
+#: not pass them: changing them reruns none of its jobs).
+MULTIVERSE_SETS = ("figure_curves",)
+
+
 class ReadingSpaceError(ValueError):
     """``config/readings.yaml`` is malformed (message is one line, naming the key)."""
 

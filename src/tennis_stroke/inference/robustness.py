@@ -19,8 +19,8 @@ from ..io.netcdf import labelled
 from ..solver.settings import SolverSettings
 from .claims import measure, within
 from .identification import quoted_variable
-from .multiverse import CLAIM_LEVEL, CURVE_FILES, experiment_config, reading_of
-from .reading_space import ReadingSpace
+from .multiverse import experiment_config, reading_of
+from .reading_space import CLAIM_LEVEL, CURVE_FILES, ReadingSpace
 from .targeted import targeted_files
 
 

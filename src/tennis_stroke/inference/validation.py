@@ -2,7 +2,7 @@
 readings of the robustness analysis (``config/readings.yaml``, ``multiverse.validation``).
 
 For each chosen reading, every claim that reads a file the targeted evaluation finds by a
-search (:data:`tennis_stroke.inference.targeted.SEARCHED`) is measured twice with the
+search (:data:`tennis_stroke.inference.search_plan.SEARCHED`) is measured twice with the
 same measurement: on the targeted files and on the full maps (the workflow's steps on
 the multiverse's rows; Figs. 5-6 by the grid search that the workflow used before).  The
 claims that read only files of single strokes are the same computation either way and
@@ -19,7 +19,7 @@ import xarray as xr
 
 from ..experiments.grids import axis
 from ..experiments.maps import mass_length_map
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, VALIDATION_GROUPS, plain, pruned
+from ..experiments.specs import PAPER_RESULTS, VALIDATION_GROUPS
 from ..io.netcdf import labelled, provenance
 from ..solver.settings import SolverSettings
 from .claims import (
@@ -33,7 +33,8 @@ from .claims import (
 )
 from .multiverse import experiment_config, paper_results, reading_of
 from .reading_space import ReadingSpace
-from .targeted import SEARCHED, searched_files
+from .search_plan import SEARCHED
+from .targeted import searched_files
 
 #: The validation's jobs, by group: the searched files each checks.
 GROUPS = VALIDATION_GROUPS
@@ -42,13 +43,6 @@ GROUPS = VALIDATION_GROUPS
 def searched_claims(claims: Sequence[Mapping], keys: Sequence[str] = SEARCHED) -> list[Mapping]:
     """The claims that read a file found by a search (of ``keys``) and no other file."""
     return [c for c in claims if set(claim_files(c)) <= set(keys)]
-
-
-def group_config(config: Mapping, group: str) -> dict:
-    """What a validation job of ``group`` reads of the workflow ``config``: the keys of
-    its files' rows and the ``search`` section (its params)."""
-    keys = [k for key in GROUPS[group] for k in EXPERIMENTS[key].keys()]
-    return plain({**pruned(config, keys), "search": config["search"]})
 
 
 def chosen_readings(count: int, kept: int) -> np.ndarray:

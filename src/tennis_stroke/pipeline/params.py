@@ -12,9 +12,16 @@ from __future__ import annotations
 
 from collections.abc import Mapping
 
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, Experiment, plain
-from ..inference.multiverse import MULTIVERSE_SETS
-from ..inference.targeted import targeted_config
+from ..experiments.specs import (
+    EXPERIMENTS,
+    PAPER_RESULTS,
+    VALIDATION_GROUPS,
+    Experiment,
+    plain,
+    pruned,
+)
+from ..inference.reading_space import MULTIVERSE_SETS
+from ..inference.search_plan import targeted_config
 
 
 def model(config: Mapping) -> dict:
@@ -73,7 +80,7 @@ def paper_sections(config: Mapping) -> dict:
 def paper_experiments(config: Mapping) -> dict:
     """What the targeted evaluation of the claims reads (the claims job and the
     robustness analysis rerun it): :func:`paper_sections` less the steps of the maps it
-    searches instead (:func:`tennis_stroke.inference.targeted.targeted_config`)."""
+    searches instead (:func:`tennis_stroke.inference.search_plan.targeted_config`)."""
     return plain(targeted_config(paper_sections(config)))
 
 
@@ -81,6 +88,13 @@ def claims_params(config: Mapping) -> dict:
     """What the claims job reads besides its files: the targeted evaluation's sections and
     the model and solver."""
     return {"experiments": paper_experiments(config), "common": common_params(config)}
+
+
+def group_config(config: Mapping, group: str) -> dict:
+    """What a validation job of ``group`` reads of the workflow ``config``: the keys of
+    its files' rows and the ``search`` section (its params)."""
+    keys = [k for key in VALIDATION_GROUPS[group] for k in EXPERIMENTS[key].keys()]
+    return plain({**pruned(config, keys), "search": config["search"]})
 
 
 def changed_results(base: Mapping, other: Mapping) -> list[str]:

@@ -19,10 +19,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from ..inference.multiverse import (
-    CLAIM_LEVEL,
-)
-from ..inference.reading_space import ReadingSpace
+from ..inference.reading_space import CLAIM_LEVEL, ReadingSpace
 from ..solver.results import OK
 
 #: Robustness classes with their meaning, in the order of config/readings.yaml.
