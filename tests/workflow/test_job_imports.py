@@ -1,0 +1,77 @@
+"""Each job imports only what it runs: the imports of every workflow script, run in a
+fresh interpreter, leave out the heavy modules its kind of job never uses (a job's
+start-up is mostly imports: docs/performance.md).  The solver (and numba with it) loads
+on a job's first stroke, not at import."""
+
+import ast
+import json
+import subprocess
+import sys
+from pathlib import Path
+
+import pytest
+from conftest import ROOT
+
+SCRIPTS = ROOT / "workflow" / "scripts"
+#: What no job imports at start: the solver loads when a job simulates.
+SOLVER = ("numba", "tennis_stroke.solver.stroke", "tennis_stroke.solver.compiled")
+#: Modules only some kinds of job use: drawing, the page's views, the searches and fits.
+DRAWING, VIEWS, SCIPY = ("matplotlib",), ("bokeh",), ("scipy",)
+#: Each script's heavy modules it must not import, by what the job does.
+ABSENT = {
+    "simulate.py": (*SOLVER, *DRAWING, *VIEWS, *SCIPY),  # the solver loads on its first stroke
+    "gather_map.py": (*SOLVER, *DRAWING, *VIEWS, *SCIPY),  # reads chunks, writes a file
+    "figure.py": (*SOLVER, *VIEWS, *SCIPY),  # draws from files
+    "report.py": (*SOLVER, *DRAWING, *SCIPY),  # embeds the drawn figures, views on demand
+    "scenario_report.py": (*SOLVER, *DRAWING, *SCIPY),
+    "claims.py": (*DRAWING, *VIEWS),  # searches: the solver and scipy.optimize
+    "claims_validation.py": (*DRAWING, *VIEWS),
+    "identification.py": (*DRAWING, *VIEWS),
+    "model_ladder.py": (*DRAWING, *VIEWS),
+    "robustness_chunk.py": (*DRAWING, *VIEWS),
+    "robustness_screen.py": (*DRAWING, *VIEWS),
+}
+
+
+def imports_of(script: Path) -> str:
+    """The script's top-level imports (what runs before its job's work)."""
+    tree = ast.parse(script.read_text())
+    nodes = [n for n in tree.body if isinstance(n, ast.Import | ast.ImportFrom)]
+    return "\n".join(ast.unparse(n) for n in nodes)
+
+
+def loaded_after(code: str, watched) -> list[str]:
+    report = f"print(json.dumps([m for m in {list(watched)!r} if m in sys.modules]))"
+    probe = f"{code}\nimport json, sys\n{report}"
+    done = subprocess.run(
+        [sys.executable, "-c", probe], capture_output=True, text=True, timeout=120
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    return json.loads(done.stdout.strip().splitlines()[-1])
+
+
+def test_every_script_is_a_kind_of_job():
+    assert {p.name for p in SCRIPTS.glob("*.py")} == set(ABSENT)
+
+
+@pytest.mark.parametrize("script", sorted(ABSENT))
+def test_a_job_imports_only_what_it_runs(script):
+    assert loaded_after(imports_of(SCRIPTS / script), ABSENT[script]) == []
+
+
+def test_the_workflow_s_plan_loads_no_search_and_no_solver():
+    """What the Snakefile imports to plan the jobs (every snakemake call, a dry run too):
+    numba comes with the memory estimate's layout constants (and numba brings scipy's
+    core), but no search, fit, integrator, drawing or view."""
+    rules = (ROOT / "workflow" / "rules" / "common.smk").read_text()
+    code, block = [], False
+    for line in rules.splitlines():  # the import statements, multi-line ones whole
+        if line.startswith("from tennis_stroke"):
+            block = line.rstrip().endswith("(")
+            code.append(line)
+        elif block:
+            code.append(line)
+            block = not line.startswith(")")
+    assert len(code) > 10
+    heavy = ("scipy.optimize", "scipy.stats", "scipy.integrate", "matplotlib", "bokeh")
+    assert loaded_after("\n".join(code), (*heavy, "tennis_stroke.solver.stroke")) == []
