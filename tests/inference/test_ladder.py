@@ -12,6 +12,7 @@ from tiny import TINY
 from tennis_stroke import strike
 from tennis_stroke.inference import ladder as ld
 from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.inference.ladder_plan import LadderError, check_ladder, rung_model
 
 ROOT = Path(__file__).resolve().parents[2]
 CLAIMS = load_claims(ROOT / "config" / "claims.yaml")
@@ -71,12 +72,12 @@ def test_cheap_rungs_cost_fewer_evaluations_and_costs_are_counted(tiny_ladder):
 
 def test_a_rung_keeps_the_configs_ball_unless_it_names_one():
     model = {"restitution": 0.9, "L1": 0.4}
-    assert ld.rung_model(model, {"contact_model": "impact"}) == {
+    assert rung_model(model, {"contact_model": "impact"}) == {
         "restitution": 0.9,
         "L1": 0.4,
         "contact_model": "impact",
     }
-    lossy = ld.rung_model(model, {"contact_model": "spring", "restitution": 0.75})
+    lossy = rung_model(model, {"contact_model": "spring", "restitution": 0.75})
     assert lossy["restitution"] == 0.75
 
 
@@ -100,8 +101,8 @@ def test_comparability_rule():
 )
 def test_a_bad_ladder_is_refused_in_one_line(change, message):
     ladder = {**TINY["model_ladder"], **change}
-    with pytest.raises(ld.LadderError, match=message):
-        ld.check_ladder(ladder)
+    with pytest.raises(LadderError, match=message):
+        check_ladder(ladder)
 
 
 def test_files_read_together_form_one_group_through_any_chain():

@@ -7,11 +7,10 @@ import pytest
 from tennis_stroke.solver.rk4 import fixed_step_stroke
 from tennis_stroke.solver.stroke import strike
 from tennis_stroke.studies.ladder import ladder
-from tennis_stroke.studies.methods import parse_method
+from tennis_stroke.studies.methods import check_case, parse_method
 from tennis_stroke.studies.sampling import sample_strokes
 from tennis_stroke.studies.stability import (
     OUTCOMES,
-    check_case,
     isolated_contact,
     stability_map,
 )

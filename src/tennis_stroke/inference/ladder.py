@@ -44,6 +44,7 @@ from ..solver.compiled import ensure_compiled
 from ..solver.settings import SolverSettings
 from ..solver.stroke import rhs_evaluations
 from .claims import claim_files, difference, measure, within
+from .ladder_plan import check_ladder, rung_model, rung_settings
 from .reading_space import CURVE_FILES
 from .robustness import files_of_reading
 from .search_plan import SEARCHED
@@ -59,23 +60,6 @@ BALL_MEASURES = ("table1_minimum", "k_spread")
 BALL_SPEED_UNITS = ("km/h", "%")
 #: The contact models without a ball (:mod:`tennis_stroke.model.impact`).
 NO_BALL = ("swing_speed", "swing_omega2")
-
-
-class LadderError(ValueError):
-    """The ladder section of the config is inconsistent (one line)."""
-
-
-def check_ladder(ladder: Mapping) -> None:
-    """Refuse a ladder whose rung names repeat or whose reference is not a rung."""
-    names = [r["name"] for r in ladder["rungs"]]
-    repeated = sorted({n for n in names if names.count(n) > 1})
-    if repeated:
-        raise LadderError(f"model_ladder: rung name {repeated[0]!r} is used twice")
-    if ladder["reference"] not in names:
-        raise LadderError(
-            f"model_ladder.reference {ladder['reference']!r} is not a rung "
-            f"(rungs: {', '.join(names)})"
-        )
 
 
 def comparable(claim: Mapping, contact_model: str) -> bool:
@@ -95,20 +79,6 @@ def scored_by_ball(claim: Mapping) -> bool:
     if set(claim_files(claim)) & {*SEARCHED, *SPRING_FILES}:
         return True
     return spec.get("var") == "v_out" or spec.get("function") in BALL_MEASURES
-
-
-def rung_model(model: Mapping[str, object], rung: Mapping) -> dict[str, object]:
-    """The model overrides of ``rung`` over the config's ``model`` (a rung that names no
-    restitution keeps the config's ball)."""
-    out = {**model, "contact_model": rung["contact_model"]}
-    if "restitution" in rung:
-        out["restitution"] = float(rung["restitution"])
-    return out
-
-
-def rung_settings(solver: Mapping[str, object], rung: Mapping) -> SolverSettings:
-    """The solver settings of ``rung`` over the config's ``solver`` section."""
-    return SolverSettings(**{**solver, **rung.get("solver", {})})
 
 
 def rung_files(

@@ -6,7 +6,7 @@ search range the wrong way round), then the package's own checks: the model over
 through :func:`tennis_stroke.model.params.resolve_params` (every parameter's unit and
 bounds), the solver section and the work-precision tolerances through
 :class:`~tennis_stroke.solver.settings.SolverSettings` (the accuracy bound), the
-stability cases through :func:`tennis_stroke.studies.stability.check_case` (the methods
+stability cases through :func:`tennis_stroke.studies.methods.check_case` (the methods
 that exist), and last the memory of every map's job (:mod:`tennis_stroke.pipeline.memory`)
 against the limit (config key ``max_memory``).  The Snakefile prints the first message and
 exits before any job starts.
@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import copy
 import functools
-import inspect
 import math
 import os
 from collections.abc import Iterator, Mapping
@@ -24,13 +23,14 @@ from decimal import Decimal
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
 from ..experiments.specs import EXPERIMENTS, ConfigKeyError, value_at
-from ..io.config_files import dotted_key, schema_errors
+from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
+from ..io.config_files import dotted_key, load_yaml, schema_errors
 from ..model.params import ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
+from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case
 from .memory import WORD, MemoryLimitError, batch_bytes, check_memory, memory_limit, result_bytes
 
 
@@ -134,8 +134,6 @@ def _solver_errors(config: Mapping) -> Iterator[str]:
             yield (
                 f"config key 'solver_study.compiled_tolerances.{i}': {exc} (rule: solver settings)"
             )
-    from ..studies.stability import check_case
-
     for i, case in enumerate((study.get("stability") or {}).get("cases") or []):
         try:
             check_case(*case)
@@ -191,11 +189,7 @@ def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
 
     study = config["solver_study"]
     opt = study["optimum"]
-    from ..studies.optimum_cost import optimum_cost
-
-    defaults = inspect.signature(optimum_cost).parameters
-    th_range = defaults["theta0_range"].default
-    de_range = defaults["delta0_range"].default
+    th_range, de_range = OPTIMUM_THETA0_RANGE, OPTIMUM_DELTA0_RANGE
     points = len(opt["M2"]) * len(opt["L1"])
     for coarse_step, fine_step in [(1.0, opt["reference_step"]), *opt["steps"]]:
         coarse = grid_size(*th_range, coarse_step) * grid_size(*de_range, coarse_step)
@@ -263,8 +257,6 @@ def numbers_from_strings(node):
 def _ladder_errors(config: Mapping, model: Mapping) -> Iterator[str]:
     """The model ladder's rungs, checked by the code that will run them: names, the
     reference, each rung's model over the config's and its solver settings."""
-    from ..inference.ladder import LadderError, check_ladder, rung_model, rung_settings
-
     ladder = config.get("model_ladder")
     if not ladder:
         return
@@ -351,7 +343,7 @@ def load_schema(schema_path: str | Path) -> dict:
 
 @functools.lru_cache(maxsize=4)
 def _parsed_schema(path: Path, mtime_ns: int, size: int) -> dict:
-    return yaml.safe_load(path.read_text())
+    return load_yaml(path)
 
 
 def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:

@@ -2,7 +2,14 @@
 
 from __future__ import annotations
 
-from ..solver.settings import METHOD_IDS
+import math
+
+from ..solver.settings import METHOD_IDS, SolverSettings
+
+#: The initial angles (degree) over which the optimum-cost study searches the Figs. 5-6
+#: optimum (:func:`tennis_stroke.studies.optimum_cost.optimum_cost`): the paper's ranges.
+OPTIMUM_THETA0_RANGE = (60.0, 120.0)
+OPTIMUM_DELTA0_RANGE = (0.0, 100.0)
 
 #: Method names by family: the compiled solver, scipy's ``solve_ivp``, fixed-step RK4.
 METHODS = {
@@ -19,4 +26,24 @@ def parse_method(method: str) -> tuple[str, str]:
     if name not in METHODS.get(family, ()):
         known = ", ".join(f"{f}.{n}" for f, names in METHODS.items() for n in names)
         raise ValueError(f"unknown method {method!r} (known: {known})")
+    return family, name
+
+
+def check_case(method: str, setting: float) -> tuple[str, str]:
+    """``(family, name)`` of a stability case ``(method, setting)``, or a one-line
+    ``ValueError``: the method must exist (:func:`~tennis_stroke.studies.methods.parse_method`)
+    and the setting be a tolerance or RK4 step > 0 (compiled methods: any
+    :class:`~tennis_stroke.solver.settings.SolverSettings` tolerance, the accuracy bound
+    lifted: this study measures how loose tolerances fail)."""
+    family, name = parse_method(method)
+    if not (
+        isinstance(setting, int | float)
+        and not isinstance(setting, bool)
+        and math.isfinite(setting)
+        and setting > 0
+    ):
+        what = "RK4 step (s)" if family == "fixed" else "tolerance"
+        raise ValueError(f"{what} of case {method!r} must be a number > 0, got {setting!r}")
+    if family == "tennis_stroke":
+        SolverSettings(method=name, rtol=setting, atol=setting, accuracy_bound=False)
     return family, name

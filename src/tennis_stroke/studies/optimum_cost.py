@@ -16,6 +16,7 @@ from ..io.netcdf import provenance
 from ..io.units import cf_attrs
 from ..model.params import resolve_params
 from ..solver.settings import SolverSettings
+from .methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE
 from .sampling import REFERENCE
 from .timing import TIMING, median_time
 
@@ -25,8 +26,8 @@ def optimum_cost(
     l1: Sequence[float],
     steps: Sequence[tuple[float, float]],
     reference_step: float = 0.05,
-    theta0_range=(60.0, 120.0),
-    delta0_range=(0.0, 100.0),
+    theta0_range=OPTIMUM_THETA0_RANGE,
+    delta0_range=OPTIMUM_DELTA0_RANGE,
     searches: Sequence[tuple[float, float]] = (),
 ) -> xr.Dataset:
     """Accuracy of the optimum of Figs. 5-6 against its cost.

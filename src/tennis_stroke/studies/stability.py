@@ -33,7 +33,7 @@ from ..model.params import resolve_params
 from ..solver.rk4 import contact_missed, fixed_phase
 from ..solver.settings import SolverSettings
 from ..solver.stroke import solve_contact
-from .methods import parse_method
+from .methods import check_case
 from .sampling import REFERENCE
 
 #: Outcomes of the isolated-contact test, as stored (``flag_values``/``flag_meanings``).
@@ -126,26 +126,6 @@ def isolated_contact(
         out["energy_change"] = float(mechanical_energy(duration, y, cf, True) / e0 - 1.0)
     out["outcome"] = OUTCOMES.index(_outcome(y, out, missed, failed, duration, expected, v_ref))
     return out
-
-
-def check_case(method: str, setting: float) -> tuple[str, str]:
-    """``(family, name)`` of a stability case ``(method, setting)``, or a one-line
-    ``ValueError``: the method must exist (:func:`~tennis_stroke.studies.methods.parse_method`)
-    and the setting be a tolerance or RK4 step > 0 (compiled methods: any
-    :class:`~tennis_stroke.solver.settings.SolverSettings` tolerance, the accuracy bound
-    lifted: this study measures how loose tolerances fail)."""
-    family, name = parse_method(method)
-    if not (
-        isinstance(setting, int | float)
-        and not isinstance(setting, bool)
-        and math.isfinite(setting)
-        and setting > 0
-    ):
-        what = "RK4 step (s)" if family == "fixed" else "tolerance"
-        raise ValueError(f"{what} of case {method!r} must be a number > 0, got {setting!r}")
-    if family == "tennis_stroke":
-        SolverSettings(method=name, rtol=setting, atol=setting, accuracy_bound=False)
-    return family, name
 
 
 def _outcome(y, out, missed, failed, duration, expected, v_ref) -> str:
