@@ -13,6 +13,7 @@ import pytest
 from conftest import ROOT
 
 SCRIPTS = ROOT / "workflow" / "scripts"
+SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 #: What no job imports at start: the solver loads when a job simulates.
 SOLVER = ("numba", "tennis_stroke.solver.stroke", "tennis_stroke.solver.compiled")
 #: Modules only some kinds of job use: drawing, the page's views, the searches and fits.
@@ -73,5 +74,10 @@ def test_the_workflow_s_plan_loads_no_search_and_no_solver():
             code.append(line)
             block = not line.startswith(")")
     assert len(code) > 10
+    code += [  # and the checks of the config it runs before any job
+        "from tennis_stroke.io.config_files import load_yaml",
+        f"config = load_yaml({str(ROOT / 'config' / 'config.yaml')!r})",
+        f"assert config_errors(config, {str(SCHEMA)!r}) == []",
+    ]
     heavy = ("scipy.optimize", "scipy.stats", "scipy.integrate", "matplotlib", "bokeh")
     assert loaded_after("\n".join(code), (*heavy, "tennis_stroke.solver.stroke")) == []
