@@ -47,7 +47,7 @@ return [m ? m.data.label[0] : null, performance.now()]
 """
 
 
-def _wait(driver, ready, seconds: float = 60.0):
+def _wait(ready, seconds: float = 60.0):
     end = time.monotonic() + seconds
     while time.monotonic() < end:
         seen = ready()
@@ -68,7 +68,7 @@ def _changes(driver, count: int) -> tuple[list[float], list[float]]:
             got = {m["level"]: m["t"] for m in maps if m["generation"] == generation}
             return got if "full" in got else None
 
-        got = _wait(driver, arrived)
+        got = _wait(arrived)
         coarse.append(got["coarse"] - t0)
         full.append(got["full"] - t0)
         time.sleep(0.5)  # let the claims of this setting finish: each change on a quiet server
@@ -92,7 +92,7 @@ def _clicks(driver, count: int) -> list[float]:
             label, t = driver.execute_script(STROKE_JS)
             return t if label == want else None
 
-        times.append(_wait(driver, shown) - t0)
+        times.append(_wait(shown) - t0)
     return times
 
 

@@ -3,14 +3,14 @@ fresh interpreter, leave out the heavy modules its kind of job never uses (a job
 start-up is mostly imports: docs/performance.md).  The solver (and numba with it) loads
 on a job's first stroke, not at import."""
 
-import ast
 import json
 import subprocess
 import sys
-from pathlib import Path
 
 import pytest
 from conftest import ROOT
+
+from tennis_stroke._imports import top_level_imports
 
 SCRIPTS = ROOT / "workflow" / "scripts"
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
@@ -34,13 +34,6 @@ ABSENT = {
 }
 
 
-def imports_of(script: Path) -> str:
-    """The script's top-level imports (what runs before its job's work)."""
-    tree = ast.parse(script.read_text())
-    nodes = [n for n in tree.body if isinstance(n, ast.Import | ast.ImportFrom)]
-    return "\n".join(ast.unparse(n) for n in nodes)
-
-
 def loaded_after(code: str, watched) -> list[str]:
     report = f"print(json.dumps([m for m in {list(watched)!r} if m in sys.modules]))"
     probe = f"{code}\nimport json, sys\n{report}"
@@ -57,7 +50,7 @@ def test_every_script_is_a_kind_of_job():
 
 @pytest.mark.parametrize("script", sorted(ABSENT))
 def test_a_job_imports_only_what_it_runs(script):
-    assert loaded_after(imports_of(SCRIPTS / script), ABSENT[script]) == []
+    assert loaded_after(top_level_imports(SCRIPTS / script), ABSENT[script]) == []
 
 
 def test_the_workflow_s_plan_loads_no_search_and_no_solver():

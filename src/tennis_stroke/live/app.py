@@ -37,12 +37,12 @@ from bokeh.models import (
     TextInput,
 )
 
-from ..inference.claims import load_claims
 from ..inference.reading_space import claims_and_readings
 from ..pipeline.scenarios import ScenarioError, save_scenario, scenario_config
 from ..replication import explorer
 from ..replication.marks import mark_values
 from ..replication.registry import FIGURES as REGISTRY
+from ..replication.registry import LIVE
 from ..replication.views import (
     curve_data,
     curve_view,
@@ -55,8 +55,14 @@ from ..replication.views import (
 
 #: The one worker of every session (see the module's docstring).
 _WORKER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tennis-stroke-explore")
-#: The registry figure of each map (its title and the paper's marks).
-_MAP_FIGURES = {"fig2": "fig02_angle_map", "fig3": "fig03_angle_map"}
+
+
+def _registry_figure(live: str):
+    """The registry figure the explorer shows as ``live`` (``fig2``, ``fig3``, ``fig9``):
+    its title and the paper's marks."""
+    return REGISTRY[next(name for name, shown in LIVE.items() if shown == live)]
+
+
 #: Records in the browser when each map is drawn (``window.__explore_maps``; the frame
 #: after its data arrived): what the benchmark and the browser tests time and wait for.
 _PROBE_JS = """
@@ -84,7 +90,7 @@ class Shared:
     @classmethod
     def load(cls, config, claims_path, readings_path, scenarios, schema, figure, threads=None):
         claims, space = claims_and_readings(claims_path, readings_path)
-        declared = {c["id"]: c for c in load_claims(claims_path)}
+        declared = {c["id"]: c for c in claims}
         return cls(
             config,
             explorer.view_claims(claims),
@@ -127,7 +133,7 @@ class Session:
     # -- the page ---------------------------------------------------------------------
 
     def _build(self, ds, curve) -> None:
-        registry = REGISTRY[_MAP_FIGURES[self.fig]]
+        registry = _registry_figure(self.fig)
         marks = mark_values(registry, self.shared.declared)
         title = f"{registry.title.split(':')[0]} live: v_out over (theta0, delta0)"
         self.map = map_view(
@@ -142,7 +148,7 @@ class Session:
         )
         self.map.on_event(Tap, self._tap)
         self.map.width = 560
-        fig9 = REGISTRY["fig09_v_tau"]
+        fig9 = _registry_figure("fig9")
         self.curve = curve_view(
             curve,
             "tau",

@@ -73,7 +73,7 @@ class Control:
     note: str = ""
 
 
-def _step(value: float) -> float:
+def _control_step(value: float) -> float:
     """A control's step: about a hundredth of the paper's value, a power of ten."""
     return 10.0 ** np.floor(np.log10(abs(value)) - 2) if value else 0.01
 
@@ -83,7 +83,7 @@ def _bounds(spec) -> tuple[float | None, float | None]:
     lower bound becomes the smallest step above it."""
     low = spec.lower
     if low is not None and spec.strict:
-        low = low + _step(spec.default or 1.0)
+        low = low + _control_step(spec.default or 1.0)
     return low, spec.upper
 
 
@@ -111,7 +111,7 @@ def controls(config: Mapping, figure: str) -> list[Control]:
                 spec.default,
                 low,
                 high,
-                _step(spec.default),
+                _control_step(spec.default),
                 note=note or spec.description,
             )
         )
