@@ -21,9 +21,11 @@ import subprocess
 import sys
 from pathlib import Path
 
-from tennis_stroke._imports import top_level_imports
-
 ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT / "tests"))
+
+from scripts import top_level_imports  # noqa: E402
+
 HEAVY = ("numba", "scipy.optimize", "scipy.integrate", "matplotlib", "bokeh", "xarray")
 PROBE = """
 import time

@@ -9,7 +9,6 @@ a job may run them.  Standard library only, so the package's start-up can use it
 
 from __future__ import annotations
 
-import ast
 import re
 from collections.abc import Iterable
 from functools import cache
@@ -117,14 +116,6 @@ def closure(files: Iterable[Path | str] = (), modules: Iterable[str] = ()) -> li
         seen.add(path)
         todo.extend(module_path(m) for m in imports_of_file(path))
     return sorted(seen)
-
-
-def top_level_imports(path: Path | str) -> str:
-    """The import statements at the top level of the file ``path``, as source (what runs
-    before a workflow script's job does its work)."""
-    tree = ast.parse(Path(path).read_text())
-    nodes = [n for n in tree.body if isinstance(n, ast.Import | ast.ImportFrom)]
-    return "\n".join(ast.unparse(n) for n in nodes)
 
 
 def compiled_modules() -> list[str]:

@@ -9,8 +9,7 @@ import sys
 
 import pytest
 from conftest import ROOT
-
-from tennis_stroke._imports import top_level_imports
+from scripts import top_level_imports
 
 SCRIPTS = ROOT / "workflow" / "scripts"
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
