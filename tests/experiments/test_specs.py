@@ -14,7 +14,7 @@ from tennis_stroke.experiments.specs import (
     RESULT_FILES,
     STUDY_RESULTS,
     ConfigKeyError,
-    plain,
+    sorted_data,
     value_at,
 )
 
@@ -64,7 +64,7 @@ def test_keys_are_dotted_paths_with_list_indices():
 
 def test_arguments_are_plain_data_in_a_fixed_order():
     """Snakemake compares params by repr: the same config gives the same text."""
-    a = plain({"b": (1, 2), "a": {"y": 1, "x": [3]}})
+    a = sorted_data({"b": (1, 2), "a": {"y": 1, "x": [3]}})
     assert a == {"a": {"x": [3], "y": 1}, "b": [1, 2]} and list(a) == ["a", "b"]
     reordered = {k: CONFIG[k] for k in reversed(list(CONFIG))}
     for e in EXPERIMENTS.values():

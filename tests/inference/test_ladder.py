@@ -109,12 +109,12 @@ def test_files_read_together_form_one_group_through_any_chain():
     """A claim reading a and b and another reading b and c put a, b and c in one group
     (the connected components of the files-read-together graph); a file no claim reads
     is in no group; groups and their members follow the order of the keys."""
-    from tennis_stroke.inference.ladder import experiment_groups
+    from tennis_stroke.inference.ladder import file_groups
 
     def claim(*files):
         return {"measure": {"file": list(files) if len(files) > 1 else files[0]}}
 
     keys = ["e", "d", "c", "b", "a", "x"]
     claims = [claim("a", "b"), claim("d"), claim("c", "b"), claim("e")]
-    assert experiment_groups(claims, keys) == [["e"], ["d"], ["c", "b", "a"]]
-    assert experiment_groups([], keys) == []
+    assert file_groups(claims, keys) == [["e"], ["d"], ["c", "b", "a"]]
+    assert file_groups([], keys) == []

@@ -82,7 +82,7 @@ def test_claims_by_rung_marks_no_answer_and_picks_the_cheapest_that_reproduces()
 
 def test_files_read_together_are_one_group_and_groups_follow_the_rule():
     ds = _ladder()
-    assert rl.experiment_groups(ds) == [["fig2", "fig3"], ["fig4"]]
+    assert rl.stored_groups(ds) == [["fig2", "fig3"], ["fig4"]]
     table = rl.experiments_by_rung(ds)
     maps = table.loc["fig2 + fig3"]
     assert maps["claims"] == 4

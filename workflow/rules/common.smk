@@ -22,7 +22,7 @@ from tennis_stroke.experiments.specs import (
     EXPERIMENTS,
     VALIDATION_GROUPS,
     fit_set_arguments,
-    plain,
+    sorted_data,
     value_at,
 )
 from tennis_stroke.inference.claims import claim_errors, load_claims
@@ -366,7 +366,7 @@ REGISTRY = PACKAGE_DIR / "replication" / "registry.py"
 def figure_entry(wildcards):
     """A figure's registry entry as plain data (a param: editing one entry reruns its
     figure only)."""
-    return plain(asdict(FIGURES[wildcards.name]))
+    return sorted_data(asdict(FIGURES[wildcards.name]))
 
 
 #: The declared claims by id (config/claims.yaml, checked above).
@@ -376,7 +376,7 @@ DECLARED_CLAIMS = {c["id"]: c for c in load_claims("config/claims.yaml")}
 def figure_marks(wildcards):
     """The paper's values of the claims a figure marks (a param: editing one of them in
     config/claims.yaml reruns the figures that draw it, and no other)."""
-    return plain(mark_values(FIGURES[wildcards.name], DECLARED_CLAIMS))
+    return sorted_data(mark_values(FIGURES[wildcards.name], DECLARED_CLAIMS))
 
 
 #: The paper's figures, drawn from the paper's experiments only: the figures a scenario

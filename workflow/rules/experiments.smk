@@ -184,6 +184,6 @@ rule model_ladder:
         common=common_params(),
         experiments=paper_experiments(),
         figure_curves=config["figure_curves"],
-        ladder=plain(config["model_ladder"]),
+        ladder=sorted_data(config["model_ladder"]),
     script:
         "../scripts/model_ladder.py"

@@ -145,9 +145,9 @@ class Experiment:
         keys: a rule's params, which Snakemake compares by ``repr``)."""
         return {
             name: (
-                {k: plain(value_at(config, v)) for k, v in sorted(key.items())}
+                {k: sorted_data(value_at(config, v)) for k, v in sorted(key.items())}
                 if isinstance(key, Mapping)
-                else plain(value_at(config, key))
+                else sorted_data(value_at(config, key))
             )
             for name, key in self.args.items()
         }
@@ -183,7 +183,7 @@ def pruned(config: Mapping, keys) -> dict:
         for n, part in enumerate(parts):
             value = value_at(source, part)
             if n == len(parts) - 1 or isinstance(value, list):
-                node[part] = plain(value)
+                node[part] = sorted_data(value)
                 break
             node, source = node.setdefault(part, {}), value
     return out
@@ -214,12 +214,12 @@ def shown(value) -> str:
     return str(value)
 
 
-def plain(value):
+def sorted_data(value):
     """``value`` as plain data: mappings as dicts with sorted keys, sequences as lists."""
     if isinstance(value, Mapping):
-        return {str(k): plain(value[k]) for k in sorted(value)}
+        return {str(k): sorted_data(value[k]) for k in sorted(value)}
     if isinstance(value, list | tuple):
-        return [plain(v) for v in value]
+        return [sorted_data(v) for v in value]
     return value
 
 

@@ -102,8 +102,8 @@ def claim_values(
     claims: Sequence[Mapping], files: Mapping[str, xr.Dataset], curves: str
 ) -> np.ndarray:
     """Every claim measured on the files of one rung (the curves of ``curves``)."""
-    plain = files_of_reading(files, curves, None)
-    return np.array([measure(c["measure"], plain) for c in claims], dtype=float)
+    default = files_of_reading(files, curves, None)
+    return np.array([measure(c["measure"], default) for c in claims], dtype=float)
 
 
 def evaluate_ladder(
@@ -149,7 +149,7 @@ def evaluate_ladder(
     return ds
 
 
-def experiment_groups(claims: Sequence[Mapping], keys: Sequence[str]) -> list[list[str]]:
+def file_groups(claims: Sequence[Mapping], keys: Sequence[str]) -> list[list[str]]:
     """The result files the claims read, in groups of files that claims read together
     (connected by the claims that read several: the connected components of that graph,
     scipy's ``connected_components``; a rung is chosen for a whole group), in the order
@@ -193,7 +193,7 @@ def ladder_dataset(
     paper = np.array([c["paper_value"] for c in claims], dtype=float)
     tol = np.array([c["tolerance"] for c in claims], dtype=float)
     settings = [{**solver, **r.get("solver", {})} for r in rungs]
-    groups = experiment_groups(claims, keys)
+    groups = file_groups(claims, keys)
     group_of = {k: g for g, files in enumerate(groups) for k in files}
     ds = xr.Dataset(
         {

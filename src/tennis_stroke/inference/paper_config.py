@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from ..experiments.specs import ConfigKeyError, plain, shown, value_at
+from ..experiments.specs import ConfigKeyError, shown, sorted_data, value_at
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
 
@@ -72,7 +72,7 @@ def departures(config: Mapping, inputs: Sequence[Mapping]) -> list[dict]:
         except ConfigKeyError:
             value = None
         if not _same(value, item["value"]):
-            out.append({**item, "value": plain(value), "paper_value": item["value"]})
+            out.append({**item, "value": sorted_data(value), "paper_value": item["value"]})
     for name, value in sorted((config.get("model") or {}).items()):
         if name in PARAMETERS:
             default, source = PARAMETERS[name].default, "the model's parameters (Sec. III)"
@@ -94,7 +94,7 @@ def configuration_record(
     (``{name, overrides, changes}``, or None for the paper's configuration) and the
     departures from the paper's (:func:`departures`)."""
     return {
-        "scenario": plain(scenario) if scenario else None,
+        "scenario": sorted_data(scenario) if scenario else None,
         "departures": departures(config, inputs),
     }
 

@@ -319,17 +319,17 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
         if name in overrides:
             arr = _as_float_array(name, overrides[name])
             _check_bounds(spec, arr)
-            out[name] = _plain(arr)
+            out[name] = _scalar(arr)
         else:
             out[name] = spec.default
     factor = 1.0 / 12.0 if out["inertia"] == "uniform_rod" else 0.5
     if out["I1_cm"] is None:
-        out["I1_cm"] = _plain(factor * np.asarray(out["M1"]) * np.asarray(out["L1"]) ** 2)
+        out["I1_cm"] = _scalar(factor * np.asarray(out["M1"]) * np.asarray(out["L1"]) ** 2)
     if out["I2_cm"] is None:
-        out["I2_cm"] = _plain(factor * np.asarray(out["M2"]) * np.asarray(out["L2"]) ** 2)
+        out["I2_cm"] = _scalar(factor * np.asarray(out["M2"]) * np.asarray(out["L2"]) ** 2)
     if out["contact_lead"] is None:
         period = two_body_period(out["ball_mass"], out["M2"], out["k_contact"])
-        out["contact_lead"] = _plain(_LEAD_FRACTION[out["contact_lead_rule"]] * period)
+        out["contact_lead"] = _scalar(_LEAD_FRACTION[out["contact_lead_rule"]] * period)
     try:
         np.broadcast_shapes(*(np.shape(out[n]) for n in PARAMETERS))
     except ValueError:
@@ -337,7 +337,7 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
     return out
 
 
-def _plain(arr: np.ndarray) -> float | np.ndarray:
+def _scalar(arr: np.ndarray) -> float | np.ndarray:
     """A 0-d array becomes a Python float (so JSON and netCDF attributes stay plain)."""
     arr = np.asarray(arr, dtype=float)
     return float(arr) if arr.ndim == 0 else arr

@@ -17,8 +17,8 @@ from ..experiments.specs import (
     PAPER_RESULTS,
     VALIDATION_GROUPS,
     Experiment,
-    plain,
     pruned,
+    sorted_data,
 )
 from ..inference.reading_space import MULTIVERSE_SETS
 from ..inference.search_plan import targeted_config
@@ -74,14 +74,14 @@ PAPER_SECTIONS = tuple(
 def paper_sections(config: Mapping) -> dict:
     """The :data:`PAPER_SECTIONS` of ``config``."""
     # plain: keys sorted, as a --config merge reorders them (params compare by repr)
-    return plain({k: config[k] for k in PAPER_SECTIONS})
+    return sorted_data({k: config[k] for k in PAPER_SECTIONS})
 
 
 def paper_experiments(config: Mapping) -> dict:
     """What the targeted evaluation of the claims reads (the claims job and the
     robustness analysis rerun it): :func:`paper_sections` less the steps of the maps it
     searches instead (:func:`tennis_stroke.inference.search_plan.targeted_config`)."""
-    return plain(targeted_config(paper_sections(config)))
+    return sorted_data(targeted_config(paper_sections(config)))
 
 
 def claims_params(config: Mapping) -> dict:
@@ -94,7 +94,7 @@ def group_config(config: Mapping, group: str) -> dict:
     """What a validation job of ``group`` reads of the workflow ``config``: the keys of
     its files' rows and the ``search`` section (its params)."""
     keys = [k for key in VALIDATION_GROUPS[group] for k in EXPERIMENTS[key].keys()]
-    return plain({**pruned(config, keys), "search": config["search"]})
+    return sorted_data({**pruned(config, keys), "search": config["search"]})
 
 
 def changed_results(base: Mapping, other: Mapping) -> list[str]:

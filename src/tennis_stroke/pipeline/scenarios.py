@@ -24,7 +24,7 @@ from pathlib import Path
 
 import yaml
 
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, plain, shown
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, shown, sorted_data
 from ..io.config_files import ConfigFileError, load_yaml
 from ..model.params import PARAMETERS, READINGS
 from .config_check import canonical, config_errors, load_schema, numbers_from_strings
@@ -55,8 +55,8 @@ def changes(base: Mapping, other: Mapping, prefix: str = "") -> list[tuple[str, 
         path = f"{prefix}{key}"
         if isinstance(a, Mapping) and isinstance(b, Mapping):
             out.extend(changes(a, b, f"{path}."))
-        elif plain(a) != plain(b):
-            out.append((path, plain(a), plain(b)))
+        elif sorted_data(a) != sorted_data(b):
+            out.append((path, sorted_data(a), sorted_data(b)))
     return out
 
 
@@ -122,7 +122,7 @@ def load_scenarios(path: str | Path, extra: Mapping | None = None) -> dict[str, 
         errors = _shape_errors(name, overrides)
         if errors:
             raise ScenarioError(errors[0])
-    return {name: plain(overrides or {}) for name, overrides in out.items()}
+    return {name: sorted_data(overrides or {}) for name, overrides in out.items()}
 
 
 def override_from(items) -> dict:
@@ -208,7 +208,9 @@ def save_scenario(
         raise ScenarioError(f"scenario {name!r} is already declared in {path}: pick another name")
     scenario_config(base, name, overrides, schema)
     text = path.read_text() if path.is_file() else ""
-    block = yaml.safe_dump({name: plain(dict(overrides))}, default_flow_style=None, sort_keys=True)
+    block = yaml.safe_dump(
+        {name: sorted_data(dict(overrides))}, default_flow_style=None, sort_keys=True
+    )
     separator = "" if not text or text.endswith("\n") else "\n"
     temporary = path.with_name(f".{path.name}.saving")
     temporary.write_text(f"{text}{separator}{block}")

@@ -100,15 +100,15 @@ def claims_by_rung(ds: xr.Dataset) -> pd.DataFrame:
     return table
 
 
-def experiment_groups(ds: xr.Dataset) -> list[list[str]]:
-    """The experiment groups of the file (:func:`tennis_stroke.inference.ladder.
-    experiment_groups`): the files of each, in group order."""
+def stored_groups(ds: xr.Dataset) -> list[list[str]]:
+    """The experiment groups stored in the ladder file (made by
+    :func:`tennis_stroke.inference.ladder.file_groups`): the files of each, in group order."""
     group = ds["file_group"].values
     return [[str(k) for k in ds["file"].values[group == g]] for g in range(group.max() + 1)]
 
 
 def experiments_by_rung(ds: xr.Dataset) -> pd.DataFrame:
-    """One row per experiment group (:func:`experiment_groups`): its claims, the cheapest
+    """One row per experiment group (:func:`stored_groups`): its claims, the cheapest
     rung that keeps all their verdicts, the cheapest rung and the cheapest model rung the
     adoption rule allows, with their cost against the reference rung's."""
     names = ds["rung"].values
@@ -124,7 +124,7 @@ def experiments_by_rung(ds: xr.Dataset) -> pd.DataFrame:
     evals = ds["rhs_evals"].to_pandas()
     models = model_rungs(ds)
     rows = []
-    for g, group in enumerate(experiment_groups(ds)):
+    for g, group in enumerate(stored_groups(ds)):
         reads = ds["claim_group"].values == g
         cost = evals[group].sum(axis=1).values[:, None]
         rule = close[:, reads].all(axis=1)

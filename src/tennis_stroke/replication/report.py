@@ -679,7 +679,7 @@ def build_report(
         ladder=ladder_summary(ladder_error, claims),
         readings=list(READINGS.values()),
         ledger=markdown_html(Path(assumptions_md).read_text()) if assumptions_md else "",
-        config_yaml=yaml.safe_dump(_plain(config), sort_keys=False),
+        config_yaml=yaml.safe_dump(_builtin(config), sort_keys=False),
         meta=meta,
         distributions=environment["distributions"],
         failure_table=_table(_failures(results), index=False, na_rep="-"),
@@ -703,10 +703,10 @@ def _file_environments(results: Sequence[str]) -> str:
     return "; ".join(f"{k} ({n} files)" for k, n in seen.items())
 
 
-def _plain(node):
+def _builtin(node):
     """Config as plain YAML-able data (Snakemake's config may hold its own mapping types)."""
     if isinstance(node, Mapping):
-        return {str(k): _plain(v) for k, v in node.items()}
+        return {str(k): _builtin(v) for k, v in node.items()}
     if isinstance(node, list | tuple):
-        return [_plain(v) for v in node]
+        return [_builtin(v) for v in node]
     return node

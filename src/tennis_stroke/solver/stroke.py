@@ -255,7 +255,7 @@ def instant_phase(method, t, y, h, cf, st, out, stats, history):
 
 
 @njit(**JIT)
-def solve_stroke(method, cf_row, st, out, history, stats):
+def stroke_row(method, cf_row, st, out, history, stats):
     """Simulate one stroke (coefficient row ``cf_row``); write the ``O_*`` columns of ``out``."""
     method = literally(method)  # compiled per method (solver/integrate.py)
     cf = coefficient_tuple(cf_row)
@@ -304,7 +304,7 @@ def solve_rows(method, cf_rows, st, out, start, stop, history_capacity):
     history = np.zeros((history_capacity + 1, HISTORY_COLS))
     stats = np.zeros(N_STATS)
     for i in range(start, stop):
-        solve_stroke(method, cf_rows[i], st, out[i], history, stats)
+        stroke_row(method, cf_rows[i], st, out[i], history, stats)
 
 
 #: Right-hand-side evaluations of every stroke this process has run through
