@@ -4,6 +4,7 @@ import numpy as np
 import pytest
 
 from tennis_stroke.experiments.maps import grid, mass_length_map, refine_peak
+from tennis_stroke.solver.results import OK
 from tennis_stroke.solver.stroke import SolverSettings, strike_batch
 
 
@@ -39,7 +40,7 @@ def test_nested_optimum_matches_a_brute_force_search():
     )
     theta0, delta0 = np.arange(80.0, 100.01, 0.5), np.arange(10.0, 40.01, 0.5)
     dense = strike_batch(theta0[:, None], delta0[None, :], {"M2": 0.3, "L1": 0.4})
-    v = np.where(dense["status"] == 0, dense["v_out_kmh"], np.nan)
+    v = np.where(dense["status"] == OK, dense["v_out_kmh"], np.nan)
     assert float(ds["v_out_best"][0, 0]) >= np.nanmax(v) - 1e-3
     i, j = np.unravel_index(np.nanargmax(v), v.shape)
     assert float(ds["theta0_best"][0, 0]) == pytest.approx(theta0[i], abs=0.5)

@@ -33,6 +33,7 @@ from tennis_stroke.model.dynamics import (
 from tennis_stroke.model.impact import impact_restitution, instant_contact
 from tennis_stroke.model.params import ParameterError, resolve_params
 from tennis_stroke.solver.reference import solve_stroke
+from tennis_stroke.solver.results import OK
 
 RUNGS = ("spring", "impact", "swing_speed", "swing_omega2")
 
@@ -179,7 +180,7 @@ def test_scipy_path_agrees_on_every_rung(rung, e):
     params = {"contact_model": rung, "restitution": e}
     got = strike(75.0, 39.0, params)
     ref = solve_stroke(75.0, 39.0, params, rtol=1e-11, atol=1e-11).result
-    assert got["status"] == ref["status"] == 0
+    assert got["status"] == ref["status"] == OK
     for key in ("v_out_kmh", "t_separation", "omega2_contact"):
         assert got[key] == pytest.approx(ref[key], rel=1e-6), key
 

@@ -20,6 +20,7 @@ from tennis_stroke.pipeline.memory import (
     parse_size,
     result_bytes,
 )
+from tennis_stroke.solver.results import OK
 from tennis_stroke.solver.settings import MAX_ATOL, MAX_RTOL, SolverSettingError
 
 ROOT = Path(__file__).resolve().parents[2]
@@ -84,7 +85,7 @@ def test_at_the_bound_strokes_stay_within_the_claims_tolerances(method):
         ref = strike_batch(theta0, delta0, params, TIGHT)
         res = strike_batch(theta0, delta0, params, at_bound)
         assert np.array_equal(res["status"], ref["status"])
-        ok = ref["status"] == 0
+        ok = ref["status"] == OK
         assert np.max(np.abs(res["v_out_kmh"] - ref["v_out_kmh"])[ok]) < 0.5
         for key in ("omega1_contact", "omega2_contact"):
             assert np.max(np.abs(res[key] - ref[key])[ok]) < 0.25

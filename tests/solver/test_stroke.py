@@ -12,6 +12,8 @@ from tennis_stroke.model.dynamics import effective_mass, hit_offset
 from tennis_stroke.model.params import ParameterError, resolve_params
 from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
 from tennis_stroke.solver.reference import solve_stroke
+from tennis_stroke.solver.results import OK
+from tennis_stroke.solver.rk4 import fixed_step_stroke
 from tennis_stroke.solver.settings import S_RTOL
 from tennis_stroke.solver.stroke import run_phases
 
@@ -45,7 +47,7 @@ def test_compiled_matches_scipy_at_tight_tolerance(method):
         )
         ref = solve_stroke(theta0, delta0, params, rtol=1e-12, atol=1e-12).result
         assert ours["status"] == ref["status"], (theta0, delta0, params)
-        if ours["status"] != 0:
+        if ours["status"] != OK:
             continue
         checked += 1
         assert ours["v_out_kmh"] == pytest.approx(ref["v_out_kmh"], abs=1e-6)
@@ -102,8 +104,27 @@ def test_failures_are_statuses(params, settings, status):
     assert math.isnan(res["v_out_kmh"])
 
 
-def test_status_names_cover_codes():
-    assert sorted(STATUS_NAMES) == list(range(len(STATUS_NAMES)))
+#: Without torques, the rods fall from (70, -60) deg and move away from the ball.
+NO_APPROACH_CASE = (70.0, -60.0, {"C1": 0.0, "C2": 0.0})
+
+
+def test_a_racket_moving_away_from_the_ball_is_no_approach_on_every_path():
+    """The one failure the table above cannot reach from Fig. 4's start: the compiled
+    path, the scipy path and fixed-step RK4 all name it with the same code."""
+    theta0, delta0, params = NO_APPROACH_CASE
+    ours = strike(theta0, delta0, params)
+    assert ours["status_name"] == "no_approach" and math.isnan(ours["v_out_kmh"])
+    assert solve_stroke(theta0, delta0, params).result["status"] == ours["status"]
+    assert fixed_step_stroke(theta0, delta0, params, 1e-4)["status"] == ours["status"]
+
+
+def test_every_status_a_stroke_ends_with_is_named_and_reached():
+    """Every code of STATUS_NAMES is reached by some stroke of these tests: a code no
+    stroke can produce, or a stroke ending with an unnamed code, fails here."""
+    cases = test_failures_are_statuses.pytestmark[0].args[1]
+    reached = {strike(*FIG4_A, p, st)["status"] for p, st, _ in cases}
+    reached |= {strike(*FIG4_A)["status"], strike(*NO_APPROACH_CASE)["status"]}
+    assert {int(code) for code in reached} == set(STATUS_NAMES)
 
 
 def _isolated_contact(k):

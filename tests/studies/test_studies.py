@@ -4,7 +4,7 @@ the impact model and the work-precision table."""
 import numpy as np
 import pytest
 
-from tennis_stroke.solver.rk4 import fixed_step_stroke
+from tennis_stroke.solver.rk4 import MISSED_CONTACT, fixed_step_stroke
 from tennis_stroke.solver.settings import SolverSettings
 from tennis_stroke.solver.stroke import strike
 from tennis_stroke.studies.ladder import ladder
@@ -59,7 +59,7 @@ def test_fixed_step_rk4_converges_at_fourth_order(theta0, delta0):
 
 
 def test_fixed_step_rk4_jumps_over_a_contact_shorter_than_its_step():
-    assert fixed_step_stroke(120.0, 81.5, {}, 1e-2)["status"] == "missed_contact"
+    assert fixed_step_stroke(120.0, 81.5, {}, 1e-2)["status"] == MISSED_CONTACT
 
 
 def test_impact_model_is_close_to_but_not_the_spring_contact():

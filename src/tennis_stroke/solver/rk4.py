@@ -5,7 +5,7 @@ steps never change size, and an event is found by a sign change between two step
 located on the step's cubic Hermite interpolant (the states and derivatives at both
 ends: fourth order, as RK4 itself; a linear interpolation made every stroke's v_out
 second order in the step, measured 2026-12-03).  A contact shorter than one step is
-jumped over (``missed_contact``), and a step beyond the explicit stability limit blows
+jumped over (:data:`MISSED_CONTACT`), and a step beyond the explicit stability limit blows
 up: the stability study shows both.  Phases end at the torque switches, as on the other
 paths.
 """
@@ -38,6 +38,13 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.params import resolve_params
+from .results import NO_APPROACH, NO_PHI_ZERO, NO_RELEASE, OK, STATUS_NAMES, STEP_FAILURE
+
+#: The one status fixed-step RK4 adds to the solver's codes (:data:`STATUS_NAMES`): its
+#: first contact step jumped over the whole contact (a contact shorter than the step).
+MISSED_CONTACT = len(STATUS_NAMES)
+#: The statuses of :func:`fixed_step_stroke`: the solver's, and :data:`MISSED_CONTACT`.
+FIXED_STATUS_NAMES = {**STATUS_NAMES, MISSED_CONTACT: "missed_contact"}
 
 
 def rk4_step(fun: Callable, t: float, y: np.ndarray, h: float) -> np.ndarray:
@@ -114,20 +121,21 @@ def contact_missed(cf, t: float, y: np.ndarray, h: float, t_stop: float):
 def fixed_step_stroke(
     theta0_deg: float, delta0_deg: float, params: Mapping[str, object], h: float, t_max: float = 1.0
 ) -> dict[str, float]:
-    """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (``ok``,
-    ``missed_contact``, ``no_phi_zero``, ``no_approach``, ``non_finite`` or
-    ``no_release``), ``v_out_kmh`` and ``rhs_evals``.
+    """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (a code of
+    :data:`FIXED_STATUS_NAMES`: ``OK``, ``MISSED_CONTACT``, ``NO_PHI_ZERO``,
+    ``NO_APPROACH``, ``STEP_FAILURE`` for a non-finite state, or ``NO_RELEASE``),
+    ``v_out_kmh`` and ``rhs_evals``.
 
     The contact state at ``t_c`` is the RK4 state of the step before, advanced by one
     step of the remaining size.
     """
     cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
-    out = {"status": "ok", "v_out_kmh": math.nan, "rhs_evals": 0}
+    out = {"status": OK, "v_out_kmh": math.nan, "rhs_evals": 0}
     y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
     t0, y, hit, evals = fixed_phase(cf, 0.0, y0, t_max, h, False, swing_event_angles)
     out["rhs_evals"] += evals
     if not hit:
-        out["status"] = "no_phi_zero" if np.all(np.isfinite(y)) else "non_finite"
+        out["status"] = NO_PHI_ZERO if np.all(np.isfinite(y)) else STEP_FAILURE
         return out
     t_c = t0 - cf[CF_LEAD]
     _, yc, _, evals = fixed_phase(cf, 0.0, y0, t_c, h, False)
@@ -136,18 +144,18 @@ def fixed_step_stroke(
     ct, cp = math.cos(yc[A_THETA]), math.cos(yc[A_PHI])
     s, w = incoming_ball(t_c, st, sp, cf)
     if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
-        out["status"] = "no_approach"
+        out["status"] = NO_APPROACH
         return out
     y = np.array([*yc, s, w])
     missed, _, evals = contact_missed(cf, t_c, y, h, t_max)
     if missed:
-        out["status"] = "missed_contact"
+        out["status"] = MISSED_CONTACT
         out["rhs_evals"] += evals
         return out
     t_s, y, hit, evals = fixed_phase(cf, t_c, y, t_max, h, True, compression_angles)
     out["rhs_evals"] += evals
     if not hit or not np.all(np.isfinite(y)):
-        out["status"] = "non_finite" if not np.all(np.isfinite(y)) else "no_release"
+        out["status"] = STEP_FAILURE if not np.all(np.isfinite(y)) else NO_RELEASE
         return out
     out["v_out_kmh"] = rebound_speed_kmh(t_s, y[A_BALL_W], cf)
     return out

@@ -105,7 +105,7 @@ def isolated_contact(
         failed = sol.status != 1
         if not failed:
             duration, y = float(sol.t_events[0][0]), sol.y_events[0][0]
-        elif sol.status == 0:
+        elif sol.status == 0:  # scipy's code: t_end reached without the event
             duration, y = float(sol.t[-1]), sol.y[:, -1]
     else:
         missed, first, _ = contact_missed(cf, 0.0, y0, setting, t_end)

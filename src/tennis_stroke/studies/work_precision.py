@@ -75,7 +75,7 @@ def work_precision(
                         ok[i] = r["status"] == OK
                     else:
                         r = fixed_step_stroke(th[i], de[i], p, value)
-                        ok[i] = r["status"] == "ok"
+                        ok[i] = r["status"] == OK
                     per.append(time.perf_counter() - start)
                     v[i], nfev[i] = r["v_out_kmh"], r["rhs_evals"]
                 cost[mi, si] = float(np.median(per)) * 1e6
