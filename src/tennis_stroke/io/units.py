@@ -3,11 +3,18 @@ result file (CF ``units`` and ``long_name``), and :func:`cf_attrs`, which every 
 (:mod:`tennis_stroke.io.netcdf`, the experiments, the studies, the inference) uses.
 
 Metadata only: no compiled module imports it, so editing a long name recompiles nothing.
+The model parameters that are file axes take their unit and label from the parameter
+table.
 """
 
 from __future__ import annotations
 
+from ..model.params import PARAMETERS
+
 _SPEED = "km/h"
+#: The model parameters that are axes of result files: their unit and label are the
+#: parameter table's (:data:`tennis_stroke.model.params.PARAMETERS`), written once.
+_PARAMETER_AXES = ("M2", "L1", "C2", "tau", "F0", "k_contact")
 #: The stroke result fields (:data:`tennis_stroke.solver.results.RESULT_FIELDS`) under
 #: their file names: name -> (unit, long name).
 RESULT_VARIABLES: dict[str, tuple[str, str]] = {
@@ -29,16 +36,12 @@ RESULT_VARIABLES: dict[str, tuple[str, str]] = {
 #: Every other variable and coordinate written to a result file: name -> (unit, long
 #: name).
 OTHER_VARIABLES: dict[str, tuple[str, str]] = {
+    **{k: (PARAMETERS[k].unit, PARAMETERS[k].description) for k in _PARAMETER_AXES},
     # grid axes and stroke coordinates
     "theta0": ("degree", "initial rod-1 angle theta(0) from -y"),
     "delta0": ("degree", "initial angle delta(0) = phi(0) - theta(0) between the rods"),
-    "M2": ("kg", "mass of rod 2 (hand+racket)"),
-    "L1": ("m", "length of rod 1 (elbow to hand, projected)"),
-    "C2": ("N m", "wrist torque C2"),
-    "tau": ("s", "delay of the wrist torque C2"),
     "psi_F": ("degree", "direction of the elbow force from +x"),
     "tau_F": ("s", "delay of the force pulse after tau_H"),
-    "F0": ("N", "amplitude of the elbow force (Eq. 14)"),
     "stroke": ("1", "stroke index"),
     "label": ("1", "stroke label"),
     # The time axis of the sampled strokes is named "t", not "time": it is the time since
@@ -79,7 +82,6 @@ OTHER_VARIABLES: dict[str, tuple[str, str]] = {
     "rhs_evals_per_stroke": ("1", "right-hand-side evaluations per stroke (mean)"),
     "failed": ("1", "strokes without status ok"),
     "case": ("1", "method @ setting"),
-    "k_contact": ("N/m", "spring constant"),
     "outcome": ("1", "outcome code (see flag_meanings)"),
     "v_exit": ("m/s", "ball velocity after separation (lab frame, along x)"),
     "duration": ("s", "contact duration"),

@@ -43,81 +43,122 @@ class ParamSpec:
     derived: bool = False
 
 
-def _p(*args, **kwargs) -> ParamSpec:
-    return ParamSpec(*args, **kwargs)
-
-
 #: The model parameters, in SI units (angles in degrees only where the name says ``_deg``).
 PARAMETERS: dict[str, ParamSpec] = {
     s.name: s
     for s in [
-        _p("L1", 0.3, "m", "length of rod 1 (arm+forearm, elbow to wrist)", 0, 5, True),
-        _p("M1", 2.0, "kg", "mass of rod 1", 0, 100, True),
-        _p("L2", 0.7, "m", "length of rod 2 (hand+racket)", 0, 5, True),
-        _p("M2", 0.3, "kg", "mass of rod 2", 0, 100, True),
-        _p(
+        ParamSpec(
+            "L1",
+            0.3,
+            "m",
+            "length of rod 1 (arm+forearm: elbow to hand, projected on xy)",
+            lower=0,
+            upper=5,
+            strict=True,
+        ),
+        ParamSpec("M1", 2.0, "kg", "mass of rod 1", lower=0, upper=100, strict=True),
+        ParamSpec("L2", 0.7, "m", "length of rod 2 (hand+racket)", lower=0, upper=5, strict=True),
+        ParamSpec("M2", 0.3, "kg", "mass of rod 2 (hand+racket)", lower=0, upper=100, strict=True),
+        ParamSpec(
             "I1_cm",
             None,
             "kg m2",
             "moment of inertia of rod 1 about its centre",
-            0,
-            None,
-            True,
+            lower=0,
+            upper=None,
+            strict=True,
             derived=True,
         ),
-        _p(
+        ParamSpec(
             "I2_cm",
             None,
             "kg m2",
             "moment of inertia of rod 2 about its centre",
-            0,
-            None,
-            True,
+            lower=0,
+            upper=None,
+            strict=True,
             derived=True,
         ),
-        _p("C1", 25.0, "N m", "elbow torque on rod 1 (clockwise positive)"),
-        _p("C2", 2.5, "N m", "wrist torque on rod 2 (clockwise positive)"),
-        _p("tau", 0.0, "s", "delay after which C2 switches on (Sec. V)", 0, 10),
-        _p("C2_off", 0.5, "s", "time at which C2 switches off (paper: '0.5 ms')", 0, 10),
-        _p("h_hit", 0.15, "m", "hitting point beyond the centre of rod 2 (h_H)", -5, 5),
-        _p("ball_mass", 0.058, "kg", "ball mass (not stated in the paper; fitted)", 0, 10, True),
-        _p("ball_speed", 5.0, "m/s", "incoming ball speed along +x", 0, 100),
-        _p("k_contact", 7800.0, "N/m", "ball-racket spring constant (fitted)", 0, 1e12, True),
-        _p(
+        ParamSpec("C1", 25.0, "N m", "elbow torque on rod 1 (clockwise positive)"),
+        ParamSpec("C2", 2.5, "N m", "wrist torque on rod 2 (clockwise positive)"),
+        ParamSpec("tau", 0.0, "s", "delay after which C2 switches on (Sec. V)", lower=0, upper=10),
+        ParamSpec(
+            "C2_off", 0.5, "s", "time at which C2 switches off (paper: '0.5 ms')", lower=0, upper=10
+        ),
+        ParamSpec(
+            "h_hit", 0.15, "m", "hitting point beyond the centre of rod 2 (h_H)", lower=-5, upper=5
+        ),
+        ParamSpec(
+            "ball_mass",
+            0.058,
+            "kg",
+            "ball mass (not stated in the paper; fitted)",
+            lower=0,
+            upper=10,
+            strict=True,
+        ),
+        ParamSpec("ball_speed", 5.0, "m/s", "incoming ball speed along +x", lower=0, upper=100),
+        ParamSpec(
+            "k_contact",
+            7800.0,
+            "N/m",
+            "ball-racket spring constant (fitted)",
+            lower=0,
+            upper=1e12,
+            strict=True,
+        ),
+        ParamSpec(
             "restitution",
             1.0,
             "1",
             "coefficient of restitution of the ball on the strings of a free racket of mass "
             "M2 (1: the paper's elastic ball; below 1: a dashpot in the contact)",
-            0,
-            1,
-            True,
+            lower=0,
+            upper=1,
+            strict=True,
         ),
-        _p(
+        ParamSpec(
             "contact_lead",
             None,
             "s",
             "time from contact start to phi = 0 (t0 - t_c)",
-            0,
-            1,
+            lower=0,
+            upper=1,
             derived=True,
         ),
-        _p("vx_t1", -33.0, "m/s2", "elbow velocity vx = vx_t1 t + vx_t2 t^2 (Eq. 13)"),
-        _p("vx_t2", 69.0, "m/s3", "elbow velocity, quadratic x coefficient (Eq. 13)"),
-        _p("vy_t1", -42.0, "m/s2", "elbow velocity vy = vy_t1 t + vy_t2 t^2 (Eq. 13)"),
-        _p("vy_t2", 174.0, "m/s3", "elbow velocity, quadratic y coefficient (Eq. 13)"),
-        _p("F0", 0.0, "N", "amplitude of the extra elbow force (Eq. 14)", 0, 1e4),
-        _p("psi_F_deg", 0.0, "degree", "direction of the extra elbow force from +x, ccw"),
-        _p("t_F", 0.185, "s", "centre time of the extra elbow force (tau_H + tau_F)", 0, 10),
-        _p("t_d", 0.05, "s", "width of the extra elbow force pulse (Eq. 14)", 0, 10, True),
-        _p(
+        ParamSpec("vx_t1", -33.0, "m/s2", "elbow velocity vx = vx_t1 t + vx_t2 t^2 (Eq. 13)"),
+        ParamSpec("vx_t2", 69.0, "m/s3", "elbow velocity, quadratic x coefficient (Eq. 13)"),
+        ParamSpec("vy_t1", -42.0, "m/s2", "elbow velocity vy = vy_t1 t + vy_t2 t^2 (Eq. 13)"),
+        ParamSpec("vy_t2", 174.0, "m/s3", "elbow velocity, quadratic y coefficient (Eq. 13)"),
+        ParamSpec(
+            "F0", 0.0, "N", "amplitude of the extra elbow force (Eq. 14)", lower=0, upper=1e4
+        ),
+        ParamSpec("psi_F_deg", 0.0, "degree", "direction of the extra elbow force from +x, ccw"),
+        ParamSpec(
+            "t_F",
+            0.185,
+            "s",
+            "centre time of the extra elbow force (tau_H + tau_F)",
+            lower=0,
+            upper=10,
+        ),
+        ParamSpec(
+            "t_d",
+            0.05,
+            "s",
+            "width of the extra elbow force pulse (Eq. 14)",
+            lower=0,
+            upper=10,
+            strict=True,
+        ),
+        ParamSpec(
             "elbow_force_mass",
             0.97,
             "kg",
             "mass the extra elbow force accelerates (fitted to Table I)",
-            0,
-            1e3,
-            True,
+            lower=0,
+            upper=1e3,
+            strict=True,
         ),
     ]
 }
