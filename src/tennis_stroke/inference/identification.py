@@ -31,6 +31,7 @@ from ..model.params import PARAMETERS
 from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
+from .labels import claim_facts, variable
 from .reading_space import FitSet, ReadingSpace, literal_rank
 
 
@@ -385,125 +386,103 @@ def model_overrides(space: ReadingSpace, default: Mapping) -> dict[str, object]:
 
 def to_datasets(result: Identification, settings: SolverSettings | None = None) -> dict:
     """netCDF-ready datasets: ``fits`` (combination x claim), ``profiles`` (one per
-    unknown) and ``loo`` (claim)."""
-    fit, goal = result.fit, result.goal
-    claims = [t.claim for t in goal]
-    rows = result.rows
+    unknown) and ``loo`` (claim), each with the run's provenance."""
+    datasets = {
+        "fits": _fits_dataset(result),
+        "profiles": _profiles_dataset(result),
+        "loo": _loo_dataset(result),
+    }
+    for ds in datasets.values():
+        defaults = dict(ds.attrs)  # after the provenance, as the files always had them
+        ds.attrs = {**_attrs(result, settings), **defaults}
+    # values in each claim's own unit (claim_unit) and labels carry units "1"
+    return {name: labelled(ds) for name, ds in datasets.items()}
+
+
+def _goal_facts(goal) -> dict[str, tuple]:
+    return claim_facts([t.paper for t in goal], [t.tolerance for t in goal], [t.unit for t in goal])
+
+
+def _fits_dataset(result: Identification) -> xr.Dataset:
+    """Every combination of the discrete readings: its fitted unknowns, the fit claims'
+    values and residuals, and the defaults as attributes."""
+    fit, goal, rows = result.fit, result.goal, result.rows
+    combo = "combination"
     fits = xr.Dataset(
         {
             **{
-                name: (
-                    "combination",
-                    [r["readings"][name] for r in rows],
-                    {"long_name": f"reading {name}"},
-                )
+                name: variable(combo, [r["readings"][name] for r in rows], "reading", name=name)
                 for name in fit.discrete
             },
             **{
-                name: (
-                    "combination",
+                name: variable(
+                    combo,
                     [r["unknowns"][name] for r in rows],
-                    {"long_name": f"fitted {name}", "units": result.units[name]},
+                    "fitted",
+                    result.units[name],
+                    name=name,
                 )
                 for name in fit.unknowns
             },
-            "value": (
-                ("combination", "claim"),
-                np.array([r["values"] for r in rows]),
-                {"long_name": "simulated value of the fit claim (the claim's unit)"},
+            "value": variable(
+                (combo, "claim"), np.array([r["values"] for r in rows]), "identification.value"
             ),
-            "residual": (
-                ("combination", "claim"),
-                np.array([r["residuals"] for r in rows]),
-                {"long_name": "normalised residual (simulated - paper) / tolerance", "units": "1"},
+            "residual": variable(
+                (combo, "claim"), np.array([r["residuals"] for r in rows]), "residual"
             ),
-            "passed": (
-                "combination",
+            "passed": variable(
+                combo,
                 np.array([r["passed"] for r in rows], dtype=np.int32),
-                {"long_name": "fit claims within tolerance", "units": "1"},
+                "identification.passed",
             ),
-            "score": (
-                "combination",
-                np.array([r["score"] for r in rows]),
-                {"long_name": "RMS normalised residual", "units": "1"},
-            ),
-            "paper_value": ("claim", [t.paper for t in goal], {"long_name": "paper's value"}),
-            "tolerance": (
-                "claim",
-                [t.tolerance for t in goal],
-                {"long_name": "declared tolerance"},
-            ),
-            "claim_unit": ("claim", [t.unit for t in goal], {"long_name": "unit of the claim"}),
+            "score": variable(combo, np.array([r["score"] for r in rows]), "identification.score"),
+            **_goal_facts(goal),
         },
         coords={
-            "combination": ("combination", np.arange(len(rows), dtype=np.int32), {"units": "1"}),
-            "claim": ("claim", claims, {"long_name": "claim id (config/claims.yaml)"}),
+            combo: variable(combo, np.arange(len(rows), dtype=np.int32), "index", name=combo),
+            "claim": variable("claim", [t.claim for t in goal], "claim"),
         },
     )
-    fits.attrs.update(_attrs(result, settings))
-    for k, v in result.default["readings"].items():
+    for k, v in {**result.default["readings"], **result.default["unknowns"]}.items():
         fits.attrs[f"default_{k}"] = v
-    for k, v in result.default["unknowns"].items():
-        fits.attrs[f"default_{k}"] = v
-    profile_vars, profile_coords = {}, {}
+    return fits
+
+
+def _profiles_dataset(result: Identification) -> xr.Dataset:
+    """Each unknown's profile: the score and passed claims along its grid, the others
+    refitted along it."""
+    data, coords = {}, {}
     for name, p in result.profiles.items():
-        unit = result.units[name]
-        profile_coords[name] = (name, p["grid"], {"units": unit, "long_name": name})
-        profile_vars[f"score_{name}"] = (
-            name,
-            p["score"],
-            {"long_name": f"RMS normalised residual along {name}", "units": "1"},
+        coords[name] = variable(name, p["grid"], "unknown", result.units[name], name=name)
+        data[f"score_{name}"] = variable(name, p["score"], "score_along", name=name)
+        data[f"passed_{name}"] = variable(
+            name, p["passed"].astype(np.int32), "passed_along", name=name
         )
-        profile_vars[f"passed_{name}"] = (
-            name,
-            p["passed"].astype(np.int32),
-            {"long_name": f"fit claims within tolerance along {name}", "units": "1"},
-        )
-        profile_vars[f"in_range_{name}"] = (
-            name,
-            p["in_range"].astype(np.int8),
-            {"long_name": "1 inside the declared range, 0 exploratory", "units": "1"},
-        )
+        data[f"in_range_{name}"] = variable(name, p["in_range"].astype(np.int8), "in_range")
         for i, o in enumerate(p["others"]):
-            profile_vars[f"refit_{o}_along_{name}"] = (
-                name,
-                p["refit"][:, i],
-                {"long_name": f"{o} refitted along {name}", "units": result.units[o]},
+            data[f"refit_{o}_along_{name}"] = variable(
+                name, p["refit"][:, i], "refit_along", result.units[o], other=o, name=name
             )
-    prof = xr.Dataset(profile_vars, coords=profile_coords)
-    prof.attrs.update(_attrs(result, settings))
-    loo = xr.Dataset(
+    return xr.Dataset(data, coords=coords)
+
+
+def _loo_dataset(result: Identification) -> xr.Dataset:
+    """Leave-one-out: each fit claim predicted by a fit without it."""
+    goal, loo = result.goal, result.loo
+    return xr.Dataset(
         {
-            "predicted": (
-                "claim",
-                [r["predicted"] for r in result.loo],
-                {"long_name": "prediction of the left-out claim (the claim's unit)"},
-            ),
-            "residual": (
-                "claim",
-                [r["residual"] for r in result.loo],
-                {"long_name": "normalised residual of the left-out prediction", "units": "1"},
-            ),
+            "predicted": variable("claim", [r["predicted"] for r in loo], "predicted"),
+            "residual": variable("claim", [r["residual"] for r in loo], "loo.residual"),
             **{
-                f"refit_{u}": (
-                    "claim",
-                    [r["unknowns"][u] for r in result.loo],
-                    {"units": result.units[u]},
+                f"refit_{u}": variable(
+                    "claim", [r["unknowns"][u] for r in loo], "fitted", result.units[u], name=u
                 )
-                for u in fit.unknowns
+                for u in result.fit.unknowns
             },
-            "paper_value": ("claim", [t.paper for t in goal], {"long_name": "paper's value"}),
-            "tolerance": (
-                "claim",
-                [t.tolerance for t in goal],
-                {"long_name": "declared tolerance"},
-            ),
+            **{k: v for k, v in _goal_facts(goal).items() if k != "claim_unit"},
         },
-        coords={"claim": ("claim", claims, {"long_name": "claim id (config/claims.yaml)"})},
+        coords={"claim": variable("claim", [t.claim for t in goal], "claim")},
     )
-    loo.attrs.update(_attrs(result, settings))
-    # values in each claim's own unit (claim_unit) and labels carry units "1"
-    return {"fits": labelled(fits), "profiles": labelled(prof), "loo": labelled(loo)}
 
 
 def _attrs(result: Identification, settings: SolverSettings | None) -> dict:

@@ -44,6 +44,7 @@ from ..solver.compiled import ensure_compiled
 from ..solver.settings import SolverSettings
 from ..solver.stroke import rhs_evaluations
 from .claims import claim_files, difference, measure, within
+from .labels import attrs, claim_facts, variable
 from .ladder_plan import check_ladder, rung_model, rung_settings
 from .reading_space import CURVE_FILES
 from .robustness import files_of_reading
@@ -186,108 +187,22 @@ def ladder_dataset(
     over ``(rung, claim)``, the cost of each ``(rung, file)``, and each rung's model and
     solver."""
     rungs = ladder["rungs"]
-    answers = np.array(
-        [[comparable(c, r["contact_model"]) for c in claims] for r in rungs], dtype=bool
-    )
-    ref = [r["name"] for r in rungs].index(ladder["reference"])
-    paper = np.array([c["paper_value"] for c in claims], dtype=float)
-    tol = np.array([c["tolerance"] for c in claims], dtype=float)
-    settings = [{**solver, **r.get("solver", {})} for r in rungs]
-    groups = file_groups(claims, keys)
-    group_of = {k: g for g, files in enumerate(groups) for k in files}
+    group_of = {k: g for g, files in enumerate(file_groups(claims, keys)) for k in files}
     ds = xr.Dataset(
         {
-            "value": (
-                ("rung", "claim"),
-                values,
-                {"long_name": "value of the claim under the rung (its unit: claim_unit)"},
+            **_verdicts(claims, ladder, values),
+            "rhs_evals": variable(("rung", "file"), evaluations, "rhs_evals"),
+            "seconds": (("rung", "file"), seconds, {**attrs("seconds"), "timing": 1}),
+            **_rung_variables(rungs, solver),
+            "file_group": variable(
+                "file", np.array([group_of.get(k, -1) for k in keys], dtype=np.int32), "file_group"
             ),
-            "comparable": (
-                ("rung", "claim"),
-                answers.astype(np.int8),
-                {"long_name": "1 if the rung can answer the claim", "units": "1"},
-            ),
-            "within": (
-                ("rung", "claim"),
-                (within(values, paper, tol) & answers).astype(np.int8),
-                {
-                    "long_name": "1 if comparable and within the claim's declared tolerance",
-                    "units": "1",
-                },
-            ),
-            "from_reference": (
-                ("rung", "claim"),
-                difference(values, values[ref], tol),
-                {
-                    "long_name": "distance from the reference rung's value in tolerances",
-                    "units": "1",
-                },
-            ),
-            "rhs_evals": (
-                ("rung", "file"),
-                evaluations,
-                {"long_name": "right-hand-side evaluations of the compiled solver", "units": "1"},
-            ),
-            "seconds": (
-                ("rung", "file"),
-                seconds,
-                {"long_name": "wall time of the file's computation", "units": "s", "timing": 1},
-            ),
-            "contact_model": ("rung", [r["contact_model"] for r in rungs], {"long_name": "model"}),
-            "restitution": (
-                "rung",
-                [float(r.get("restitution", 1.0)) for r in rungs],
-                {"long_name": "coefficient of restitution of the ball", "units": "1"},
-            ),
-            "method": ("rung", [s["method"] for s in settings], {"long_name": "integrator"}),
-            "rtol": (
-                "rung",
-                [float(s["rtol"]) for s in settings],
-                {"long_name": "relative tolerance", "units": "1"},
-            ),
-            "atol": (
-                "rung",
-                [float(s["atol"]) for s in settings],
-                {"long_name": "absolute tolerance", "units": "1"},
-            ),
-            "file_group": (
-                "file",
-                np.array([group_of.get(k, -1) for k in keys], dtype=np.int32),
-                {"long_name": "experiment group of the file (-1: no claim reads it)"},
-            ),
-            "claim_group": (
-                "claim",
-                np.array([group_of[claim_files(c)[0]] for c in claims], dtype=np.int32),
-                {"long_name": "experiment group of the files the claim reads"},
-            ),
-            "paper_value": ("claim", paper, {"long_name": "paper's value"}),
-            "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),
-            "claim_unit": ("claim", [c["unit"] for c in claims], {"long_name": "unit"}),
-            "claim_files": (
-                "claim",
-                [",".join(claim_files(c)) for c in claims],
-                {"long_name": "the result files the claim reads (keys, comma-separated)"},
-            ),
-            "scored_by_ball": (
-                "claim",
-                np.array([scored_by_ball(c) for c in claims], dtype=np.int8),
-                {"long_name": "1 if the claim reads the ball's rebound speed", "units": "1"},
-            ),
-            "expectation": (
-                "claim",
-                [c["expectation"] for c in claims],
-                {"long_name": "expectation of config/claims.yaml"},
-            ),
-            "fit_set": (
-                "claim",
-                [fit_of_claim.get(c["id"], "") for c in claims],
-                {"long_name": "fit set that uses the claim (empty: held out)"},
-            ),
+            **_claim_variables(claims, group_of, fit_of_claim),
         },
         coords={
-            "rung": ("rung", [r["name"] for r in rungs], {"long_name": "rung of the ladder"}),
-            "claim": ("claim", [c["id"] for c in claims], {"long_name": "claim id"}),
-            "file": ("file", list(keys), {"long_name": "result file (key)"}),
+            "rung": variable("rung", [r["name"] for r in rungs], "rung"),
+            "claim": variable("claim", [c["id"] for c in claims], "claim"),
+            "file": variable("file", list(keys), "file"),
         },
         attrs={
             "reference_rung": ladder["reference"],
@@ -296,3 +211,63 @@ def ladder_dataset(
         },
     )
     return labelled(ds)
+
+
+def _verdicts(claims: Sequence[Mapping], ladder: Mapping, values: np.ndarray) -> dict:
+    """Each claim's value under each rung, whether the rung answers it, whether within the
+    paper's tolerance, and its distance from the reference rung's value."""
+    rungs = ladder["rungs"]
+    answers = np.array(
+        [[comparable(c, r["contact_model"]) for c in claims] for r in rungs], dtype=bool
+    )
+    ref = [r["name"] for r in rungs].index(ladder["reference"])
+    paper = np.array([c["paper_value"] for c in claims], dtype=float)
+    tol = np.array([c["tolerance"] for c in claims], dtype=float)
+    both = ("rung", "claim")
+    return {
+        "value": variable(both, values, "ladder.value"),
+        "comparable": variable(both, answers.astype(np.int8), "comparable"),
+        "within": variable(
+            both, (within(values, paper, tol) & answers).astype(np.int8), "ladder.within"
+        ),
+        "from_reference": variable(both, difference(values, values[ref], tol), "from_reference"),
+    }
+
+
+def _rung_variables(rungs: Sequence[Mapping], solver: Mapping[str, object]) -> dict:
+    """Each rung's contact model, restitution and solver settings."""
+    settings = [{**solver, **r.get("solver", {})} for r in rungs]
+    return {
+        "contact_model": variable("rung", [r["contact_model"] for r in rungs], "contact_model"),
+        "restitution": variable(
+            "rung", [float(r.get("restitution", 1.0)) for r in rungs], "restitution"
+        ),
+        "method": variable("rung", [s["method"] for s in settings], "method"),
+        "rtol": variable("rung", [float(s["rtol"]) for s in settings], "rtol"),
+        "atol": variable("rung", [float(s["atol"]) for s in settings], "atol"),
+    }
+
+
+def _claim_variables(
+    claims: Sequence[Mapping], group_of: Mapping[str, int], fit_of_claim: Mapping[str, str]
+) -> dict:
+    """What the ladder's reading needs of each claim: its group, the paper's value and
+    tolerance, the files it reads, whether it reads the ball, its expectation and fit set."""
+    return {
+        "claim_group": variable(
+            "claim",
+            np.array([group_of[claim_files(c)[0]] for c in claims], dtype=np.int32),
+            "claim_group",
+        ),
+        **claim_facts(
+            np.array([c["paper_value"] for c in claims], dtype=float),
+            np.array([c["tolerance"] for c in claims], dtype=float),
+            [c["unit"] for c in claims],
+        ),
+        "claim_files": variable("claim", [",".join(claim_files(c)) for c in claims], "claim_files"),
+        "scored_by_ball": variable(
+            "claim", np.array([scored_by_ball(c) for c in claims], dtype=np.int8), "scored_by_ball"
+        ),
+        "expectation": variable("claim", [c["expectation"] for c in claims], "expectation"),
+        "fit_set": variable("claim", [fit_of_claim.get(c["id"], "") for c in claims], "fit_set"),
+    }

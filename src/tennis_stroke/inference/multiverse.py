@@ -33,6 +33,7 @@ from ..io.netcdf import labelled, provenance
 from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
 from .identification import elbow_simulator, model_simulator, residuals, targets
+from .labels import variable
 from .reading_space import CURVE_FILES, ReadingSpace
 
 
@@ -146,47 +147,30 @@ def screen(
     ds = xr.Dataset(
         {
             **{
-                k: ("combination", [combo[k] for combo in combos], {"long_name": f"reading {k}"})
+                k: variable("combination", [combo[k] for combo in combos], "reading", name=k)
                 for k in combos[0]
             },
             **{
-                k: ("candidate", points[k], {"units": space.continuous[k].unit, "long_name": k})
+                k: variable("candidate", points[k], "unknown", space.continuous[k].unit, name=k)
                 for k in names
             },
-            "residual": (
-                ("combination", "candidate", "claim"),
-                res,
-                {"long_name": "normalised residual (simulated - paper) / tolerance", "units": "1"},
+            "residual": variable(("combination", "candidate", "claim"), res, "residual"),
+            "rms": variable(("combination", "candidate", "fit_set"), rms, "rms"),
+            "consistent": variable(
+                ("combination", "candidate"), consistent.astype(np.int8), "consistent"
             ),
-            "rms": (
-                ("combination", "candidate", "fit_set"),
-                rms,
-                {"long_name": "RMS normalised residual of the fit set", "units": "1"},
-            ),
-            "consistent": (
-                ("combination", "candidate"),
-                consistent.astype(np.int8),
-                {
-                    "long_name": "1 if consistent with the paper (config/readings.yaml)",
-                    "units": "1",
-                },
-            ),
-            "max_abs_residual": (
-                "fit_set",
-                [b[0] for b in bounds],
-                {"long_name": "bound on every normalised residual", "units": "1"},
-            ),
-            "max_rms": (
-                "fit_set",
-                [b[1] for b in bounds],
-                {"long_name": "bound on the RMS normalised residual (fallback)", "units": "1"},
-            ),
+            "max_abs_residual": variable("fit_set", [b[0] for b in bounds], "max_abs_residual"),
+            "max_rms": variable("fit_set", [b[1] for b in bounds], "max_rms"),
         },
         coords={
-            "combination": ("combination", np.arange(len(combos), dtype=np.int32), {"units": "1"}),
-            "candidate": ("candidate", np.arange(n, dtype=np.int32), {"units": "1"}),
-            "claim": ("claim", claim_ids, {"long_name": "fit claim id (config/claims.yaml)"}),
-            "fit_set": ("fit_set", [f.name for f in fits], {"long_name": "fit set"}),
+            "combination": variable(
+                "combination", np.arange(len(combos), dtype=np.int32), "index", name="combination"
+            ),
+            "candidate": variable(
+                "candidate", np.arange(n, dtype=np.int32), "index", name="candidate"
+            ),
+            "claim": variable("claim", claim_ids, "claim"),
+            "fit_set": variable("fit_set", [f.name for f in fits], "multiverse.fit_set"),
         },
     )
     ds.attrs.update(provenance({}, settings or SolverSettings()))

@@ -19,6 +19,7 @@ from ..io.netcdf import labelled
 from ..solver.settings import SolverSettings
 from .claims import measure, within
 from .identification import quoted_variable
+from .labels import claim_facts, variable
 from .multiverse import experiment_config, reading_of
 from .reading_space import CLAIM_LEVEL, CURVE_FILES, ReadingSpace
 from .targeted import targeted_files
@@ -111,33 +112,25 @@ def readings_results(
     ok = within(values, paper, tol)
     ds = xr.Dataset(
         {
-            "value": (
-                ("reading", "variant", "claim"),
-                values,
-                {"long_name": "reproduced value of the claim (its unit: claim_unit)"},
-            ),
-            "within": (
-                ("reading", "variant", "claim"),
-                ok.astype(np.int8),
-                {"long_name": "1 if within the claim's declared tolerance", "units": "1"},
+            "value": variable(("reading", "variant", "claim"), values, "robustness.value"),
+            "within": variable(
+                ("reading", "variant", "claim"), ok.astype(np.int8), "robustness.within"
             ),
             **{
-                k: ("variant", [case[k] for case in cases], {"long_name": f"reading {k}"})
+                k: variable("variant", [case[k] for case in cases], "reading", name=k)
                 for k in CLAIM_LEVEL
             },
-            "paper_value": ("claim", paper, {"long_name": "paper's value"}),
-            "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),
-            "claim_unit": ("claim", [c["unit"] for c in claims], {"long_name": "unit"}),
-            "fit_set": (
-                "claim",
-                [space.fit_of_claim().get(c["id"], "") for c in claims],
-                {"long_name": "fit set that uses the claim (empty: held out)"},
+            **claim_facts(paper, tol, [c["unit"] for c in claims]),
+            "fit_set": variable(
+                "claim", [space.fit_of_claim().get(c["id"], "") for c in claims], "fit_set"
             ),
         },
         coords={
             "reading": readings["reading"],
-            "variant": ("variant", np.arange(len(cases), dtype=np.int32), {"units": "1"}),
-            "claim": ("claim", [c["id"] for c in claims], {"long_name": "claim id"}),
+            "variant": variable(
+                "variant", np.arange(len(cases), dtype=np.int32), "index", name="variant"
+            ),
+            "claim": variable("claim", [c["id"] for c in claims], "claim"),
         },
     )
     for k, v in readings.data_vars.items():

@@ -31,6 +31,7 @@ from .claims import (
     grid_half_step,
     measure,
 )
+from .labels import variable
 from .multiverse import experiment_config, paper_results, reading_of
 from .reading_space import ReadingSpace
 from .search_plan import SEARCHED
@@ -117,56 +118,32 @@ def validate(
                 if kind == "map":
                     half[n, j] = grid_half_step(c, files)
     tol = np.array([c["tolerance"] for c in checked], float)
+    pair = ("reading", "claim")
     ds = xr.Dataset(
         {
-            "targeted_value": (
-                ("reading", "claim"),
-                values["targeted"],
-                {"long_name": "value by the targeted search (its unit: claim_unit)"},
+            "targeted_value": variable(pair, values["targeted"], "targeted_value"),
+            "map_value": variable(pair, values["map"], "map_value"),
+            "difference": variable(
+                pair, difference(values["targeted"], values["map"], tol), "difference"
             ),
-            "map_value": (
-                ("reading", "claim"),
-                values["map"],
-                {"long_name": "value from the full maps (its unit: claim_unit)"},
-            ),
-            "difference": (
-                ("reading", "claim"),
-                difference(values["targeted"], values["map"], tol),
-                {
-                    "long_name": "|targeted - map| in tolerances (qualitative: 0 same, 1 not)",
-                    "units": "1",
-                },
-            ),
-            "agrees": (
-                ("reading", "claim"),
+            "agrees": variable(
+                pair,
                 agrees(values["targeted"], values["map"], tol).astype(np.int8),
-                {
-                    "long_name": f"1 if within {AGREEMENT} tolerance (qualitative: the same)",
-                    "units": "1",
-                },
+                "agrees",
+                agreement=AGREEMENT,
             ),
-            "grid_half_step": (
-                ("reading", "claim"),
-                half,
-                {
-                    "long_name": "half the map's grid step the map value is read on "
-                    "(0: refined between grid points; its unit: claim_unit)"
-                },
+            "grid_half_step": variable(pair, half, "grid_half_step"),
+            "cause": variable(
+                pair, cause(values["targeted"], values["map"], tol, half).astype(object), "cause"
             ),
-            "cause": (
-                ("reading", "claim"),
-                cause(values["targeted"], values["map"], tol, half).astype(object),
-                {"long_name": "agrees, grid_step (the map's grid limits it) or unexplained"},
-            ),
-            "tolerance": ("claim", tol, {"long_name": "declared tolerance"}),
-            "claim_unit": ("claim", [c["unit"] for c in checked], {"long_name": "unit"}),
+            "tolerance": variable("claim", tol, "tolerance"),
+            "claim_unit": variable("claim", [c["unit"] for c in checked], "claim_unit"),
         },
         coords={
-            "reading": readings["reading"].values[index],
-            "claim": ("claim", [c["id"] for c in checked], {"long_name": "claim id"}),
+            "reading": variable("reading", readings["reading"].values[index], "validation.reading"),
+            "claim": variable("claim", [c["id"] for c in checked], "claim"),
         },
     )
-    ds["reading"].attrs.update(units="1", long_name="index of the kept reading")
     ds.attrs.update(provenance({}, settings))
     ds.attrs["agreement"] = AGREEMENT
     ds.attrs["files"] = " ".join(keys)
