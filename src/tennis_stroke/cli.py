@@ -429,11 +429,11 @@ def _claims(args: argparse.Namespace) -> int:
 def _identify(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from .experiments.specs import ConfigKeyError, fit_set_arguments
+    from .experiments.specs import fit_set_arguments
     from .inference.claims import load_claims
     from .inference.identification import run_identification, summary
     from .inference.reading_space import load_reading_space
-    from .io.config_files import load_yaml
+    from .io.config_files import ConfigKeyError, load_yaml
     from .model.params import resolve_params
 
     if args.rows < 1:

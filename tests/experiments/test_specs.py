@@ -13,10 +13,9 @@ from tennis_stroke.experiments.specs import (
     PAPER_RESULTS,
     RESULT_FILES,
     STUDY_RESULTS,
-    ConfigKeyError,
     sorted_data,
-    value_at,
 )
+from tennis_stroke.io.config_files import ConfigKeyError, value_at
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())

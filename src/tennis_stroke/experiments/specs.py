@@ -28,6 +28,7 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from importlib import import_module
 
+from ..io.config_files import value_at
 from ..solver.results import FILE_NAMES, RESULT_FIELDS
 from .grids import axis_size, bracket_size
 
@@ -61,13 +62,6 @@ SEC5_STROKE = {
 
 #: The model parameters of the Sec. V-VI base stroke's values (checked before any job).
 SEC5_BOUNDS = {"stroke.L1": "L1", "stroke.C2": "C2", "stroke.tau_L": "tau", "stroke.tau_H": "tau"}
-
-
-class ConfigKeyError(KeyError):
-    """A row reads a config key the config does not have (one line)."""
-
-    def __str__(self) -> str:
-        return str(self.args[0])
 
 
 def _points(value) -> int:
@@ -159,17 +153,6 @@ class Experiment:
     def callable(self) -> Callable:
         module, name = self.function.split(":")
         return getattr(import_module(f"tennis_stroke.{module}"), name)
-
-
-def value_at(config: Mapping, key: str):
-    """The value of dotted config ``key`` (a number indexes a list)."""
-    node = config
-    for part in key.split("."):
-        try:
-            node = node[int(part)] if isinstance(node, list) else node[part]
-        except (KeyError, IndexError, ValueError, TypeError):
-            raise ConfigKeyError(f"config key {key!r} is missing") from None
-    return node
 
 
 def pruned(config: Mapping, keys) -> dict:

@@ -22,8 +22,8 @@ from pathlib import Path
 import numpy as np
 import yaml
 
-from ..experiments.specs import ConfigKeyError, shown, sorted_data, value_at
-from ..io.config_files import ConfigFileError, load_yaml
+from ..experiments.specs import shown, sorted_data
+from ..io.config_files import ConfigFileError, ConfigKeyError, load_yaml, value_at
 from ..model.params import PARAMETERS, READINGS
 
 #: The file beside a claims table that records its configuration.

@@ -8,6 +8,8 @@ from __future__ import annotations
 import copy
 from collections.abc import Mapping
 
+from ..io.config_files import ConfigKeyError, value_at
+
 #: The keys of the search section of the config (and their units).
 SEARCH_KEYS = {
     "angle_step": "degree",
@@ -43,10 +45,10 @@ def targeted_config(config: Mapping) -> dict:
     :data:`UNREAD_STEPS` (the params of the jobs that run it)."""
     out = copy.deepcopy(dict(config))
     for key in UNREAD_STEPS:
-        node = out
-        *parents, last = key.split(".")
-        for part in parents:
-            node = node.get(part, {}) if isinstance(node, dict) else {}
-        if isinstance(node, dict) and isinstance(node.get(last), dict):
-            node[last].pop("step", None)
+        try:
+            node = value_at(out, key)
+        except ConfigKeyError:
+            continue
+        if isinstance(node, dict):
+            node.pop("step", None)
     return out

@@ -118,3 +118,22 @@ def schema_errors(data: object, schema: Mapping, what: str) -> list[str]:
 def dotted_key(parts) -> str:
     """A config key's path as written in messages: ``a.b.0``."""
     return ".".join(str(p) for p in parts) or "(top level)"
+
+
+class ConfigKeyError(KeyError):
+    """A config key the config does not have (one line)."""
+
+    def __str__(self) -> str:
+        return str(self.args[0])
+
+
+def value_at(config: Mapping, key: str):
+    """The value of the dotted config ``key`` (``a.b.0``: a number indexes a list): the
+    one walker of dotted keys."""
+    node = config
+    for part in key.split(".") if key else ():
+        try:
+            node = node[int(part)] if isinstance(node, list) else node[part]
+        except (KeyError, IndexError, ValueError, TypeError):
+            raise ConfigKeyError(f"config key {key!r} is missing") from None
+    return node

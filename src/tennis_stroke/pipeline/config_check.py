@@ -25,9 +25,9 @@ from pathlib import Path
 import numpy as np
 
 from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
-from ..experiments.specs import EXPERIMENTS, ConfigKeyError, value_at
+from ..experiments.specs import EXPERIMENTS
 from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
-from ..io.config_files import dotted_key, load_yaml, schema_errors
+from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
 from ..model.params import ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
 from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case

@@ -28,10 +28,11 @@ import pandas as pd
 import xarray as xr
 
 from ..experiments.grids import axis, axis_size, chunk_count
-from ..experiments.specs import EXPERIMENTS, compute, merged, value_at
+from ..experiments.specs import EXPERIMENTS, compute, merged
 from ..experiments.strokes import trajectories
 from ..inference.claims import claim_files
 from ..inference.targeted import searched_files
+from ..io.config_files import value_at
 from ..model.params import CHOICES, PARAMETERS
 from ..solver.settings import METHOD_IDS, SolverSettings
 from .claims import evaluate
