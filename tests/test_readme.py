@@ -57,11 +57,33 @@ def test_the_block_is_written_and_then_checks_clean(tmp_path):
     assert _run("--claims", claims, "--readme", readme, "--check").returncode == 1
     assert _run("--claims", claims, "--readme", readme).returncode == 0
     text = readme.read_text()
-    assert (
-        "| pass | 1 | 1 | 0 | 0 |" in text and "| `b` | 76 | 232 | degree | irreducible |" in text
-    )
+    assert "| reproduces | 1 | 1 | 0 | 0 |" in text and "| deviates | 1 | 0 | 0 | 1 |" in text
+    assert "| `b` | 76 | 232 | degree | irreducible |" in text
     assert text.startswith("# x\n") and text.endswith("<!-- results:end -->\nrest\n")
     assert _run("--claims", claims, "--readme", readme, "--check").returncode == 0
+
+
+def test_the_block_speaks_the_reports_words(tmp_path):
+    """A row is a verdict under the default reading in the report's words (its
+    scoreboard's), a column a robustness class across the readings, and the list of
+    deviations says how many deviate and how many fail."""
+    sys.path.insert(0, str(TOOL.parent))
+    try:
+        from readme_results import block
+    finally:
+        sys.path.remove(str(TOOL.parent))
+    from tennis_stroke.replication.report import STATUS_WORDS
+
+    table = pd.read_csv(_claims(tmp_path / "claims.csv"), keep_default_na=False)
+    extra = {**table.iloc[1].to_dict(), "id": "c", "status": "fail", "robustness": "robust"}
+    table = pd.concat([table, pd.DataFrame([extra])], ignore_index=True)
+    text = block(table)
+    rows = [line.split(" | ")[0].lstrip("| ") for line in text.splitlines()[4:7]]
+    assert rows == [STATUS_WORDS[s][1] for s in ("pass", "known_deviation", "fail")]
+    header = text.splitlines()[2]
+    assert header.startswith("| default reading | claims | robust")
+    assert header.endswith("| not reproduced under any reading |")
+    assert "The 1 claim that deviates and 1 claim that fails under the default reading" in text
 
 
 def test_a_changed_result_makes_the_readme_stale(tmp_path):
