@@ -1,7 +1,9 @@
-"""The ``tennis-stroke`` command: output formats, netCDF contents, bad input."""
+"""The ``tennis-stroke`` command: output formats, netCDF contents, bad input, help."""
 
+import argparse
 import json
 import os
+import re
 import resource
 import signal
 import subprocess
@@ -42,6 +44,11 @@ REQUIRED_RESULT = (
     "omega1_contact",
     "omega2_contact",
 )
+
+
+#: A tiny grid, and the options after a bad --theta0.
+SMALL_GRID = ["--theta0", "60:120:3", "--delta0", "0:90:3", "--out", "x.nc"]
+DELTA_OUT = ["--delta0", "0:90:3", "--out", "x.nc"]
 
 
 def _run(capsys, *argv):
@@ -141,7 +148,7 @@ def test_sweep_writes_cf_netcdf(tmp_path, capsys):
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "C2=x"], "must be a number"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "C2"], "expects KEY=VALUE"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "tau=nan"], "must be finite"),
-        (["strike", "--theta0", "90", "--delta0", "3", "--method", "RK4"], "solver method"),
+        (["strike", "--theta0", "90", "--delta0", "3", "--method", "RK4"], "invalid choice"),
         (["strike", "--theta0", "90", "--delta0", "3", "--rtol", "0"], "'rtol' must be > 0"),
         # tolerances beyond the accuracy bound gave 'ok' and a wrong v_out
         (["strike", "--theta0", "120", "--delta0", "81.5", "--rtol", "10"], "must be <= 0.0001"),
@@ -152,8 +159,11 @@ def test_sweep_writes_cf_netcdf(tmp_path, capsys):
             ["sweep", "--theta0", "60:120:3", "--delta0", "0:90:3", "--out", "x.nc", "--rtol=0.1"],
             "'rtol' must be <= 0.0001",
         ),
-        (["strike", "--theta0", "90", "--delta0", "3", "--method", "RK5"], "one of DP54, DOP853"),
-        (["strike", "--theta0", "90", "--delta0", "3", "--method", "dop853"], "one of DP54"),
+        (
+            ["strike", "--theta0", "90", "--delta0", "3", "--method", "RK5"],
+            "argument --method: invalid choice: 'RK5' (choose from 'DP54', 'DOP853')",
+        ),
+        (["sweep", *SMALL_GRID, "--method", "dop853"], "invalid choice: 'dop853'"),
         # memory: refused before anything is allocated (this grid needs about 104 GiB)
         (
             ["sweep", "--theta0", "0:120:31623", "--delta0", "0:90:31623", "--out", "x.nc"],
@@ -190,7 +200,23 @@ def test_sweep_writes_cf_netcdf(tmp_path, capsys):
         (["strike", "--theta0", "90"], "required"),
         (["sweep", "--theta0", "60:120:0", "--delta0", "0:90:3", "--out", "x.nc"], "NUM must be"),
         (["sweep", "--theta0", "60:120", "--delta0", "0:90:3", "--out", "x.nc"], "START:STOP:NUM"),
-        (["sweep", "--theta0", "a:120:3", "--delta0", "0:90:3", "--out", "x.nc"], "numbers"),
+        (["sweep", "--theta0", "a:120:3", "--delta0", "0:90:3", "--out", "x.nc"], "START must"),
+        # the step form START:STOP/STEP, and forms that are neither
+        (["sweep", "--theta0", "60:120/7", *DELTA_OUT], "step 7 does not land on STOP 120"),
+        (["sweep", "--theta0", "60:120/0", *DELTA_OUT], "--theta0 STEP must be > 0, got 0"),
+        (["sweep", "--theta0", "60:120/-1", *DELTA_OUT], "STEP must be > 0"),
+        (["sweep", "--theta0", "120:60/1", *DELTA_OUT], "STOP 60 is below START 120"),
+        (["sweep", "--theta0", "60:120/x", *DELTA_OUT], "--theta0 STEP must be a number"),
+        (["sweep", "--theta0", "60:120/inf", *DELTA_OUT], "--theta0 STEP must be finite"),
+        (["sweep", "--theta0", "60:120:3/1", *DELTA_OUT], "or START:STOP/STEP"),
+        (["sweep", "--theta0", "60/1", *DELTA_OUT], "expects START:STOP:NUM"),
+        (["sweep", "--theta0", "60:90:120:3", *DELTA_OUT], "expects START:STOP:NUM"),
+        (["sweep", "--theta0", "60:120:2.5", *DELTA_OUT], "NUM (of START:STOP:NUM) must be"),
+        (["sweep", "--theta0", "0:90:3", "--delta0", "0:90/0.7", "--out", "x.nc"], "--delta0"),
+        (
+            ["sweep", "--theta0", "0:120/1e-9", "--delta0", "0:90/1e-9", "--out", "x.nc"],
+            "a sweep of 120000000001 x 90000000001 strokes needs about",
+        ),
         (["sweep", "--theta0", "60:inf:3", "--delta0", "0:90:3", "--out", "x.nc"], "finite"),
         (
             ["sweep", "--theta0", "60:120:3", "--delta0", "0:90:3", "--out", "/nonexistent/x.nc"],
@@ -517,3 +543,240 @@ def test_strike_prints_counts_as_integers(capsys):
     assert lines["rhs_evals"] == str(int(expected["rhs_evals"]))
     assert lines["steps"] == str(int(expected["steps"]))
     assert "." in lines["v_out_kmh"]
+
+
+# --- ranges: a count of points or a step ------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    "text, expected",
+    [
+        ("60:120:4", [60, 80, 100, 120]),  # NUM points, both ends included
+        ("60:120/20", [60, 80, 100, 120]),  # a step of 20 from 60, landing on 120
+        ("0:1:3", [0, 0.5, 1]),
+        ("0:1/0.5", [0, 0.5, 1]),
+        ("-30:10/20", [-30, -10, 10]),
+        ("5:5:1", [5]),
+        ("5:5/1", [5]),
+        ("120:60:3", [120, 90, 60]),  # a count may go down; a step goes up only
+    ],
+)
+def test_a_range_is_a_count_of_points_or_a_step(text, expected):
+    from tennis_stroke.cli import parse_range
+
+    np.testing.assert_allclose(parse_range(text, "theta0"), expected, rtol=0, atol=1e-12)
+
+
+def test_the_step_form_is_the_workflows_axis():
+    """``START:STOP/STEP`` gives the very axis a configured ``{start, stop, step}`` gives
+    (Fig. 3's theta0: 241 points), and its count is known before the axis is made."""
+    from tennis_stroke.cli import range_spec
+    from tennis_stroke.experiments.grids import axis
+
+    spec = range_spec("60:120/0.25", "theta0")
+    values = spec.values()
+    assert spec.num == values.size == 241
+    np.testing.assert_array_equal(values, axis({"start": 60, "stop": 120, "step": 0.25}))
+    assert range_spec("0:0.3/0.0025", "delta0").num == 121  # 0.3 / 0.0025 is not exact
+
+
+def test_a_sweep_in_the_step_form_writes_its_axes(tmp_path, capsys):
+    out = tmp_path / "steps.nc"
+    code, stdout, err = _run(
+        capsys, "sweep", "--theta0", "60:120/30", "--delta0=-10:10/10", "--out", str(out)
+    )
+    assert code == 0, err
+    assert stdout.startswith(f"{out}: 9 strokes")
+    with xr.open_dataset(out) as ds:
+        np.testing.assert_allclose(ds["theta0"], [60, 90, 120])
+        np.testing.assert_allclose(ds["delta0"], [-10, 0, 10])
+
+
+# --- help that reads as plain text and says units --------------------------------------
+
+
+def _help(capsys, *argv) -> str:
+    code, out, err = _run(capsys, *argv, "--help")
+    assert code == 0 and not err, err
+    return out
+
+
+def _subcommands():
+    from tennis_stroke.cli import build_parser
+
+    parser = build_parser()
+    (sub,) = (a for a in parser._actions if isinstance(a, argparse._SubParsersAction))
+    return sub.choices
+
+
+def test_the_top_help_is_the_docstrings_first_paragraph_as_plain_text(capsys):
+    import tennis_stroke.cli as cli
+
+    text = " ".join(_help(capsys).split())
+    first = " ".join(cli.__doc__.split("\n\n")[0].split())
+    assert first in text, "the description is the docstring's whole first paragraph"
+    assert first.endswith(".") and "``" not in text and ":func:" not in text
+    for name in _subcommands():  # every command is listed
+        assert re.search(rf"^\s+{name}\s+\S", _help(capsys), re.M), name
+
+
+def test_every_option_of_every_command_says_what_it_is(capsys):
+    """No option or argument without a description, in any command's --help."""
+    commands = dict(_subcommands())
+    explain = commands.pop("config")._subparsers._group_actions[0].choices["explain"]
+    for name, parser in [*commands.items(), ("config explain", explain)]:
+        for action in parser._actions:
+            if isinstance(action, argparse._HelpAction):
+                continue
+            assert action.help, f"{name}: {action.option_strings or action.dest} has no help"
+
+
+@pytest.mark.parametrize("command", ["strike", "sweep"])
+def test_angle_options_say_their_unit_and_sign_from_the_table(command, capsys):
+    """--theta0 and --delta0: the long name and unit of the one table of units
+    (io/units.py) and the sign of the angles."""
+    from tennis_stroke.io.units import VARIABLES
+
+    text = " ".join(_help(capsys, command).split())
+    for name in ("theta0", "delta0"):
+        unit, long_name = VARIABLES[name]
+        entry = text.split(f"--{name} ", 2)[-1]
+        assert entry.startswith(("DEG ", "RANGE ")), entry[:40]
+        description = entry.split(" --", 1)[0]
+        assert long_name in description and f"({unit})" in description, description
+        assert "counter-clockwise positive" in description, description
+    if command == "sweep":  # both forms of a range
+        assert "START:STOP:NUM" in text and "START:STOP/STEP" in text
+
+
+def test_method_choices_and_defaults_are_the_solvers(capsys):
+    """--method offers exactly the compiled methods, and the help's defaults are the
+    solver's own."""
+    from tennis_stroke.solver.settings import METHOD_IDS, SolverSettings
+
+    for command in ("strike", "sweep"):
+        parser = _subcommands()[command]
+        (method,) = (a for a in parser._actions if "--method" in a.option_strings)
+        assert tuple(method.choices) == tuple(METHOD_IDS)
+        assert method.default == SolverSettings().method
+        text = " ".join(_help(capsys, command).split())
+        assert "{" + ",".join(METHOD_IDS) + "}" in text
+        assert f"default {SolverSettings().rtol:g}" in text
+    for name in METHOD_IDS:  # every choice runs
+        code, out, err = _run(
+            capsys, "strike", "--theta0", "120", "--delta0", "81.5", "--method", name, "--json"
+        )
+        assert code == 0 and json.loads(out)["solver"]["method"] == name, err
+
+
+# --- params -----------------------------------------------------------------------------
+
+
+def _columns(header: str, line: str) -> dict[str, str]:
+    """A line of an aligned table cut at its header's column starts."""
+    starts = [m.start() for m in re.finditer(r"\S+", header)]
+    names = header.split()
+    cells = [line[a:b].strip() for a, b in zip(starts, [*starts[1:], None], strict=True)]
+    return dict(zip(names, cells, strict=True))
+
+
+def test_params_lists_every_parameter_with_unit_default_and_bounds(capsys):
+    from tennis_stroke.model.params import PARAMETERS, resolve_params
+
+    code, out, err = _run(capsys, "params")
+    assert code == 0 and not err
+    lines = out.splitlines()
+    header = next(line for line in lines if line.startswith("name ") and "bounds" in line)
+    rows = {}
+    for line in lines[lines.index(header) + 1 :]:
+        if not line.strip():
+            break
+        if not line.startswith(" "):  # a wrapped meaning continues indented
+            row = _columns(header, line)
+            rows[row["name"]] = row
+    assert list(rows) == list(PARAMETERS)
+    defaults = resolve_params()
+    for name, spec in PARAMETERS.items():
+        row = rows[name]
+        assert row["unit"] == spec.unit, name
+        assert float(row["default"]) == pytest.approx(defaults[name], rel=1e-3), name
+        low, high = row["bounds"].split(", ")
+        assert low[0] == ("(" if spec.strict or spec.lower is None else "["), name
+        assert float(low[1:]) == (-np.inf if spec.lower is None else spec.lower), name
+        assert float(high[:-1]) == (np.inf if spec.upper is None else spec.upper), name
+        assert ("derived" in row["meaning"]) == spec.derived, name
+
+
+def test_params_lists_every_reading_and_model_option_with_its_choices(capsys):
+    from tennis_stroke.model.params import CHOICES
+
+    code, out, _ = _run(capsys, "params")
+    text = " ".join(out.split())
+    for name, choice in CHOICES.items():
+        entry = text.split(f" {name} ", 1)[1]
+        assert f"{choice.default} [default" in entry, name
+        assert all(option in entry for option in choice.choices), name
+    help_text = " ".join(_help(capsys, "strike").split())
+    assert "--set KEY=VALUE" in help_text and "'tennis-stroke params' lists" in help_text
+
+
+def test_bounds_read_as_intervals():
+    from tennis_stroke.model.listing import bounds_text
+    from tennis_stroke.model.params import ParamSpec
+
+    def spec(**kw):
+        return ParamSpec("x", 1.0, "m", "x", **kw)
+
+    assert bounds_text(spec(lower=0, upper=5, strict=True)) == "(0, 5]"
+    assert bounds_text(spec(lower=0, upper=10)) == "[0, 10]"
+    assert bounds_text(spec()) == "(-inf, inf)"
+    assert bounds_text(spec(lower=-5)) == "[-5, inf)"
+
+
+# --- claims as a table ------------------------------------------------------------------
+
+
+def test_claims_prints_every_claim_as_a_table_then_the_counts(tmp_path, capsys):
+    table = tmp_path / "claims.csv"
+    record_configuration(tmp_path)
+    header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
+    header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
+    rows = [
+        "speed,s,q,km/h,150.0,151.234567,2.0,pass,reproduce,,,151.2,0,agrees\n",
+        "angle,s,q,degree,76.0,232.4,5.0,known_deviation,known_deviation,,,232.4,0,agrees\n",
+    ]
+    declared = tmp_path / "claims.yaml"
+    claims = [
+        {"id": "speed", "unit": "km/h", "paper_value": 150.0, "tolerance": 2.0},
+        {"id": "angle", "unit": "degree", "paper_value": 76.0, "tolerance": 5.0, "reason": "r"},
+    ]
+    for claim, expectation in zip(claims, ("reproduce", "known_deviation"), strict=True):
+        claim.update(source="s", quantity="q", expectation=expectation)
+        claim["measure"] = {"file": "fig9", "var": "best_tau"}
+    declared.write_text(json.dumps({"claims": claims}))
+    table.write_text(header + "".join(rows))
+    code, out, err = _run(capsys, "claims", str(table), "--claims", str(declared))
+    assert code == 0, err
+    lines = out.splitlines()
+    assert lines[0].split() == ["claim", "status", "paper", "ours", "unit", "tolerance"]
+    assert lines[1].split() == ["speed", "pass", "150", "151.2", "km/h", "2"]
+    assert lines[2].split() == ["angle", "known", "deviation", "76", "232.4", "degree", "5"]
+    assert lines[3] == "claims: 2 (1 pass, 1 known deviation)"
+    assert "{" not in out
+    # a table the check refuses prints nothing but the one error line
+    table.write_text(header + rows[0].replace(",pass,", ",fail,") + rows[1])
+    code, out, err = _run(capsys, "claims", str(table), "--claims", str(declared))
+    assert code == 2 and out == "" and err.count("\n") == 1, (out, err)
+
+
+def test_a_table_wraps_its_last_column_to_the_width_under_itself():
+    from tennis_stroke.cli import text_table
+
+    rows = [("a", "1.5", "one two three four five six seven eight nine ten")]
+    text = text_table(("name", "value", "meaning"), rows, width=40, right=(1,))
+    assert text.splitlines() == [
+        "name  value  meaning",
+        "a       1.5  one two three four five six",
+        "             seven eight nine ten",
+    ]
+    assert text_table(("name", "value", "meaning"), rows).count("\n") == 1  # no width

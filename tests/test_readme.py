@@ -1,7 +1,11 @@
-"""The README's results at a glance are generated from the claims table
-(tools/readme_results.py); ``make report`` fails when they are stale."""
+"""The README: its results at a glance are generated from the claims table
+(tools/readme_results.py; ``make report`` fails when they are stale), and its shell
+commands run as written, from a fresh shell."""
 
+import json
+import math
 import os
+import re
 import subprocess
 import sys
 from pathlib import Path
@@ -53,11 +57,33 @@ def test_the_block_is_written_and_then_checks_clean(tmp_path):
     assert _run("--claims", claims, "--readme", readme, "--check").returncode == 1
     assert _run("--claims", claims, "--readme", readme).returncode == 0
     text = readme.read_text()
-    assert (
-        "| pass | 1 | 1 | 0 | 0 |" in text and "| `b` | 76 | 232 | degree | irreducible |" in text
-    )
+    assert "| reproduces | 1 | 1 | 0 | 0 |" in text and "| deviates | 1 | 0 | 0 | 1 |" in text
+    assert "| `b` | 76 | 232 | degree | irreducible |" in text
     assert text.startswith("# x\n") and text.endswith("<!-- results:end -->\nrest\n")
     assert _run("--claims", claims, "--readme", readme, "--check").returncode == 0
+
+
+def test_the_block_speaks_the_reports_words(tmp_path):
+    """A row is a verdict under the default reading in the report's words (its
+    scoreboard's), a column a robustness class across the readings, and the list of
+    deviations says how many deviate and how many fail."""
+    sys.path.insert(0, str(TOOL.parent))
+    try:
+        from readme_results import block
+    finally:
+        sys.path.remove(str(TOOL.parent))
+    from tennis_stroke.replication.report import STATUS_WORDS
+
+    table = pd.read_csv(_claims(tmp_path / "claims.csv"), keep_default_na=False)
+    extra = {**table.iloc[1].to_dict(), "id": "c", "status": "fail", "robustness": "robust"}
+    table = pd.concat([table, pd.DataFrame([extra])], ignore_index=True)
+    text = block(table)
+    rows = [line.split(" | ")[0].lstrip("| ") for line in text.splitlines()[4:7]]
+    assert rows == [STATUS_WORDS[s][1] for s in ("pass", "known_deviation", "fail")]
+    header = text.splitlines()[2]
+    assert header.startswith("| default reading | claims | robust")
+    assert header.endswith("| not reproduced under any reading |")
+    assert "The 1 claim that deviates and 1 claim that fails under the default reading" in text
 
 
 def test_a_changed_result_makes_the_readme_stale(tmp_path):
@@ -112,7 +138,7 @@ def test_the_readme_scenario_commands_plan_what_they_say(tmp_path):
     import shutil
 
     blocks = re.findall(r"```(\w*)\n(.*?)```", _what_if_section(), flags=re.S)
-    lines = next(text for lang, text in blocks if not lang).splitlines()
+    lines = next(text for lang, text in blocks if lang == "sh").splitlines()
     commands = [line.split("#")[0].split() for line in lines if line.strip()]
     assert [c[0] for c in commands] == ["snakemake"] * 2 + ["tennis-stroke"] * 2
     work = tmp_path / "work"
@@ -139,3 +165,143 @@ def test_the_readme_scenario_commands_plan_what_they_say(tmp_path):
         [str(bin_ / commands[3][0]), *commands[3][1:]], cwd=ROOT, capture_output=True, text=True
     )
     assert explain.returncode == 0 and "results/torque_delay/fig9.nc" in explain.stdout
+
+
+# --- the README's commands, run as written --------------------------------------------
+
+#: README commands this test does not run, each with why; every other command of a
+#: ``sh`` or ``console`` block runs below, so a command added to the README is run or
+#: declared here.
+NOT_RUN = {
+    "make test": "the whole test suite, of which this test is a part",
+    "make report": "the whole replication (minutes)",
+    "source .venv/bin/activate": "how the others run: each one runs after it",
+    "snakemake --profile profiles/slurm report": "needs a SLURM cluster (docs/slurm.md)",
+    "snakemake -j2 results/scenarios/strong_wrist/figures/fig09_v_tau.png": "a workflow "
+    "run; planned by test_the_readme_scenario_commands_plan_what_they_say",
+    "snakemake -j2 report/scenarios/strong_wrist/index.html": "a workflow run; planned there too",
+    "tennis-stroke whatif heavy --set M2=0.35 --figure fig2": "a workflow run; planned there too",
+}
+#: Top-level entries of the checkout the commands do not see: their results.
+NOT_LINKED = {"results", "report", "logs", ".snakemake", ".git"}
+_NUMBER = re.compile(r"-?\d+(?:\.\d+)?(?:e[-+]?\d+)?")
+_WALL_TIME = re.compile(r" in \d+(?:\.\d+)? s$")
+
+
+def readme_commands() -> list[tuple[str, list[str]]]:
+    """Every command of the README's ``sh`` and ``console`` blocks, in order, with the
+    output lines the README shows after it (``$ command`` then output, in a console
+    block); comments dropped."""
+    text = (ROOT / "README.md").read_text()
+    out: list[tuple[str, list[str]]] = []
+    for lang, block in re.findall(r"^```(\w*)\n(.*?)^```", text, flags=re.S | re.M):
+        for line in block.splitlines():
+            if lang == "sh" and line.strip():
+                out.append((line.split(" #")[0].strip(), []))
+            elif lang == "console" and line.startswith("$ "):
+                out.append((line[2:].strip(), []))
+            elif lang == "console" and out:
+                out[-1][1].append(line)
+    return out
+
+
+def _fresh_shell(command: str, cwd: Path) -> subprocess.CompletedProcess:
+    """``command`` as a user types it in a new shell after ``source .venv/bin/activate``:
+    a clean environment (the system's PATH, HOME and a UTF-8 locale; the compiled
+    solver's cache location, if set, so the solver is not compiled anew)."""
+    env = {"PATH": "/usr/local/bin:/usr/bin:/bin", "LANG": "C.UTF-8", "HOME": str(Path.home())}
+    env.update((k, os.environ[k]) for k in ("XDG_CACHE_HOME", "NUMBA_CACHE_DIR") if k in os.environ)
+    return subprocess.run(
+        ["bash", "-c", f"source .venv/bin/activate && {command}"],
+        cwd=cwd,
+        env=env,
+        capture_output=True,
+        text=True,
+        timeout=600,
+    )
+
+
+def _same_line(shown: str, actual: str) -> bool:
+    """An output line as the README shows it: the same words (spacing folded) and
+    numbers within 1e-6 relative (solver changes move them by about 1e-5 km/h); a wall
+    time (``in 0.41 s`` at the end) may differ."""
+    shown, actual = (_WALL_TIME.sub(" in T s", " ".join(x.split())) for x in (shown, actual))
+    if _NUMBER.sub("#", shown) != _NUMBER.sub("#", actual):
+        return False
+    pairs = zip(_NUMBER.findall(shown), _NUMBER.findall(actual), strict=True)
+    return all(math.isclose(float(a), float(b), rel_tol=1e-6, abs_tol=1e-12) for a, b in pairs)
+
+
+def _check_json(shown: list[str], actual: str) -> None:
+    """Each ``"key": value`` the README shows in a section of a JSON output is that
+    section's value (numbers within 1e-6 relative)."""
+    payload = json.loads(actual)
+    for line in shown:
+        section = re.match(r'\s*"(\w+)": \{(.*)\}', line)
+        if not section:
+            continue
+        for key, value in re.findall(r'"(\w+)": ("[^"]*"|[-+.\deE]+)', section.group(2)):
+            got = payload[section.group(1)][key]
+            expected = json.loads(value)
+            if isinstance(expected, str):
+                assert got == expected, (section.group(1), key, got)
+            else:
+                assert math.isclose(got, expected, rel_tol=1e-6, abs_tol=1e-12), (key, got)
+
+
+def test_the_readme_declares_every_command_it_does_not_run():
+    commands = [c for c, _ in readme_commands()]
+    assert set(NOT_RUN) <= set(commands), set(NOT_RUN) - set(commands)
+    assert any(c.startswith("tennis-stroke strike") for c in commands)
+    assert any(c.startswith("tennis-stroke params") for c in commands)
+
+
+def test_the_readme_commands_run_as_written_from_a_fresh_shell(tmp_path):
+    """Each quick command of the README, word for word, in a new shell with a clean
+    environment, in a folder that holds the checkout's files (links, so a written file
+    such as the sweep's stays out of the checkout, and no earlier result is seen): exit
+    status 0 and every output line the README shows (``...`` lines stand for others)."""
+    clone = tmp_path / "clone"
+    clone.mkdir()
+    for entry in ROOT.iterdir():
+        if entry.name not in NOT_LINKED:
+            (clone / entry.name).symlink_to(entry)
+    ran = []
+    for command, shown in readme_commands():
+        if command in NOT_RUN:
+            continue
+        done = _fresh_shell(command, clone)
+        assert done.returncode == 0, (command, done.stderr[-2000:])
+        assert "Traceback" not in done.stderr, (command, done.stderr[-2000:])
+        expected = [line for line in shown if line.strip() and "..." not in line]
+        if done.stdout.lstrip().startswith("{"):
+            _check_json(shown, done.stdout)
+        else:
+            lines = done.stdout.splitlines()
+            for line in expected:
+                assert any(_same_line(line, got) for got in lines), (command, line, lines)
+        ran.append(command)
+    assert (clone / "fig3.nc").is_file()
+    assert len(ran) >= 6, ran
+
+
+@pytest.mark.parametrize(
+    "shown, actual, same",
+    [
+        (
+            "fig3.nc: 43621 strokes (43621 ok) in 0.41 s",
+            "fig3.nc: 43621 strokes (43621 ok) in 2.5 s",
+            True,
+        ),
+        (
+            "fig3.nc: 43621 strokes (43621 ok) in 0.41 s",
+            "fig3.nc: 43620 strokes (43620 ok) in 0.41 s",
+            False,
+        ),
+        ("  v_out_kmh   155.677711 km/h  x", "v_out_kmh 155.6777111 km/h x", True),
+        ("  v_out_kmh   155.677711 km/h  x", "v_out_kmh 155.68 km/h x", False),
+        ("a 1 b", "a 1 c", False),
+    ],
+)
+def test_an_output_line_matches_as_shown_or_not(shown, actual, same):
+    assert _same_line(shown, actual) is same

@@ -3,8 +3,9 @@
 Usage: ``python tools/readme_results.py [--claims results/claims.csv] [--readme README.md]
 [--check]``.  Writes the block between the README's ``<!-- results:begin -->`` and
 ``<!-- results:end -->`` lines from ``results/claims.csv``: the claims by status and
-robustness class, and every claim that deviates, with the paper's value, ours and the
-evidence class.  ``--check`` writes nothing and exits 1 when the README's block differs
+robustness class (a status in the report's words, so the README and the report's
+scoreboard speak alike), and every claim that deviates, with the paper's value, ours and
+the evidence class.  ``--check`` writes nothing and exits 1 when the README's block differs
 from what the claims table gives (``make report`` runs it: the README's numbers cannot go
 stale).
 """
@@ -22,6 +23,7 @@ from tennis_stroke.inference.paper_config import (
     describe_departures,
     read_record,
 )
+from tennis_stroke.replication.report import STATUS_WORDS
 
 BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
 STATUSES = ("pass", "used_for_fit", "known_deviation", "fail")
@@ -33,12 +35,17 @@ class ReadmeError(ValueError):
 
 
 def block(table: pd.DataFrame) -> str:
-    """The Markdown between the markers, from a claims table (``results/claims.csv``)."""
+    """The Markdown between the markers, from a claims table (``results/claims.csv``):
+    the claims by their verdict under the default reading (rows, in the report's words)
+    and by how they fare across the consistent readings (columns, the robustness
+    classes), then the claims that deviate or fail."""
     counts = pd.crosstab(table["status"], table["robustness"])
     lines = [
-        f"{len(table)} claims; robustness: across every reading consistent with the paper.",
+        f"{len(table)} claims: a row for each verdict under the default reading, a column "
+        "for how those claims fare across every reading consistent with the paper.",
         "",
-        "| status | claims | robust | reading-dependent | not reproduced |",
+        "| default reading | claims | robust (pass under every reading) "
+        "| reading-dependent (pass under some) | not reproduced under any reading |",
         "|---|---:|---:|---:|---:|",
     ]
     for status in STATUSES:
@@ -49,12 +56,18 @@ def block(table: pd.DataFrame) -> str:
         total = int(row.sum())
         if status == "used_for_fit":  # chose the readings: no robustness class
             cells = ["-"] * 3
-        lines.append(f"| {status} | {total} | " + " | ".join(map(str, cells)) + " |")
+        word = STATUS_WORDS[status][1]
+        lines.append(f"| {word} | {total} | " + " | ".join(map(str, cells)) + " |")
     deviating = table[table["status"].isin(("known_deviation", "fail"))]
     if len(deviating):
+        which = " and ".join(
+            _claims_that(int((deviating["status"] == status).sum()), status)
+            for status in ("known_deviation", "fail")
+            if (deviating["status"] == status).any()
+        )
         lines += [
             "",
-            "Claims that do not reproduce (the report gives each one's cause):",
+            f"The {which} under the default reading (the report gives each one's cause):",
             "",
             "| claim | paper | ours | unit | evidence |",
             "|---|---:|---:|---|---|",
@@ -65,6 +78,12 @@ def block(table: pd.DataFrame) -> str:
                 f"{float(r['reproduced_value']):.4g} | {r['unit']} | {r['evidence'] or '-'} |"
             )
     return "\n".join(lines)
+
+
+def _claims_that(n: int, status: str) -> str:
+    """``9 claims that deviate``, ``1 claim that fails``: the report's verb for ``status``."""
+    verb = STATUS_WORDS[status][1]
+    return f"{n} claim that {verb}" if n == 1 else f"{n} claims that {verb.removesuffix('s')}"
 
 
 def replaced(readme: str, content: str) -> str:

@@ -1,10 +1,15 @@
-"""The ``tennis-stroke`` command: one stroke (``strike``), a grid of strokes (``sweep``),
-the check of the claims table (``claims``), the readings fitted to both fit sets of
-``config/readings.yaml`` (``identify``), what a config key drives (``config explain``)
-a what-if scenario beside the paper (``whatif``) and the live explorer (``explore``).
+"""Simulate tennis strokes with the double-pendulum model of Youn (arXiv:1505.01916) and
+check the replication of the paper's claims.
+
+The commands: ``strike`` (one stroke), ``sweep`` (a grid of strokes into netCDF),
+``params`` (the model's parameters, readings and model options), ``claims`` (the check of
+a claims table), ``identify`` (the readings fitted to the fit sets of
+``config/readings.yaml``), ``config explain`` (what a config key drives), ``whatif`` (a
+what-if scenario beside the paper) and ``explore`` (the live explorer).
 
 Bad input ends with one line ``tennis-stroke: error: ...`` on stderr and exit status 2,
-before any output file is created; Ctrl-C ends with one line and exit status 130.
+before any output file is created; Ctrl-C ends with one line and exit status 130.  The
+first paragraph of this docstring is ``tennis-stroke --help``'s description: plain text.
 """
 
 from __future__ import annotations
@@ -16,6 +21,7 @@ import re
 import sys
 import time
 from collections.abc import Sequence
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -54,9 +60,34 @@ def _join_negative_values(args: Sequence[str]) -> list[str]:
     return out
 
 
+class _HelpFormatter(argparse.HelpFormatter):
+    """argparse's help, wrapped at spaces only (never inside ``counter-clockwise``)."""
+
+    def _split_lines(self, text, width):
+        import textwrap
+
+        return textwrap.wrap(" ".join(text.split()), width, break_on_hyphens=False)
+
+    def _fill_text(self, text, width, indent):
+        import textwrap
+
+        return textwrap.fill(
+            " ".join(text.split()),
+            width,
+            initial_indent=indent,
+            subsequent_indent=indent,
+            break_on_hyphens=False,
+        )
+
+
 class _Parser(argparse.ArgumentParser):
-    """argparse with a one-line error (no usage dump), exit status 2, and negative
-    numbers accepted after an option (``--delta0 -1``, ``--theta0 -30:10:5``)."""
+    """argparse with a one-line error (no usage dump), exit status 2, help wrapped at
+    spaces, and negative numbers accepted after an option (``--delta0 -1``,
+    ``--theta0 -30:10:5``)."""
+
+    def __init__(self, *args, **kwargs) -> None:
+        kwargs.setdefault("formatter_class", _HelpFormatter)
+        super().__init__(*args, **kwargs)
 
     def parse_known_args(self, args=None, namespace=None):  # noqa: D102
         args = sys.argv[1:] if args is None else args
@@ -85,28 +116,88 @@ def _parse_set(items: Sequence[str]) -> dict[str, object]:
     return out
 
 
+#: The two forms of a range on the command line, as ``--help`` and the errors say them.
+RANGE_FORMS = (
+    "START:STOP:NUM (NUM points from START to STOP, both included) or START:STOP/STEP "
+    "(from START to STOP in steps of STEP, which must land on STOP; the config's form)"
+)
+
+
+@dataclass(frozen=True)
+class GridRange:
+    """A sweep's axis as the command line gives it: ``step`` None for ``START:STOP:NUM``
+    (``num`` points), else ``START:STOP/STEP`` (``num`` counts its points)."""
+
+    start: float
+    stop: float
+    num: int
+    step: float | None = None
+
+    def values(self) -> np.ndarray:
+        """The axis: :func:`numpy.linspace` for a count, the workflow's inclusive grid
+        (:func:`tennis_stroke.experiments.grids.grid`) for a step."""
+        if self.step is None:
+            return np.linspace(self.start, self.stop, self.num)
+        from .experiments.grids import grid
+
+        return grid(self.start, self.stop, self.step)
+
+
 def parse_range(text: str, name: str) -> np.ndarray:
-    """``START:STOP:NUM`` -> ``numpy.linspace(START, STOP, NUM)`` (degrees)."""
-    return np.linspace(*range_spec(text, name))
+    """``START:STOP:NUM`` or ``START:STOP/STEP`` -> the axis (degrees)."""
+    return range_spec(text, name).values()
 
 
-def range_spec(text: str, name: str) -> tuple[float, float, int]:
-    """``START:STOP:NUM`` -> ``(START, STOP, NUM)``, checked, nothing allocated."""
-    parts = text.split(":")
-    if len(parts) != 3:
-        raise ValueError(f"--{name} expects START:STOP:NUM, got {text!r}")
+def range_spec(text: str, name: str) -> GridRange:
+    """``START:STOP:NUM`` or ``START:STOP/STEP`` -> :class:`GridRange`, checked, nothing
+    allocated; a bad form or value raises ValueError (one line naming ``--name``)."""
+    option = f"--{name}"
+    ends, slash, step_text = text.partition("/")
+    parts = ends.split(":")
+    if len(parts) != (2 if slash else 3):
+        raise ValueError(f"{option} expects {RANGE_FORMS}, got {text!r}")
+    start = _range_number(option, "START", parts[0])
+    stop = _range_number(option, "STOP", parts[1])
+    if not math.isfinite(stop - start):
+        raise ValueError(f"{option} STOP - START overflows, got {text!r}")
+    if slash:
+        return _step_range(option, start, stop, _range_number(option, "STEP", step_text))
     try:
-        start, stop = float(parts[0]), float(parts[1])
         num = int(parts[2])
     except ValueError:
-        raise ValueError(f"--{name} expects numbers START:STOP:NUM, got {text!r}") from None
-    if not (math.isfinite(start) and math.isfinite(stop)):
-        raise ValueError(f"--{name} START and STOP must be finite, got {text!r}")
+        raise ValueError(
+            f"{option} NUM (of START:STOP:NUM) must be a whole number of points, got "
+            f"{parts[2]!r} (a step is written START:STOP/STEP)"
+        ) from None
     if num < 1:
-        raise ValueError(f"--{name} NUM must be >= 1, got {num}")
-    if not math.isfinite(stop - start):
-        raise ValueError(f"--{name} STOP - START overflows, got {text!r}")
-    return start, stop, num
+        raise ValueError(f"{option} NUM must be >= 1, got {num}")
+    return GridRange(start, stop, num)
+
+
+def _range_number(option: str, part: str, text: str) -> float:
+    try:
+        value = float(text)
+    except ValueError:
+        raise ValueError(f"{option} {part} must be a number, got {text!r}") from None
+    if not math.isfinite(value):
+        raise ValueError(f"{option} {part} must be finite, got {text!r}")
+    return value
+
+
+def _step_range(option: str, start: float, stop: float, step: float) -> GridRange:
+    """``START:STOP/STEP``, by the rules the workflow applies to a configured range."""
+    from .experiments.grids import grid_size, lands_on_stop
+
+    if step <= 0:
+        raise ValueError(f"{option} STEP must be > 0, got {step:g}")
+    if stop < start:
+        raise ValueError(f"{option} STOP {stop:g} is below START {start:g} (a step goes up)")
+    if not lands_on_stop(start, stop, step):
+        raise ValueError(
+            f"{option} step {step:g} does not land on STOP {stop:g} from START {start:g} "
+            "(a whole number of steps; START:STOP:NUM gives NUM points instead)"
+        )
+    return GridRange(start, stop, grid_size(start, stop, step), step)
 
 
 def angle(text: str) -> float:
@@ -116,52 +207,115 @@ def angle(text: str) -> float:
     return value
 
 
+#: After ``tennis-stroke --help``'s list of commands.
+_EPILOG = (
+    "Run 'tennis-stroke COMMAND --help' for the options of a command; docs/cli.md describes "
+    "every one. Bad input prints one line 'tennis-stroke: error: ...' and exits with status 2."
+)
+#: The sign of the model's angles (:mod:`tennis_stroke.model.dynamics`), said beside each
+#: angle's long name and unit (:mod:`tennis_stroke.io.units`).
+_ANGLE_SIGN = "counter-clockwise positive"
+
+
+def _description() -> str:
+    """The module docstring's first paragraph, as one line of plain text."""
+    return " ".join(__doc__.split("\n\n")[0].split())
+
+
+def _angle_help(name: str, also: str = "") -> str:
+    """An angle option's help: its long name and unit from the one table of units and
+    long names, and the sign convention."""
+    from .io.units import VARIABLES
+
+    unit, long_name = VARIABLES[name]
+    return f"{long_name}, {_ANGLE_SIGN} ({unit}){also}"
+
+
 def build_parser() -> argparse.ArgumentParser:
-    # the module docstring's first paragraph, without its reST markup
-    summary = " ".join(__doc__.split("\n\n")[0].split()).replace("``", "")
-    parser = _Parser(prog="tennis-stroke", description=summary)
+    parser = _Parser(prog="tennis-stroke", description=_description(), epilog=_EPILOG)
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
     sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    for add in (
+        _add_strike,
+        _add_sweep,
+        _add_params,
+        _add_claims,
+        _add_identify,
+        _add_config,
+        _add_whatif,
+        _add_explore,
+    ):
+        add(sub)
+    return parser
 
-    def common(p: argparse.ArgumentParser) -> None:
-        p.add_argument(
-            "--set",
-            action="append",
-            default=[],
-            metavar="KEY=VALUE",
-            help="override a model parameter (SI units) or a reading",
-        )
-        p.add_argument(
-            "--method",
-            default="DOP853",
-            metavar="{DOP853,DP54}",
-            help="integrator (default DOP853)",
-        )
-        p.add_argument("--rtol", type=float, default=None, help="relative tolerance")
-        p.add_argument("--atol", type=float, default=None, help="absolute tolerance")
 
-    strike = sub.add_parser("strike", help="simulate one stroke")
-    strike.add_argument(
-        "--theta0",
-        type=angle,
-        required=True,
-        metavar="DEG",
-        help="initial angle of rod 1 (arm) in degrees from -y, counter-clockwise positive",
+def _add_model_options(p: argparse.ArgumentParser) -> None:
+    """``--set`` and the solver's options; choices and defaults from the solver's settings."""
+    from .solver.settings import MAX_ATOL, MAX_RTOL, METHOD_IDS, SolverSettings
+
+    p.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="override a model parameter (SI units), a reading or a model option; "
+        "repeatable. 'tennis-stroke params' lists every KEY with its unit, default and bounds",
+    )
+    p.add_argument(
+        "--method",
+        choices=tuple(METHOD_IDS),
+        default=SolverSettings.method,
+        help=f"integrator, an embedded Runge-Kutta pair (default {SolverSettings.method})",
+    )
+    for name, bound in (("rtol", MAX_RTOL), ("atol", MAX_ATOL)):
+        kind = "relative" if name == "rtol" else "absolute"
+        p.add_argument(
+            f"--{name}",
+            type=float,
+            default=None,
+            metavar=name.upper(),
+            help=f"{kind} tolerance of the local error (default "
+            f"{getattr(SolverSettings, name):g}, at most {bound:g})",
+        )
+
+
+def _add_strike(sub) -> None:
+    strike = sub.add_parser(
+        "strike",
+        help="simulate one stroke",
+        description="Simulate one stroke: every result field with its unit and meaning.",
     )
     strike.add_argument(
-        "--delta0",
-        type=angle,
-        required=True,
-        metavar="DEG",
-        help="initial angle of rod 2 relative to rod 1, phi0 - theta0, in degrees",
+        "--theta0", type=angle, required=True, metavar="DEG", help=_angle_help("theta0")
     )
-    strike.add_argument("--json", action="store_true", help="print one JSON object")
-    common(strike)
+    strike.add_argument(
+        "--delta0", type=angle, required=True, metavar="DEG", help=_angle_help("delta0")
+    )
+    strike.add_argument(
+        "--json",
+        action="store_true",
+        help="print one JSON object: the resolved parameters, solver settings and result",
+    )
+    _add_model_options(strike)
 
-    sweep = sub.add_parser("sweep", help="simulate a (theta0, delta0) grid into netCDF")
-    sweep.add_argument("--theta0", required=True, metavar="START:STOP:NUM")
-    sweep.add_argument("--delta0", required=True, metavar="START:STOP:NUM")
-    sweep.add_argument("--out", required=True, metavar="FILE.nc")
+
+def _add_sweep(sub) -> None:
+    sweep = sub.add_parser(
+        "sweep",
+        help="simulate a (theta0, delta0) grid into netCDF",
+        description="Simulate every stroke of a (theta0, delta0) grid into a netCDF file. "
+        f"A RANGE is {RANGE_FORMS}.",
+    )
+    for name in ("theta0", "delta0"):
+        sweep.add_argument(
+            f"--{name}", required=True, metavar="RANGE", help=_angle_help(name, ": a RANGE")
+        )
+    sweep.add_argument(
+        "--out",
+        required=True,
+        metavar="FILE.nc",
+        help="the netCDF file to write (under a temporary name, then renamed)",
+    )
     sweep.add_argument("--threads", type=int, default=None, help="threads (default: all)")
     sweep.add_argument("--no-progress", action="store_true", help="no progress bar")
     sweep.add_argument(
@@ -171,12 +325,34 @@ def build_parser() -> argparse.ArgumentParser:
         help="refuse a grid needing more memory (e.g. 8G; default: "
         "$TENNIS_STROKE_MAX_MEMORY, else half the machine's memory)",
     )
-    common(sweep)
+    _add_model_options(sweep)
 
-    claims = sub.add_parser(
-        "claims", help="check a claims table: exit 1 if a claim marked reproduce failed"
+
+def _add_params(sub) -> None:
+    sub.add_parser(
+        "params",
+        help="list the model's parameters (unit, default, bounds), readings and model "
+        "options: the keys of --set",
+        description="List every model parameter with its unit, default (the paper's value, "
+        "or the fitted one where the meaning says so) and bounds, then every reading and "
+        "model option with its choices: the keys 'strike' and 'sweep' take with --set.",
     )
-    claims.add_argument("csv", nargs="?", default="results/claims.csv", metavar="CLAIMS.csv")
+
+
+def _add_claims(sub) -> None:
+    claims = sub.add_parser(
+        "claims",
+        help="check a claims table: exit 1 if a claim marked reproduce failed",
+        description="Check a claims table the workflow wrote and print it: every claim with "
+        "its status, the paper's value and ours; exit 1 if a claim marked reproduce failed.",
+    )
+    claims.add_argument(
+        "csv",
+        nargs="?",
+        default="results/claims.csv",
+        metavar="CLAIMS.csv",
+        help="the claims table (default: results/claims.csv)",
+    )
     claims.add_argument(
         "--claims",
         default="config/claims.yaml",
@@ -188,6 +364,8 @@ def build_parser() -> argparse.ArgumentParser:
         help="also write the claims as JUnit XML for CI (a test case per claim)",
     )
 
+
+def _add_identify(sub) -> None:
     identify = sub.add_parser(
         "identify", help="fit the paper's open readings to the declared fit sets"
     )
@@ -202,6 +380,8 @@ def build_parser() -> argparse.ArgumentParser:
         "--config", default="config/config.yaml", help="workflow config (the strokes)"
     )
 
+
+def _add_config(sub) -> None:
     config = sub.add_parser("config", help="what the workflow's config keys drive")
     config_sub = config.add_subparsers(dest="action", required=True, parser_class=_Parser)
     explain = config_sub.add_parser(
@@ -212,6 +392,8 @@ def build_parser() -> argparse.ArgumentParser:
     explain.add_argument("--config", default="config/config.yaml", help="workflow config")
     explain.add_argument("--claims", default="config/claims.yaml", help="the declared claims")
 
+
+def _add_whatif(sub) -> None:
     whatif = sub.add_parser(
         "whatif",
         help="run a what-if scenario beside the paper (snakemake): its page or figures",
@@ -222,8 +404,9 @@ def build_parser() -> argparse.ArgumentParser:
         action="append",
         default=[],
         metavar="KEY=VALUE",
-        help="an override: a model parameter or reading (M2=0.35) or a dotted config key "
-        "(torque_delay.base_stroke.C2=8); replaces the declared scenario's overrides",
+        help="an override: a model parameter or reading (M2=0.35; 'tennis-stroke params' "
+        "lists them) or a dotted config key (torque_delay.base_stroke.C2=8); replaces the "
+        "declared scenario's overrides",
     )
     whatif.add_argument(
         "--figure",
@@ -234,6 +417,9 @@ def build_parser() -> argparse.ArgumentParser:
     )
     whatif.add_argument("-j", "--cores", type=int, default=2, help="snakemake --cores (2)")
     whatif.add_argument("-n", "--dry-run", action="store_true", help="plan only (snakemake -n)")
+
+
+def _add_explore(sub) -> None:
     explore = sub.add_parser(
         "explore",
         help="a live explorer in the browser: change a parameter, see Figs. 2-3 and 9 and "
@@ -257,7 +443,6 @@ def build_parser() -> argparse.ArgumentParser:
     explore.add_argument(
         "--threads", type=int, default=None, help="solver threads (default: every core)"
     )
-    return parser
 
 
 def _settings(args: argparse.Namespace):
@@ -346,23 +531,23 @@ def _sweep(args: argparse.Namespace) -> int:
     from .solver.results import OK
     from .solver.stroke import default_threads
 
-    theta_spec = range_spec(args.theta0, "theta0")
-    delta_spec = range_spec(args.delta0, "delta0")
+    theta_range = range_spec(args.theta0, "theta0")
+    delta_range = range_spec(args.delta0, "delta0")
     overrides = _parse_set(args.set)
     params = resolve_params(overrides)
     settings = _settings(args)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"--threads must be >= 1, got {args.threads}")
     threads = min(args.threads or default_threads(), default_threads())
-    n = theta_spec[2] * delta_spec[2]
+    n = theta_range.num * delta_range.num
     block = min(n, SWEEP_BLOCK_PER_THREAD * threads)
     check_memory(
         result_bytes(n) + batch_bytes(block, threads, settings.history),
-        f"a sweep of {theta_spec[2]} x {delta_spec[2]} strokes",
+        f"a sweep of {theta_range.num} x {delta_range.num} strokes",
         memory_limit(args.max_memory, "--max-memory"),
     )
     out = check_writable(args.out)
-    theta0, delta0 = np.linspace(*theta_spec), np.linspace(*delta_spec)
+    theta0, delta0 = theta_range.values(), delta_range.values()
     start = time.perf_counter()
     results = _sweep_blocks(
         theta0,
@@ -387,7 +572,69 @@ def _sweep(args: argparse.Namespace) -> int:
     return 0
 
 
+def text_table(
+    columns: Sequence[str],
+    rows: Sequence[Sequence[str]],
+    width: int = 0,
+    right: Sequence[int] = (),
+) -> str:
+    """``rows`` under ``columns`` as aligned plain text, two spaces between columns, the
+    columns numbered in ``right`` aligned right; with ``width``, the last column wraps to
+    fit it (its further lines indented under it)."""
+    import textwrap
+
+    widths = [max(len(str(r[i])) for r in [columns, *rows]) for i in range(len(columns) - 1)]
+    indent = sum(widths) + 2 * len(widths)
+    fill = max(width - indent, 30) if width else 0
+    lines = []
+    for row in [columns, *rows]:
+        head = "".join(
+            f"{str(cell):{'>' if i in right else '<'}{w}s}  "
+            for i, (cell, w) in enumerate(zip(row, widths, strict=False))
+        )
+        last = textwrap.wrap(str(row[-1]), fill) if fill else [str(row[-1])]
+        lines.append(head + (last[0] if last else ""))
+        lines.extend(" " * indent + more for more in last[1:])
+    return "\n".join(line.rstrip() for line in lines)
+
+
+def _params(args: argparse.Namespace) -> int:
+    import shutil
+
+    from .model.listing import CHOICE_COLUMNS, PARAMETER_COLUMNS, choice_rows, parameter_rows
+
+    # a terminal wraps the meanings to its width; a pipe gets one line a row (for grep)
+    width = shutil.get_terminal_size().columns if sys.stdout.isatty() else 0
+    print("Model parameters, in SI units (--set NAME=VALUE); the default is the paper's value,")
+    print("or the fitted one where the meaning says so; a derived one follows the others.\n")
+    print(text_table(PARAMETER_COLUMNS, parameter_rows(), width))
+    print("\nReadings of the paper and model options (--set NAME=CHOICE); [paper] marks the")
+    print("choice that reads the paper word for word.\n")
+    print(text_table(CHOICE_COLUMNS, choice_rows(), width))
+    return 0
+
+
+def _claims_table(table) -> str:
+    """Every claim of a claims table (checked) as one aligned line: id, status, the
+    paper's value, ours, unit and tolerance."""
+    rows = [
+        (
+            row["id"],
+            row["status"].replace("_", " "),
+            f"{float(row['paper_value']):.4g}",
+            f"{float(row['reproduced_value']):.4g}",
+            row["unit"],
+            f"{float(row['tolerance']):g}",
+        )
+        for row in table.to_dict("records")
+    ]
+    columns = ("claim", "status", "paper", "ours", "unit", "tolerance")
+    return text_table(columns, rows, right=(2, 3, 5))
+
+
 def _claims(args: argparse.Namespace) -> int:
+    import io
+    from contextlib import redirect_stdout
     from pathlib import Path
 
     from .inference.claims import ClaimError, load_claims
@@ -417,7 +664,13 @@ def _claims(args: argparse.Namespace) -> int:
             f"so it is not graded: {describe_departures(record)} (declare a change as a "
             "scenario in config/scenarios.yaml and restore config/config.yaml)"
         )
-    status = check(args.csv, [c["id"] for c in declared], declared)
+    # the check prints its verdict; the table goes above it, and nothing is printed when
+    # the check refuses the table
+    verdict = io.StringIO()
+    with redirect_stdout(verdict):
+        status = check(args.csv, [c["id"] for c in declared], declared)
+    print(_claims_table(read_table(args.csv)))
+    print(verdict.getvalue(), end="")
     if args.junit:
         from .replication.junit import write_junit
 
@@ -557,6 +810,7 @@ def _main(argv: Sequence[str] | None) -> int:
         commands = {
             "strike": _strike,
             "sweep": _sweep,
+            "params": _params,
             "claims": _claims,
             "identify": _identify,
             "config": _config,
