@@ -30,8 +30,9 @@ lock:
 	    --custom-compile-command "make lock" $(if $(UPGRADE),--upgrade) -o $(LOCK)
 
 ## The replication: every experiment, figure and claim, then report/index.html; fails
-## when a claim marked `reproduce` in config/claims.yaml fails, or when README.md's
-## results at a glance are stale (python tools/readme_results.py writes them).  The
+## when a claim marked `reproduce` in config/claims.yaml fails, or when the results that
+## README.md, docs/inference.md and docs/assumptions.md quote are stale
+## (python tools/readme_results.py writes them).  The
 ## target rule report names every result as an input, so one deleted by hand is rebuilt
 ## (docs/workflow.md, "Failing safe").
 report: $(STAMP)

@@ -1,6 +1,6 @@
-"""The README: its results at a glance are generated from the claims table
-(tools/readme_results.py; ``make report`` fails when they are stale), and its shell
-commands run as written, from a fresh shell."""
+"""The README and the docs: the numbers they quote from a run are generated from its
+result files (tools/readme_results.py; ``make report`` fails when they are stale), and
+the README's shell commands run as written, from a fresh shell."""
 
 import json
 import math
@@ -101,9 +101,95 @@ def test_a_readme_without_markers_is_refused_in_one_line(tmp_path):
     assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1
 
 
-def test_the_readme_has_one_results_block():
-    text = (ROOT / "README.md").read_text()
-    assert text.count("<!-- results:begin -->") == 1 and text.count("<!-- results:end -->") == 1
+def _held_out_run(folder: Path, fail: bool = False) -> Path:
+    """A claims table with fit sets and the robustness file's sizes, in ``folder``."""
+    import xarray as xr
+
+    rows = [
+        ("f", "used_for_fit", "used_for_fit", "model"),
+        ("a", "pass", "robust", ""),
+        ("b", "fail" if fail else "pass", "reading_dependent", ""),
+        ("c", "known_deviation", "not_reproduced", ""),
+    ]
+    table = pd.DataFrame(rows, columns=["id", "status", "robustness", "fit_set"])
+    table.to_csv(folder / "claims.csv", index=False)
+    record_configuration(folder)
+    (folder / "robustness").mkdir(exist_ok=True)
+    xr.Dataset(coords={"reading": range(3), "variant": range(2)}).to_netcdf(
+        folder / "robustness" / "claims.nc"
+    )
+    return folder / "claims.csv"
+
+
+def test_a_docs_block_is_written_and_then_checks_clean(tmp_path):
+    """A docs page's block (docs/inference.md's held-out claims) by the README's
+    mechanism: stale before, written between its markers only, clean after; a changed
+    result makes it stale again."""
+    claims = _held_out_run(tmp_path)
+    page = tmp_path / "inference.md"
+    page.write_text("# x\n<!-- held-out:begin -->\n26 pass\n<!-- held-out:end -->\nrest\n")
+    assert _run("--claims", claims, "--readme", page, "--check").returncode == 1
+    assert _run("--claims", claims, "--readme", page).returncode == 0
+    text = page.read_text()
+    assert "4 claims: 1 chose the readings (`used_for_fit`), 3 are held out: 2 `pass`" in text
+    assert "Across the 3 kept readings consistent with the paper, each under 2" in text
+    assert "| pass | reading_dependent (1) | `b` |" in text and "26 pass" not in text
+    assert text.startswith("# x\n") and text.endswith("<!-- held-out:end -->\nrest\n")
+    assert _run("--claims", claims, "--readme", page, "--check").returncode == 0
+    done = _run("--claims", _held_out_run(tmp_path, fail=True), "--readme", page, "--check")
+    assert done.returncode == 1 and f"{page}'s results are stale" in done.stderr
+
+
+def test_a_broken_block_is_refused_naming_its_page(tmp_path):
+    page = tmp_path / "inference.md"
+    page.write_text("<!-- held-out:begin -->\nno end\n")
+    done = _run("--claims", _held_out_run(tmp_path), "--readme", page)
+    assert done.returncode == 2 and len(done.stderr.strip().splitlines()) == 1
+    assert f"{page}: the block 'held-out' needs" in done.stderr
+
+
+def _tool():
+    """tools/readme_results.py as a module."""
+    sys.path.insert(0, str(TOOL.parent))
+    try:
+        import readme_results
+    finally:
+        sys.path.remove(str(TOOL.parent))
+    return readme_results
+
+
+def test_every_page_with_a_generated_block_is_checked():
+    """``make report``'s check covers every page that holds a generated block."""
+    tool = _tool()
+    begins = [tool.markers(name)[0] for name in tool.BLOCKS]
+    pages = [ROOT / "README.md", *sorted(ROOT.glob("docs/*.md"))]
+    marked = [p for p in pages if any(b in p.read_text() for b in begins)]
+    assert [str(p.relative_to(ROOT)) for p in marked] == sorted(tool.PAGES)
+
+
+def test_the_shipped_pages_are_generated_from_a_run(tiny_run, tmp_path):
+    """Every block of the shipped pages is written from a run's result files (the tiny
+    run's numbers differ from the committed ones, so each page is stale against them),
+    and only the blocks change."""
+    readme_results = _tool()
+    pages = []
+    for name in readme_results.PAGES:
+        (tmp_path / name).parent.mkdir(parents=True, exist_ok=True)
+        (tmp_path / name).write_text((ROOT / name).read_text())
+        pages.append(tmp_path / name)
+    claims = tiny_run / "results" / "claims.csv"
+    done = _run("--claims", claims, "--readme", *pages, "--check")
+    assert done.returncode == 1 and done.stderr.count("stale") == len(pages), done.stderr
+    assert _run("--claims", claims, "--readme", *pages).returncode == 0
+    assert _run("--claims", claims, "--readme", *pages, "--check").returncode == 0
+    for page, name in zip(pages, readme_results.PAGES, strict=True):
+        old, new = (ROOT / name).read_text(), page.read_text()
+        for block in readme_results.BLOCKS:
+            begin, end = readme_results.markers(block)
+            if begin in old:
+                old = old.split(begin)[0] + old.split(end)[1]
+                new = new.split(begin)[0] + new.split(end)[1]
+        assert old == new, name
 
 
 def _what_if_section() -> str:

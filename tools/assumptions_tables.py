@@ -1,14 +1,8 @@
-"""Print the identification and robustness tables of docs/assumptions.md from the
-result files.
-
-    .venv/bin/python tools/assumptions_tables.py [results] [--write docs/assumptions.md]
-
-The numbers in docs/assumptions.md's identification and robustness sections are this
-script's output, written between its BEGIN/END markers (``--write``), never typed by
-hand.
+"""The identification and robustness tables of docs/assumptions.md, from the result
+files: its generated blocks ``identification`` and ``robustness``, which
+``tools/readme_results.py`` writes and checks with the README's (never typed by hand).
 """
 
-import sys
 from pathlib import Path
 
 import pandas as pd
@@ -151,34 +145,3 @@ def robustness_tables(results: Path) -> str:
             )
         )
     return "\n".join(out) + "\n"
-
-
-def write(path: Path, blocks: dict[str, str]) -> None:
-    """Replace each block of ``path`` between ``<!-- BEGIN tools/assumptions_tables.py:
-    NAME -->`` and ``<!-- END ... -->`` with its new text."""
-    text = path.read_text()
-    for name, body in blocks.items():
-        begin = f"<!-- BEGIN tools/assumptions_tables.py: {name} -->"
-        end = f"<!-- END tools/assumptions_tables.py: {name} -->"
-        head, rest = text.split(begin)
-        _, tail = rest.split(end)
-        text = f"{head}{begin}\n{body.strip()}\n\n{end}{tail}"
-    path.write_text(text)
-
-
-if __name__ == "__main__":
-    args = sys.argv[1:]
-    target = None
-    if "--write" in args:
-        i = args.index("--write")
-        target = Path(args[i + 1])
-        del args[i : i + 2]
-    results = Path(args[0] if args else "results")
-    blocks = {
-        "identification": tables(results / "identification"),
-        "robustness": robustness_tables(results),
-    }
-    if target is None:
-        print("\n\n".join(blocks.values()))
-    else:
-        write(target, blocks)

@@ -1,41 +1,54 @@
-"""The README's "results at a glance", generated from the claims table of a finished run.
+"""The numbers the README and the docs quote from a finished run, generated from its
+result files.
 
-Usage: ``python tools/readme_results.py [--claims results/claims.csv] [--readme README.md]
-[--check]``.  Writes the block between the README's ``<!-- results:begin -->`` and
-``<!-- results:end -->`` lines from ``results/claims.csv``: the claims by status and
-robustness class (a status in the report's words, so the README and the report's
-scoreboard speak alike), and every claim that deviates, with the paper's value, ours and
-the evidence class.  ``--check`` writes nothing and exits 1 when the README's block differs
-from what the claims table gives (``make report`` runs it: the README's numbers cannot go
-stale).
+Usage: ``python tools/readme_results.py [--claims results/claims.csv] [--readme PAGE ...]
+[--check]``.  A page holds generated blocks, each between a ``<!-- NAME:begin -->`` and a
+``<!-- NAME:end -->`` line, NAME one of :data:`BLOCKS`: the README's results at a glance
+(``results``); the held-out claims by status and robustness class and the model ladder's
+findings (``held-out``, ``ladder``: docs/inference.md); the assumption ledger's fit and
+robustness tables (``identification``, ``robustness``: docs/assumptions.md, made by
+tools/assumptions_tables.py).  Each is written from the folder of ``--claims``: the
+claims table and the result files beside it.  The pages are README.md, docs/inference.md
+and docs/assumptions.md unless ``--readme`` names others.  ``--check`` writes nothing and
+exits 1 when a page's blocks differ from what the results give (``make report`` runs it:
+the numbers the pages quote cannot go stale).
 """
 
 from __future__ import annotations
 
 import argparse
 import sys
+from collections.abc import Callable
 from pathlib import Path
 
+import assumptions_tables
 import pandas as pd
+import xarray as xr
 
 from tennis_stroke.inference.paper_config import (
     PaperConfigError,
     describe_departures,
     read_record,
 )
+from tennis_stroke.replication.ladder import findings, verdict
 from tennis_stroke.replication.report import STATUS_WORDS
 
-BEGIN, END = "<!-- results:begin -->", "<!-- results:end -->"
+PAGES = ("README.md", "docs/inference.md", "docs/assumptions.md")
 STATUSES = ("pass", "used_for_fit", "known_deviation", "fail")
 CLASSES = ("robust", "reading_dependent", "not_reproduced", "used_for_fit")
 
 
 class ReadmeError(ValueError):
-    """The README has no results block (one line)."""
+    """A page has no generated block, or a broken one (one line)."""
+
+
+def markers(name: str) -> tuple[str, str]:
+    """The lines that open and close the generated block ``name``."""
+    return f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
 
 
 def block(table: pd.DataFrame) -> str:
-    """The Markdown between the markers, from a claims table (``results/claims.csv``):
+    """The README's results at a glance, from a claims table (``results/claims.csv``):
     the claims by their verdict under the default reading (rows, in the report's words)
     and by how they fare across the consistent readings (columns, the robustness
     classes), then the claims that deviate or fail."""
@@ -86,33 +99,93 @@ def _claims_that(n: int, status: str) -> str:
     return f"{n} claim that {verb}" if n == 1 else f"{n} claims that {verb.removesuffix('s')}"
 
 
-def replaced(readme: str, content: str) -> str:
-    """``readme`` with ``content`` between the markers."""
-    if (
-        readme.count(BEGIN) != 1
-        or readme.count(END) != 1
-        or readme.index(BEGIN) > readme.index(END)
-    ):
-        raise ReadmeError(f"the README needs one {BEGIN} line and one {END} line after it")
-    head, rest = readme.split(BEGIN)
-    _, tail = rest.split(END)
-    return f"{head}{BEGIN}\n{content}\n{END}{tail}"
+def held_out(table: pd.DataFrame, results: Path) -> str:
+    """docs/inference.md's held-out claims: the counts by status and robustness class, and
+    which claims each pair holds (the claims table; the number of kept readings and
+    claim-level variants from ``results/robustness/claims.nc``)."""
+    held = table[table["fit_set"] == ""]
+    with xr.open_dataset(results / "robustness" / "claims.nc") as kept:
+        readings, variants = kept.sizes["reading"], kept.sizes["variant"]
+    statuses = held["status"].value_counts()
+    classes = held["robustness"].value_counts()
+    lines = [
+        f"{len(table)} claims: {len(table) - len(held)} chose the readings (`used_for_fit`), "
+        f"{len(held)} are held out: "
+        + ", ".join(f"{int(statuses.get(s, 0))} `{s}`" for s in STATUSES if s != "used_for_fit")
+        + f". Across the {readings} kept readings consistent with the paper, each under "
+        f"{variants} claim-level variants, the held-out claims are "
+        + ", ".join(f"{int(classes.get(c, 0))} `{c}`" for c in CLASSES if c != "used_for_fit")
+        + ".",
+        "",
+        "| status | robustness | claims |",
+        "|---|---|---|",
+    ]
+    for status in STATUSES:
+        for robustness in CLASSES:
+            ids = held["id"][(held["status"] == status) & (held["robustness"] == robustness)]
+            if len(ids):
+                names = ", ".join(f"`{i}`" for i in ids)
+                lines.append(f"| {status} | {robustness} ({len(ids)}) | {names} |")
+    return "\n".join(lines)
+
+
+def ladder(results: Path) -> str:
+    """docs/inference.md's findings of the model ladder, in the sentences of the report's
+    section (``results/ladder/claims_by_rung.nc``, tennis_stroke.replication.ladder)."""
+    with xr.open_dataset(results / "ladder" / "claims_by_rung.nc") as ds:
+        ds = ds.load()
+    return "\n".join(f"* {line}" for line in [*verdict(ds), *findings(ds)])
+
+
+#: Every generated block by name: what it is made of (the claims table and the results
+#: folder).
+BLOCKS: dict[str, Callable[[pd.DataFrame, Path], str]] = {
+    "results": lambda table, results: block(table),
+    "held-out": held_out,
+    "ladder": lambda table, results: ladder(results),
+    "identification": lambda table, results: assumptions_tables.tables(results / "identification"),
+    "robustness": lambda table, results: assumptions_tables.robustness_tables(results),
+}
+
+
+def replaced(page: str, name: str, content: str) -> str:
+    """``page`` with ``content`` in its block ``name``."""
+    begin, end = markers(name)
+    if page.count(begin) != 1 or page.count(end) != 1 or page.index(begin) > page.index(end):
+        raise ReadmeError(f"the block {name!r} needs one {begin} line and one {end} line after it")
+    head, rest = page.split(begin)
+    _, tail = rest.split(end)
+    return f"{head}{begin}\n{content.strip()}\n{end}{tail}"
+
+
+def regenerated(page: str, table: pd.DataFrame, results: Path) -> str:
+    """``page`` with each of its generated blocks written anew."""
+    names = [n for n in BLOCKS if any(m in page for m in markers(n))]
+    if not names:
+        raise ReadmeError(
+            "no generated block: a page needs a <!-- NAME:begin --> line and a "
+            f"<!-- NAME:end --> line after it, NAME one of {', '.join(BLOCKS)}"
+        )
+    for name in names:
+        page = replaced(page, name, BLOCKS[name](table, results))
+    return page
 
 
 def not_the_papers(claims: str) -> str:
-    """Why the claims table ``claims`` may not write the README (empty: it may): the
-    README's results are the paper's configuration's, never a scenario's or a departing
+    """Why the claims table ``claims`` may not write the pages (empty: it may): their
+    results are the paper's configuration's, never a scenario's or a departing
     configuration's (the record beside the table, tennis_stroke.inference.paper_config)."""
     record = read_record(claims)
     if record["scenario"]:
         return (
             f"{claims} is scenario {record['scenario']['name']!r}'s, an exploration: the "
-            "README shows the paper's configuration only"
+            "README and the docs show the paper's configuration only"
         )
     if record["departures"]:
         return (
             f"{claims} was computed under a configuration that departs from the paper's "
-            f"({describe_departures(record)}): the README shows the paper's configuration only"
+            f"({describe_departures(record)}): the README and the docs show the paper's "
+            "configuration only"
         )
     return ""
 
@@ -120,8 +193,8 @@ def not_the_papers(claims: str) -> str:
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--claims", default="results/claims.csv")
-    parser.add_argument("--readme", default="README.md")
-    parser.add_argument("--check", action="store_true", help="exit 1 if the README is stale")
+    parser.add_argument("--readme", nargs="+", default=PAGES, help="the pages to write")
+    parser.add_argument("--check", action="store_true", help="exit 1 if a page is stale")
     args = parser.parse_args(argv)
     try:
         refusal = not_the_papers(args.claims)
@@ -129,20 +202,26 @@ def main(argv: list[str] | None = None) -> int:
             sys.stderr.write(f"readme_results: {refusal}\n")
             return 2
         table = pd.read_csv(args.claims, keep_default_na=False)
-        readme = Path(args.readme).read_text()
-        new = replaced(readme, block(table))
+        pages, new = {}, {}
+        for page in map(Path, args.readme):
+            pages[page] = page.read_text()
+            try:
+                new[page] = regenerated(pages[page], table, Path(args.claims).parent)
+            except ReadmeError as exc:
+                raise ReadmeError(f"{page}: {exc}") from None
     except (OSError, ReadmeError, KeyError, PaperConfigError) as exc:
         sys.stderr.write(f"readme_results: {exc}\n")
         return 2
+    stale = [p for p in pages if new[p] != pages[p]]
     if args.check:
-        if new != readme:
+        for page in stale:
             sys.stderr.write(
-                f"readme_results: {args.readme}'s results are stale against {args.claims}: "
+                f"readme_results: {page}'s results are stale against {args.claims}: "
                 "run python tools/readme_results.py\n"
             )
-            return 1
-        return 0
-    Path(args.readme).write_text(new)
+        return 1 if stale else 0
+    for page in stale:
+        page.write_text(new[page])
     return 0
 
 

@@ -78,7 +78,7 @@ def _table(frame: pd.DataFrame, **kwargs) -> Markup:
 
 def markdown_html(text: str) -> Markup:
     """Markdown (CommonMark with tables) as HTML; raw HTML in the text is escaped, HTML
-    comments (the markers of ``tools/assumptions_tables.py``) are dropped."""
+    comments (the markers of the generated blocks, ``tools/readme_results.py``) are dropped."""
     text = re.sub(r"<!--.*?-->", "", text, flags=re.DOTALL)
     md = MarkdownIt("commonmark", {"html": False}).enable("table")
     return _safe(md.render(text))
