@@ -190,6 +190,19 @@ def _write(tmp_path, change):
             lambda r: r["fits"]["model"].update(discrete=["inertia", "inertia"]),
             "'fits.model.discrete'",
         ),
+        # the fit sets and the quoting instants are enums of the schema
+        (
+            lambda r: next(iter(r["quoting"].values())).update(choices=["phi0", "impact"]),
+            "'impact' is not one of ['phi0', 'contact']",
+        ),
+        (
+            lambda r: next(iter(r["quoted_variables"].values())).pop("contact"),
+            "does not have enough properties (rule: minProperties)",
+        ),
+        (
+            lambda r: r["fits"]["elbow_force"].update(given="modle"),
+            "'fits.elbow_force.given': 'modle' is not one of ['model', 'elbow_force']",
+        ),
     ],
 )
 def test_bad_reading_space_is_one_line_naming_the_key(tmp_path, claims, change, message):
@@ -197,6 +210,15 @@ def test_bad_reading_space_is_one_line_naming_the_key(tmp_path, claims, change, 
     with pytest.raises(ReadingSpaceError, match="readings key") as err:
         load_reading_space(path, [c["id"] for c in claims])
     assert message in str(err.value) and "\n" not in str(err.value)
+
+
+def test_the_fit_sets_of_the_schema_are_the_fits_it_requires():
+    """FIT_SETS is read from the schema's enum: the fits section must name each."""
+    from tennis_stroke.inference.reading_space import FIT_SETS, SCHEMA
+
+    fits = yaml.safe_load(SCHEMA.read_text())["properties"]["fits"]
+    assert FIT_SETS == ("model", "elbow_force")
+    assert set(FIT_SETS) <= set(fits["required"]) and set(FIT_SETS) <= set(fits["properties"])
 
 
 def test_a_yaml_syntax_error_names_the_line(tmp_path):

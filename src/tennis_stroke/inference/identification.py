@@ -32,7 +32,7 @@ from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
 from .labels import claim_facts, variable
-from .reading_space import FitSet, ReadingSpace, literal_rank
+from .reading_space import ELBOW_FIT, MODEL_FIT, FitSet, ReadingSpace, literal_rank
 
 
 @dataclass(frozen=True)
@@ -510,7 +510,7 @@ def run_identification(
     model fit's default.  ``base``: model overrides of the config (the fitted readings and
     unknowns replace theirs)."""
     base = dict(base or {})
-    model_fit = space.fits["model"]
+    model_fit = space.fits[MODEL_FIT]
     model = identify(
         space,
         model_fit,
@@ -518,7 +518,7 @@ def run_identification(
         model_simulator(fig4_strokes, settings),
         base,
     )
-    elbow_fit = space.fits["elbow_force"]
+    elbow_fit = space.fits[ELBOW_FIT]
     elbow = identify(
         space,
         elbow_fit,
@@ -526,7 +526,7 @@ def run_identification(
         elbow_simulator(force, stroke, settings),
         {**base, **model_overrides(space, model.default)},
     )
-    return {"model": model, "elbow_force": elbow}
+    return {MODEL_FIT: model, ELBOW_FIT: elbow}
 
 
 def summary(results: Mapping[str, Identification], rows: int = 6) -> str:

@@ -34,7 +34,7 @@ from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
 from .identification import elbow_simulator, model_simulator, residuals, targets
 from .labels import variable
-from .reading_space import CURVE_FILES, ReadingSpace
+from .reading_space import CURVE_FILES, ELBOW_FIT, MODEL_FIT, ReadingSpace
 
 
 class MultiverseError(ValueError):
@@ -59,7 +59,7 @@ def design(space: ReadingSpace) -> dict[str, np.ndarray]:
 
 def model_combinations(space: ReadingSpace) -> list[dict[str, str]]:
     """Every combination of the model fit's discrete readings, in declared order."""
-    names = list(space.fits["model"].discrete)
+    names = list(space.fits[MODEL_FIT].discrete)
     return [
         dict(zip(names, combo, strict=True))
         for combo in itertools.product(*(space.discrete[n] for n in names))
@@ -104,16 +104,16 @@ def screen(
     points = design(space)
     n = len(next(iter(points.values())))
     combos = model_combinations(space)
-    physical = [k for k in space.fits["model"].discrete if k in space.raw["model"]]
-    quoting = [k for k in space.fits["model"].discrete if k in space.raw["quoting"]]
-    fits = [space.fits["model"], space.fits["elbow_force"]]
+    physical = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["model"]]
+    quoting = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["quoting"]]
+    fits = [space.fits[MODEL_FIT], space.fits[ELBOW_FIT]]
     goals = {f.name: targets(space, f, claims) for f in fits}
     sims = {
-        "model": model_simulator(fig4, settings),
-        "elbow_force": elbow_simulator(force, stroke, settings),
+        MODEL_FIT: model_simulator(fig4, settings),
+        ELBOW_FIT: elbow_simulator(force, stroke, settings),
     }
-    if [f.name for f in fits] != ["model", "elbow_force"] or "table1_tau_F" not in points:
-        raise MultiverseError("the screen expects the model and elbow_force fit sets")
+    if "table1_tau_F" not in points:
+        raise MultiverseError("the screen expects table1_tau_F among the unknowns")
     params = {k: v[:, None] for k, v in points.items() if k in PARAMETERS}
     claim_ids = [t.claim for f in fits for t in goals[f.name]]
     res = np.full((len(combos), n, len(claim_ids)), np.nan)
@@ -124,9 +124,9 @@ def screen(
         key = tuple(combo[k] for k in physical)
         overrides = {**base, **{k: combo[k] for k in physical}}
         if key not in cache:
-            cache[key] = {"model": sims["model"]({**overrides, **params})}
+            cache[key] = {MODEL_FIT: sims[MODEL_FIT]({**overrides, **params})}
         instants = {k: combo[k] for k in quoting}
-        model_res = residuals(cache[key]["model"], goals["model"], instants, space)[1]
+        model_res = residuals(cache[key][MODEL_FIT], goals[MODEL_FIT], instants, space)[1]
         res[c, :, : model_res.shape[1]] = model_res
         rms[c, :, 0] = np.sqrt(np.mean(model_res**2, axis=1))
         ok = _within(model_res, rms[c, :, 0], bounds[0])
@@ -136,12 +136,12 @@ def screen(
             continue
         sub = {k: v[todo] for k, v in params.items()}
         sub["table1_tau_F"] = points["table1_tau_F"][todo, None]
-        elbow = sims["elbow_force"]({**overrides, **sub})
-        elbow_res = residuals(elbow, goals["elbow_force"], instants, space)[1]
+        elbow = sims[ELBOW_FIT]({**overrides, **sub})
+        elbow_res = residuals(elbow, goals[ELBOW_FIT], instants, space)[1]
         res[c, todo, model_res.shape[1] :] = elbow_res
         rms[c, todo, 1] = np.sqrt(np.mean(elbow_res**2, axis=1))
-    consistent = _within(res[..., : len(goals["model"])], rms[..., 0], bounds[0]) & _within(
-        res[..., len(goals["model"]) :], rms[..., 1], bounds[1]
+    consistent = _within(res[..., : len(goals[MODEL_FIT])], rms[..., 0], bounds[0]) & _within(
+        res[..., len(goals[MODEL_FIT]) :], rms[..., 1], bounds[1]
     )
     names = unknowns(space)
     ds = xr.Dataset(

@@ -26,6 +26,12 @@ from ..model.params import PARAMETERS, READINGS, ParameterError, resolve_params
 
 #: The schema of the file, beside the workflow's config schema.
 SCHEMA = Path(__file__).with_name("readings.schema.yaml")
+_DEFS = load_yaml(SCHEMA)["$defs"]
+#: The fit sets, in the order they are fitted, and the instants a quoted variable is read
+#: at: enums of the schema, read from it.
+FIT_SETS: tuple[str, ...] = tuple(_DEFS["fit_set"]["enum"])
+MODEL_FIT, ELBOW_FIT = FIT_SETS
+INSTANTS: tuple[str, ...] = tuple(_DEFS["instant"]["enum"])
 #: Continuous unknowns that are not model parameters but settings of one experiment.
 EXPERIMENT_UNKNOWNS = ("table1_tau_F", "fig6_L1_max")
 
@@ -143,16 +149,9 @@ def load_reading_space(
         bad = sorted(set(spec["choices"]) - set(READINGS[name].choices))
         _check(not bad, f"readings key 'model.{name}': unknown choice {bad[:1]}")
         discrete[name] = tuple(spec["choices"])
-    for name, spec in raw["quoting"].items():
-        bad = sorted(set(spec["choices"]) - {"phi0", "contact"})
-        _check(not bad, f"readings key 'quoting.{name}': unknown instant {bad[:1]}")
+    for name, spec in raw["quoting"].items():  # the schema checks the instants
         discrete[name] = tuple(spec["choices"])
     discrete["figure_curves"] = tuple(raw["figure_curves"]["choices"])
-    for name, by_instant in raw["quoted_variables"].items():
-        _check(
-            set(by_instant) == {"phi0", "contact"},
-            f"readings key 'quoted_variables.{name}': needs phi0 and contact",
-        )
 
     continuous: dict[str, Unknown] = {}
     for name, spec in raw["continuous"].items():
@@ -185,7 +184,7 @@ def load_reading_space(
         continuous[name] = Unknown(name, spec["unit"], lo, hi, spec["scale"], explo)
 
     fits: dict[str, FitSet] = {}
-    for name in ("model", "elbow_force"):
+    for name in FIT_SETS:
         spec = raw["fits"][name]
         for d in spec["discrete"]:
             _check(d in discrete, f"readings key 'fits.{name}.discrete': unknown reading {d!r}")
