@@ -27,11 +27,9 @@ from ..model.params import PARAMETERS, READINGS, ParameterError, resolve_params
 #: The schema of the file, beside the workflow's config schema.
 SCHEMA = Path(__file__).with_name("readings.schema.yaml")
 _DEFS = load_yaml(SCHEMA)["$defs"]
-#: The fit sets, in the order they are fitted, and the instants a quoted variable is read
-#: at: enums of the schema, read from it.
+#: The fit sets, in the order they are fitted: an enum of the schema, read from it.
 FIT_SETS: tuple[str, ...] = tuple(_DEFS["fit_set"]["enum"])
 MODEL_FIT, ELBOW_FIT = FIT_SETS
-INSTANTS: tuple[str, ...] = tuple(_DEFS["instant"]["enum"])
 #: Continuous unknowns that are not model parameters but settings of one experiment.
 EXPERIMENT_UNKNOWNS = ("table1_tau_F", "fig6_L1_max")
 
