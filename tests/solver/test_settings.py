@@ -102,6 +102,24 @@ def test_the_workflow_schema_leaves_the_bound_to_the_package():
     assert "MAX_RTOL" in solver["rtol"]["description"]
 
 
+def test_the_workflow_schema_s_solver_defaults_and_methods_are_the_package_s():
+    """The solver's defaults live in SolverSettings and its methods in METHOD_IDS; the
+    config schema (whose defaults Snakemake fills in) must give the same, everywhere it
+    names a method."""
+    from tennis_stroke.solver.settings import METHOD_IDS
+
+    text = (ROOT / "workflow/schemas/config.schema.yaml").read_text()
+    schema = yaml.safe_load(text)
+    solver = schema["properties"]["solver"]["properties"]
+    default = SolverSettings()
+    for key in ("method", "rtol", "atol"):
+        assert solver[key]["default"] == getattr(default, key), key
+    assert f"default {default.t_max:g})" in solver["t_max"]["description"]
+    rung = schema["properties"]["model_ladder"]["properties"]["rungs"]["items"]
+    for spec in (solver["method"], rung["properties"]["solver"]["properties"]["method"]):
+        assert sorted(spec["enum"]) == sorted(METHOD_IDS)
+
+
 @pytest.mark.parametrize(
     "text, size",
     [
