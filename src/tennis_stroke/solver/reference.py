@@ -181,88 +181,114 @@ def solve_stroke(
     res = {name: math.nan for name in RESULT_FIELDS}
     res["rhs_evals"] = 0
     ref = ReferenceStroke(res)
+    code = _phases(ref, cf, (method, rtol, atol), t_max, contact_min_steps, follow_through)
+    return _finished(ref, code)
 
-    def finish(code):
-        res["status"] = code
-        res["status_name"] = STATUS_NAMES[code]
-        for key in ("theta_deg_at_phi0", "theta_deg_contact"):
-            res[key] = math.degrees(res[key])
-        if code == OK:  # sampled: a check of the compiled peak finder, not a replacement
-            res["omega2_max"] = float(
-                max(
-                    np.max(seg.sol(np.linspace(seg.t0, seg.t1, OMEGA2_SAMPLES))[A_OMEGA2])
-                    for seg in ref.segments
-                )
+
+def _finished(ref: ReferenceStroke, code: int) -> ReferenceStroke:
+    """``ref`` with its status, its angles in degrees and, for a stroke that succeeded,
+    ``omega2_max`` sampled on its segments (a check of the compiled peak finder)."""
+    res = ref.result
+    res["status"] = code
+    res["status_name"] = STATUS_NAMES[code]
+    for key in ("theta_deg_at_phi0", "theta_deg_contact"):
+        res[key] = math.degrees(res[key])
+    if code == OK:
+        res["omega2_max"] = float(
+            max(
+                np.max(seg.sol(np.linspace(seg.t0, seg.t1, OMEGA2_SAMPLES))[A_OMEGA2])
+                for seg in ref.segments
             )
-        return ref
+        )
+    return ref
+
+
+def _phases(ref, cf, opts, t_max, contact_min_steps, follow_through) -> int:
+    """The stroke's phases, into ``ref`` (``opts``: method, rtol, atol): the swing to
+    phi = 0, the contact start, then the contact (spring or instantaneous) and the follow
+    through.  Returns the status code."""
+    res = ref.result
+    swing: list[Segment] = []
+    t0, y, code = _swing(cf, opts, t_max, swing, res)
+    if code != OK:
+        return code
+    instant = cf[CF_CONTACT_MODEL] != 0.0  # a cheap rung of the model ladder: no contact phase
+    t_c = t0 if instant else t0 - cf[CF_LEAD]
+    if t_c < 0.0:
+        return EARLY_CONTACT
+    yc = _contact_start(ref, swing, t_c)
+    st, ct = math.sin(yc[A_THETA]), math.cos(yc[A_THETA])
+    sp, cp = math.sin(yc[A_PHI]), math.cos(yc[A_PHI])
+    s_ball, w = incoming_ball(t_c, st, sp, cf)
+    if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
+        return NO_APPROACH
+    if instant:
+        res["v_out_kmh"], w1, w2 = instant_contact(t_c, to_trig(yc), cf)
+        res["t_separation"] = t_c
+        y_after = np.array([yc[A_THETA], yc[A_PHI], w1, w2])
+        return OK if _follow(t_c, y_after, follow_through, cf, *opts, res, ref) else STEP_FAILURE
+    max_step = contact_duration(st, ct, sp, cp, cf) / contact_min_steps
+    return _spring_contact(
+        ref, cf, opts, t_c, np.array([*yc, s_ball, w]), t_max, max_step, follow_through
+    )
+
+
+def _swing(cf, opts, t_max, swing, res) -> tuple[float, np.ndarray, int]:
+    """The free swing from rest to phi = 0 (segments into ``swing``): ``(t0, state,
+    code)``, with the phi = 0 fields into ``res``."""
 
     def phi_zero(t, y):
         return y[A_PHI]
 
     phi_zero.terminal, phi_zero.direction = True, -1
-    swing = []
     y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
-    t0, y, hit, nfev, ok = _run(
-        0.0, y0, t_max, cf, False, [phi_zero], method, rtol, atol, np.inf, swing
-    )
+    t0, y, hit, nfev, ok = _run(0.0, y0, t_max, cf, False, [phi_zero], *opts, np.inf, swing)
     res["rhs_evals"] += nfev
     if not ok:
-        return finish(STEP_FAILURE)
+        return t0, y, STEP_FAILURE
     if not hit:
-        return finish(NO_PHI_ZERO)
+        return t0, y, NO_PHI_ZERO
     res.update(
         t_phi0=t0, theta_deg_at_phi0=y[A_THETA], omega1_phi0=y[A_OMEGA1], omega2_phi0=y[A_OMEGA2]
     )
-    instant = cf[CF_CONTACT_MODEL] != 0.0  # a cheap rung of the model ladder: no contact phase
-    t_c = t0 if instant else t0 - cf[CF_LEAD]
-    if t_c < 0.0:
-        return finish(EARLY_CONTACT)
-    seg = next(s for s in swing if s.t0 <= t_c <= s.t1)
-    yc = seg.sol(t_c)
+    return t0, y, OK
+
+
+def _contact_start(ref: ReferenceStroke, swing: list[Segment], t_c: float) -> np.ndarray:
+    """The swing's state at the contact start ``t_c`` (its fields into ``ref.result``);
+    the stroke's segments become the swing cut there."""
+    yc = next(s for s in swing if s.t0 <= t_c <= s.t1).sol(t_c)
     ref.segments = [s for s in swing if s.t0 < t_c]
     ref.segments[-1] = Segment(ref.segments[-1].t0, t_c, False, ref.segments[-1].sol)
-    res.update(
+    ref.result.update(
         t_contact_start=t_c,
         theta_deg_contact=yc[A_THETA],
         omega1_contact=yc[A_OMEGA1],
         omega2_contact=yc[A_OMEGA2],
     )
-    st, ct, sp, cp = (
-        math.sin(yc[A_THETA]),
-        math.cos(yc[A_THETA]),
-        math.sin(yc[A_PHI]),
-        math.cos(yc[A_PHI]),
-    )
-    s_ball, w = incoming_ball(t_c, st, sp, cf)
-    if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
-        return finish(NO_APPROACH)
-    if instant:
-        res["v_out_kmh"], w1, w2 = instant_contact(t_c, to_trig(yc), cf)
-        res["t_separation"] = t_c
-        y_after = np.array([yc[A_THETA], yc[A_PHI], w1, w2])
-        if not _follow(t_c, y_after, follow_through, cf, method, rtol, atol, res, ref):
-            return finish(STEP_FAILURE)
-        return finish(OK)
-    max_step = contact_duration(st, ct, sp, cp, cf) / contact_min_steps
+    return yc
+
+
+def _spring_contact(ref, cf, opts, t_c, y, t_max, max_step, follow_through) -> int:
+    """The spring contact from ``t_c`` (state ``y`` with the ball) to separation, then
+    the follow-through; returns the status code."""
+    res = ref.result
 
     def separation(t, y):
         return compression_angles(y, cf)
 
     separation.terminal, separation.direction = True, -1
-    y = np.array([*yc, s_ball, w])
     t_sep, y, hit, nfev, ok = _run(
-        t_c, y, t_max, cf, True, [separation], method, rtol, atol, max_step, ref.segments
+        t_c, y, t_max, cf, True, [separation], *opts, max_step, ref.segments
     )
     res["rhs_evals"] += nfev
     if not ok:
-        return finish(STEP_FAILURE)
+        return STEP_FAILURE
     if not hit:
-        return finish(NO_RELEASE)
+        return NO_RELEASE
     res["t_separation"] = t_sep
     res["v_out_kmh"] = rebound_speed_kmh(t_sep, y[A_BALL_W], cf)
-    if not _follow(t_sep, y[:4], follow_through, cf, method, rtol, atol, res, ref):
-        return finish(STEP_FAILURE)
-    return finish(OK)
+    return OK if _follow(t_sep, y[:4], follow_through, cf, *opts, res, ref) else STEP_FAILURE
 
 
 def _follow(t, y, duration, cf, method, rtol, atol, res, ref) -> bool:
