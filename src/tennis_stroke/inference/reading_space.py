@@ -14,7 +14,7 @@ exist); each error is one line.
 from __future__ import annotations
 
 import math
-from collections.abc import Iterable
+from collections.abc import Iterable, Mapping
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -141,6 +141,17 @@ def load_reading_space(
     if errors:
         raise ReadingSpaceError(errors[0])
 
+    discrete = _discrete(raw)
+    continuous = _continuous(raw)
+    fits = _fit_sets(raw, discrete, continuous)
+    if claim_ids is not None:
+        _check_claims(raw, fits, set(claim_ids))
+    return ReadingSpace(raw, discrete, continuous, fits)
+
+
+def _discrete(raw: dict) -> dict[str, tuple[str, ...]]:
+    """The discrete readings: the model's (each a known reading with known choices), the
+    quoting instants' and the figure curves'."""
     discrete: dict[str, tuple[str, ...]] = {}
     for name, spec in raw["model"].items():
         _check(name in READINGS, f"readings key 'model.{name}': not a model reading")
@@ -150,7 +161,12 @@ def load_reading_space(
     for name, spec in raw["quoting"].items():  # the schema checks the instants
         discrete[name] = tuple(spec["choices"])
     discrete["figure_curves"] = tuple(raw["figure_curves"]["choices"])
+    return discrete
 
+
+def _continuous(raw: dict) -> dict[str, Unknown]:
+    """The continuous unknowns, each range checked: ordered, finite, positive on a log
+    scale, inside the exploratory range, and within the parameter's bounds."""
     continuous: dict[str, Unknown] = {}
     for name, spec in raw["continuous"].items():
         lo, hi = (float(x) for x in spec["range"])
@@ -180,7 +196,12 @@ def load_reading_space(
                 f"{', '.join(EXPERIMENT_UNKNOWNS)}",
             )
         continuous[name] = Unknown(name, spec["unit"], lo, hi, spec["scale"], explo)
+    return continuous
 
+
+def _fit_sets(raw: dict, discrete: Mapping, continuous: Mapping) -> dict[str, FitSet]:
+    """The fit sets of :data:`FIT_SETS`, each naming known readings and unknowns and,
+    through ``given``, an earlier fit."""
     fits: dict[str, FitSet] = {}
     for name in FIT_SETS:
         spec = raw["fits"][name]
@@ -201,23 +222,24 @@ def load_reading_space(
             int(spec["starts"]),
             given,
         )
+    return fits
 
-    if claim_ids is not None:
-        known = set(claim_ids)
-        named = [
-            *(("fits." + f.name, c) for f in fits.values() for c in f.claims),
-            *(("quoting." + g, c) for g, s in raw["quoting"].items() for c in s.get("claims", [])),
-            *(("figure_curves", c) for c in raw["figure_curves"].get("claims", [])),
-            *(
-                (f"continuous.{u}", c)
-                for u, s in raw["continuous"].items()
-                for c in s.get("claims", [])
-            ),
-            *(("evidence.objective", c) for c in raw["evidence"]["objective"]),
-        ]
-        for where, claim in named:
-            _check(claim in known, f"readings key {where!r}: unknown claim {claim!r}")
-    return ReadingSpace(raw, discrete, continuous, fits)
+
+def _check_claims(raw: dict, fits: Mapping[str, FitSet], known: set[str]) -> None:
+    """Every claim the file names is a claim of ``config/claims.yaml``."""
+    named = [
+        *(("fits." + f.name, c) for f in fits.values() for c in f.claims),
+        *(("quoting." + g, c) for g, s in raw["quoting"].items() for c in s.get("claims", [])),
+        *(("figure_curves", c) for c in raw["figure_curves"].get("claims", [])),
+        *(
+            (f"continuous.{u}", c)
+            for u, s in raw["continuous"].items()
+            for c in s.get("claims", [])
+        ),
+        *(("evidence.objective", c) for c in raw["evidence"]["objective"]),
+    ]
+    for where, claim in named:
+        _check(claim in known, f"readings key {where!r}: unknown claim {claim!r}")
 
 
 def literal_rank(name: str, choice: str) -> int:
