@@ -34,7 +34,7 @@ from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
 from .identification import elbow_simulator, model_simulator, residuals, targets
 from .labels import variable
-from .reading_space import CURVE_FILES, ELBOW_FIT, MODEL_FIT, ReadingSpace
+from .reading_space import CURVE_FILES, ELBOW_FIT, FIT_SETS, MODEL_FIT, ReadingSpace
 
 
 class MultiverseError(ValueError):
@@ -100,25 +100,40 @@ def screen(
     ``consistent``.  Table I's strokes are simulated only for candidates the Fig. 4 fit
     set leaves consistent (the others have NaN Table I residuals: ruled out already).
     """
-    base = dict(base or {})
     points = design(space)
-    n = len(next(iter(points.values())))
-    combos = model_combinations(space)
-    physical = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["model"]]
-    quoting = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["quoting"]]
-    fits = [space.fits[MODEL_FIT], space.fits[ELBOW_FIT]]
+    if "table1_tau_F" not in points:
+        raise MultiverseError("the screen expects table1_tau_F among the unknowns")
+    fits = [space.fits[name] for name in FIT_SETS]
     goals = {f.name: targets(space, f, claims) for f in fits}
     sims = {
         MODEL_FIT: model_simulator(fig4, settings),
         ELBOW_FIT: elbow_simulator(force, stroke, settings),
     }
-    if "table1_tau_F" not in points:
-        raise MultiverseError("the screen expects table1_tau_F among the unknowns")
-    params = {k: v[:, None] for k, v in points.items() if k in PARAMETERS}
-    claim_ids = [t.claim for f in fits for t in goals[f.name]]
-    res = np.full((len(combos), n, len(claim_ids)), np.nan)
-    rms = np.full((len(combos), n, len(fits)), np.nan)
     bounds = [_bound((best_fits or {}).get(f.name), space, len(goals[f.name])) for f in fits]
+    combos = model_combinations(space)
+    res, rms = _residuals(space, combos, points, goals, sims, bounds[0], dict(base or {}))
+    consistent = _within(res[..., : len(goals[MODEL_FIT])], rms[..., 0], bounds[0]) & _within(
+        res[..., len(goals[MODEL_FIT]) :], rms[..., 1], bounds[1]
+    )
+    claim_ids = [t.claim for f in fits for t in goals[f.name]]
+    ds = _screen_dataset(space, combos, points, res, rms, consistent, claim_ids, bounds)
+    ds.attrs.update(provenance({}, settings or SolverSettings()))
+    ds.attrs["design_seed"] = int(space.raw["multiverse"]["seed"])
+    return labelled(ds)
+
+
+def _residuals(space, combos, points, goals, sims, model_bound, base):
+    """Residuals ``(combination, candidate, claim)`` and RMS per fit set ``(combination,
+    candidate, fit_set)`` of every candidate; Table I's strokes only where the model fit
+    set leaves the candidate consistent (NaN elsewhere).  The model's strokes are
+    simulated once per combination of the physical readings."""
+    n = len(next(iter(points.values())))
+    physical = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["model"]]
+    quoting = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["quoting"]]
+    params = {k: v[:, None] for k, v in points.items() if k in PARAMETERS}
+    n_model = len(goals[MODEL_FIT])
+    res = np.full((len(combos), n, n_model + len(goals[ELBOW_FIT])), np.nan)
+    rms = np.full((len(combos), n, len(FIT_SETS)), np.nan)
     cache: dict[tuple, dict] = {}
     for c, combo in enumerate(combos):
         key = tuple(combo[k] for k in physical)
@@ -129,9 +144,7 @@ def screen(
         model_res = residuals(cache[key][MODEL_FIT], goals[MODEL_FIT], instants, space)[1]
         res[c, :, : model_res.shape[1]] = model_res
         rms[c, :, 0] = np.sqrt(np.mean(model_res**2, axis=1))
-        ok = _within(model_res, rms[c, :, 0], bounds[0])
-        # Table I's strokes only where the model fit set leaves the candidate consistent
-        todo = np.flatnonzero(ok)
+        todo = np.flatnonzero(_within(model_res, rms[c, :, 0], model_bound))
         if todo.size == 0:
             continue
         sub = {k: v[todo] for k, v in params.items()}
@@ -140,9 +153,14 @@ def screen(
         elbow_res = residuals(elbow, goals[ELBOW_FIT], instants, space)[1]
         res[c, todo, model_res.shape[1] :] = elbow_res
         rms[c, todo, 1] = np.sqrt(np.mean(elbow_res**2, axis=1))
-    consistent = _within(res[..., : len(goals[MODEL_FIT])], rms[..., 0], bounds[0]) & _within(
-        res[..., len(goals[MODEL_FIT]) :], rms[..., 1], bounds[1]
-    )
+    return res, rms
+
+
+def _screen_dataset(space, combos, points, res, rms, consistent, claim_ids, bounds):
+    """The screen's file: each combination's readings, each candidate's unknowns, the
+    residuals, RMS and consistency, and the bounds of the rule."""
+    n = len(next(iter(points.values())))
+    fits = [space.fits[name] for name in FIT_SETS]
     names = unknowns(space)
     ds = xr.Dataset(
         {
@@ -173,9 +191,7 @@ def screen(
             "fit_set": variable("fit_set", [f.name for f in fits], "multiverse.fit_set"),
         },
     )
-    ds.attrs.update(provenance({}, settings or SolverSettings()))
-    ds.attrs["design_seed"] = int(space.raw["multiverse"]["seed"])
-    return labelled(ds)
+    return ds
 
 
 def select(screened: xr.Dataset, count: int) -> list[tuple[int, int]]:
