@@ -334,8 +334,7 @@ def rhs_trig(t, y, cf, c2, contact):
     ``F_r``).  The spring force on the ball is ``-k (x_b - x_H)`` (Eqs. 9-11); the ball
     also feels the fictitious force ``-m_b a_E`` of the elbow frame.  A ball that loses
     energy (``restitution < 1``) adds the dashpot force ``-c d(x_b - x_H)/dt``
-    (:func:`contact_damping`; ``c = 0`` for the paper's elastic ball, and the term is
-    then skipped, so the paper's model is computed exactly as before).
+    (:func:`contact_damping`; ``c = 0`` for the paper's elastic ball: the term is skipped).
 
     The elbow acceleration is written out here rather than calling
     :func:`elbow_acceleration`: a numba call costs as much as this whole function
