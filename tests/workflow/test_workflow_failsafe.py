@@ -462,8 +462,8 @@ def test_a_truncated_result_is_named_before_any_job(moved):
     lines = [line for line in done.stderr.splitlines() if "tennis-stroke" in line]
     assert lines == [
         f"tennis-stroke results error: results/torque_delay/fig9.nc is damaged (truncated "
-        f"({len(saved) // 2} of its {len(saved)} bytes)): remove it and run make report (it "
-        "names every result as a target, so it is rebuilt)"
+        f"({len(saved) // 2} of its {len(saved)} bytes)): remove it and make it with: "
+        "snakemake -j2 results/torque_delay/fig9.nc"
     ]
 
 

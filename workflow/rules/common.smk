@@ -122,8 +122,8 @@ _damaged = [d for d in _damaged if not d[0].startswith(f"results/{SCENARIO_FOLDE
 if _damaged:
     _path, _problem = _damaged[0]
     sys.stderr.write(
-        f"tennis-stroke results error: {_path} is damaged ({_problem}): remove it and run "
-        "make report (it names every result as a target, so it is rebuilt)\n"
+        f"tennis-stroke results error: {_path} is damaged ({_problem}): remove it and make "
+        f"it with: snakemake -j2 {_path}\n"
     )
     sys.exit(1)
 

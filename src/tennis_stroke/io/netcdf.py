@@ -364,8 +364,8 @@ def load_result(path: str | os.PathLike) -> xr.Dataset:
         kind = f"cannot be read ({exc.strerror})"
     if kind != "file":
         problem = kind or "not a file"
-        rebuild = "run make report" if kind == "missing" else "remove it and run make report"
-        raise ResultError(f"result file {str(path)!r}: {problem}: {rebuild} to rebuild it")
+        rebuild = _rebuild(path, remove=kind != "missing")
+        raise ResultError(f"result file {str(path)!r}: {problem}: {rebuild}")
     problem = damage(path)
     if problem is None:
         try:
@@ -382,10 +382,13 @@ def load_result(path: str | os.PathLike) -> xr.Dataset:
                     return ds.load()
             except (OSError, ValueError, RuntimeError) as exc:
                 problem = f"{_first_line(exc)} while reading its data: a checksum does not match"
-    raise ResultError(
-        f"result file {str(path)!r} cannot be read ({problem}): remove it and run make "
-        "report to rebuild it"
-    )
+    raise ResultError(f"result file {str(path)!r} cannot be read ({problem}): {_rebuild(path)}")
+
+
+def _rebuild(path: str | os.PathLike, remove: bool = True) -> str:
+    """The way out for a bad result file: the workflow's target that makes it again."""
+    make = f"make it with: snakemake -j2 {path}"
+    return f"remove it and {make}" if remove else make
 
 
 def _first_line(exc: BaseException) -> str:

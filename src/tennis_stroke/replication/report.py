@@ -499,7 +499,8 @@ def _check_image(path: str) -> None:
     except (OSError, UnidentifiedImageError, SyntaxError) as exc:
         problem = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
         raise ReportInputError(
-            f"figure {path} does not decode as an image ({problem}): remove it and run make report"
+            f"figure {path} does not decode as an image ({problem}): remove it and make it "
+            f"with: snakemake -j2 {path}"
         ) from None
 
 
