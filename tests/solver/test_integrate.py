@@ -273,3 +273,58 @@ def test_integrator_takes_the_steps_of_the_documented_rule_with_its_floor():
             # changes a factor by (floor / norm) ** (1/8), far more.
             assert taken == pytest.approx(steps, rel=1e-6)
     assert floored > 0, "the floor never mattered: the check cannot see it"
+
+
+def test_no_caller_uses_the_derivative_integrate_phase_returns():
+    """At an event integrate_phase returns the interpolated state but the derivative at
+    the end of the step that crossed (its docstring says so): safe only while no caller
+    reads it.  Every call in the package must discard it: the returned ``f`` is never read
+    before the caller assigns it again from the right-hand side."""
+    import ast
+    from pathlib import Path
+
+    import tennis_stroke
+
+    callers = []
+    for path in Path(tennis_stroke.__file__).parent.rglob("*.py"):
+        tree = ast.parse(path.read_text())
+        for func in ast.walk(tree):
+            if not isinstance(func, ast.FunctionDef):
+                continue
+            for call in ast.walk(func):
+                if (
+                    isinstance(call, ast.Call)
+                    and getattr(call.func, "id", None) == "integrate_phase"
+                    and func.name != "integrate_phase"
+                ):
+                    callers.append((path.name, func))
+    assert callers, "integrate_phase has no caller: the test looks in the wrong place"
+    for name, func in callers:
+        assigns = [
+            node
+            for node in ast.walk(func)
+            if isinstance(node, ast.Assign)
+            and any(isinstance(t, ast.Tuple) for t in node.targets)
+            and getattr(getattr(node.value, "func", None), "id", None) == "integrate_phase"
+        ]
+        assert assigns, (name, func.name)
+        derivative = assigns[0].targets[0].elts[3].id  # status, t, y, f, h
+        reads = [
+            node
+            for node in ast.walk(func)
+            if isinstance(node, ast.Name)
+            and node.id == derivative
+            and isinstance(node.ctx, ast.Load)
+        ]
+        # the only read is the argument of integrate_phase itself, after the caller set
+        # it from the right-hand side at the phase start
+        arguments = [a for a in assigns[0].value.args if isinstance(a, ast.Name)]
+        assert all(any(r is a for a in arguments) for r in reads), (name, func.name)
+        fresh = [
+            node
+            for node in ast.walk(func)
+            if isinstance(node, ast.Assign)
+            and any(getattr(t, "id", None) == derivative for t in node.targets)
+            and getattr(getattr(node.value, "func", None), "id", None) == "rhs_trig"
+        ]
+        assert fresh, (name, func.name)

@@ -358,8 +358,10 @@ def integrate_phase(
     Returns
     -------
     status, t, y, f, h
-        ``PHASE_END``/``PHASE_EVENT``/``PHASE_FAIL``, time reached, state and derivative
-        there, proposed next step.
+        ``PHASE_END``/``PHASE_EVENT``/``PHASE_FAIL``, time reached, state there, the
+        derivative at the end of the last step (at an event not the event's: the state is
+        interpolated, the derivative is not; every caller evaluates its own at a phase
+        start, ``tests/solver/test_integrate.py``), proposed next step.
     """
     n_stages = _kernels.N_STAGES_BY_ID[literally(method)]
     n_extra = _kernels.N_EXTRA_BY_ID[method]
