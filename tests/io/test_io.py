@@ -113,7 +113,8 @@ def test_a_damaged_byte_inside_a_result_is_refused_naming_the_file(tmp_path):
 
 
 def test_a_missing_or_foreign_result_is_refused_naming_it(tmp_path):
-    with pytest.raises(ResultError, match=r"nothing\.nc.*missing: make it with: snakemake -j2 .*nothing\.nc"):
+    rebuild = r"nothing\.nc.*missing: make it with: snakemake -j2 .*nothing\.nc"
+    with pytest.raises(ResultError, match=rebuild):
         load_result(tmp_path / "nothing.nc")
     (tmp_path / "folder.nc").mkdir()
     with pytest.raises(ResultError, match=r"folder\.nc.*not a file"):
