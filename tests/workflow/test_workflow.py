@@ -330,3 +330,23 @@ def test_a_departing_configuration_is_said_so_and_refused_by_the_gate(tiny_run, 
     )
     assert gate.returncode == 2 and len(gate.stderr.strip().splitlines()) == 1
     assert "departs from the paper's" in gate.stderr and "base_stroke.C2 = 8" in gate.stderr
+
+
+def test_every_job_of_a_run_writes_its_benchmark_file(tiny_run):
+    """Each job that ran (Snakemake's log: "Finished jobid: N (Rule: R)") left a
+    benchmark file, figures and gathers too: the job CPU summed from
+    benchmarks/workflow covers the whole run (issue 35)."""
+    import re
+
+    logs = sorted((tiny_run / ".snakemake" / "log").glob("*.snakemake.log"))
+    assert logs, "the tiny run kept no Snakemake log"
+    finished = [
+        rule
+        for log in logs
+        for rule in re.findall(r"Finished jobid: \d+ \(Rule: (\w+)\)", log.read_text())
+        if rule not in ("all", "report")  # targets only: no job runs
+    ]
+    benchmarks = list((tiny_run / "benchmarks" / "workflow").rglob("*.tsv"))
+    kinds = {path.relative_to(tiny_run / "benchmarks" / "workflow").parts[0] for path in benchmarks}
+    assert "gather_map" in kinds and any(k.startswith("figure_") for k in kinds)
+    assert len(benchmarks) == len(finished) > 0, (len(benchmarks), len(finished))

@@ -59,6 +59,8 @@ rule gather_map:
         "results/{map}.nc",
     log:
         "logs/gather_map/{map}.log",
+    benchmark:
+        "benchmarks/workflow/gather_map/{map}.tsv"
     wildcard_constraints:
         map=CHUNKED_MAPS,
     params:
@@ -76,6 +78,8 @@ rule scenario_gather_map:
         "results/scenarios/{scenario}/{map}.nc",
     log:
         "logs/scenarios/{scenario}/gather_map/{map}.log",
+    benchmark:
+        scenario_folder("{scenario}", "benchmarks/workflow") + "/gather_map/{map}.tsv"
     wildcard_constraints:
         map=SCENARIO_MAPS,
     params:

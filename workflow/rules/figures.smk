@@ -15,6 +15,8 @@ rule figure:
         ),
     log:
         "logs/figure_{name}.log",
+    benchmark:
+        "benchmarks/workflow/figure_{name}.tsv"
     wildcard_constraints:
         name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
     params:
@@ -35,6 +37,8 @@ rule scenario_figure:
         "results/scenarios/{scenario}/figures/{name}.png",
     log:
         "logs/scenarios/{scenario}/figure_{name}.log",
+    benchmark:
+        scenario_folder("{scenario}", "benchmarks/workflow") + "/figure_{name}.tsv"
     wildcard_constraints:
         name=PAPER_FIGURE_NAMES,
     params:

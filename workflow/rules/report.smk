@@ -50,6 +50,8 @@ rule report_page:
         "report/index.html",
     log:
         "logs/report.log",
+    benchmark:
+        "benchmarks/workflow/report_page.tsv"
     params:
         config=config,
         benchmarks="benchmarks/workflow",
@@ -71,6 +73,8 @@ rule scenario_claims:
         configuration="results/scenarios/{scenario}/configuration.yaml",
     log:
         "logs/scenarios/{scenario}/claims.log",
+    benchmark:
+        scenario_folder("{scenario}", "benchmarks/workflow") + "/claims.tsv"
     threads: 1
     params:
         files=scenario_claim_files,
@@ -97,6 +101,8 @@ rule scenario_report:
         "report/scenarios/{scenario}/index.html",
     log:
         "logs/scenarios/{scenario}/report.log",
+    benchmark:
+        scenario_folder("{scenario}", "benchmarks/workflow") + "/report_page.tsv"
     params:
         scenario=scenario_record,
         figures=scenario_figure_table,

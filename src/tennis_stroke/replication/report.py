@@ -392,13 +392,18 @@ def _validation(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
 
 def _timings(directory: Path) -> pd.DataFrame:
     """Per-job timings, with the time each was measured: jobs of an earlier run (e.g.
-    with other chunk counts) keep their files until ``benchmarks/workflow`` is removed."""
+    with other chunk counts) keep their files until ``benchmarks/workflow`` is removed.
+    Every job writes one (a gather's below ``gather_map/``); the scenarios' (below
+    ``scenarios/``, the workflow's scenario folder) are not the paper's run."""
     rows = []
-    for path in sorted(directory.glob("*.tsv")):
+    paths = [
+        p for p in directory.rglob("*.tsv") if "scenarios" not in p.relative_to(directory).parts
+    ]
+    for path in sorted(paths):
         table = pd.read_csv(path, sep="\t")
         rows.append(
             {
-                "job": path.stem,
+                "job": path.relative_to(directory).with_suffix("").as_posix().replace("/", "_"),
                 "wall time (s)": round(float(table["s"].iloc[-1]), 2),
                 "max RSS (MB)": table.get("max_rss", pd.Series([float("nan")])).iloc[-1],
                 "measured (UTC)": datetime.fromtimestamp(path.stat().st_mtime, UTC).isoformat(
