@@ -13,10 +13,15 @@ Public API
     The independent scipy ``solve_ivp`` path on the same equations.
 """
 
+import time
 from importlib import import_module
 
-from ._cache import configure_numba_cache
-from ._version import __version__
+#: When the package's first module started importing (``time.perf_counter``): a job's
+#: log splits its start-up from its imports here (:func:`tennis_stroke.pipeline.jobs.logged`).
+IMPORT_STARTED = time.perf_counter()
+
+from ._cache import configure_numba_cache  # noqa: E402 (after IMPORT_STARTED)
+from ._version import __version__  # noqa: E402
 
 configure_numba_cache()
 

@@ -1,6 +1,7 @@
 """The workflow scripts' helpers: a failing job's traceback goes to its log."""
 
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -45,3 +46,47 @@ def test_save_marks_a_chunk_with_its_position(tmp_path):
     with xr.open_dataset(tmp_path / "c.nc") as out:
         assert (out.attrs["chunk_index"], out.attrs["chunk_count"]) == (1, 3)
         assert out.attrs["chunk_dim"] == "theta0"
+
+
+def test_a_job_log_ends_with_where_its_time_went(tmp_path):
+    """logged() ends a job's log with its time split, and the benchmark that sums the
+    splits per job kind reads it back: a job that writes a file has writing > 0, a job
+    that sleeps has its compute, and the parts add up to less than the process's age."""
+    import subprocess
+    import sys
+    import textwrap
+
+    from tennis_stroke.pipeline.jobs import SPLIT_PARTS, SPLIT_PREFIX
+
+    log = tmp_path / "logs" / "fig2" / "0-of-1.log"
+    script = textwrap.dedent(
+        f"""
+        import time
+        import numpy as np, xarray as xr
+        from tennis_stroke.pipeline.jobs import logged, save
+        with logged({str(log)!r}):
+            time.sleep(0.3)
+            save(xr.Dataset({{"v": ("x", np.arange(3.0))}}), {str(tmp_path / "a.nc")!r}, {{}}, 0.3)
+        """
+    )
+    done = subprocess.run([sys.executable, "-c", script], capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr
+    last = log.read_text().splitlines()[-1]
+    assert last.startswith(SPLIT_PREFIX)
+    parts = dict(p.rsplit(" ", 1) for p in last[len(SPLIT_PREFIX) + 1 :].split(", "))
+    assert list(parts) == list(SPLIT_PARTS)
+    values = {k: float(v) for k, v in parts.items()}
+    assert values["compute"] >= 0.3 and values["writing"] > 0 and values["imports"] > 0
+    assert values["start-up"] >= 0
+
+    bench = tmp_path / "benchmarks" / "workflow" / "fig2_0-of-1.tsv"
+    bench.parent.mkdir(parents=True)
+    bench.write_text("s\th:m:s\tmax_rss\tcpu_time\n1.5\t0:00:01\t100\t1.2\n")
+    sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
+    try:
+        from job_split import split_table
+    finally:
+        sys.path.pop(0)
+    table = split_table(tmp_path / "logs", tmp_path / "benchmarks" / "workflow")
+    assert table.loc["simulation", "jobs"] == 1 and table.loc["simulation", "wall"] == 1.5
+    assert table.loc["simulation", "compute"] == pytest.approx(values["compute"], abs=1e-3)

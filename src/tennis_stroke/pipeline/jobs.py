@@ -10,6 +10,7 @@ from __future__ import annotations
 import contextlib
 import hashlib
 import json
+import os
 import sys
 import time
 import traceback
@@ -38,10 +39,12 @@ def logged(log_path: str | Path) -> Iterator[None]:
     SIGINT and SIGTERM end it with one line and status 130 or 143, no traceback.
     """
     Path(log_path).parent.mkdir(parents=True, exist_ok=True)
+    entered = time.perf_counter()
     with terminate_raises(), stop_with_snakemake(), open(log_path, "w") as log:
         try:
             with contextlib.redirect_stdout(log), contextlib.redirect_stderr(log):
                 yield
+                print(time_split(entered))
         except (KeyboardInterrupt, Terminated) as exc:
             name = "interrupted" if isinstance(exc, KeyboardInterrupt) else "terminated"
             sys.stderr.write(f"tennis-stroke job {name} (log in {log_path})\n")
@@ -54,6 +57,43 @@ def logged(log_path: str | Path) -> Iterator[None]:
             return
     sys.stderr.write(f"tennis-stroke job failed: {problem} (traceback in {log_path})\n")
     raise SystemExit(1)
+
+
+#: Seconds this job spent writing its result files (:func:`save`).
+WRITE_SECONDS = [0.0]
+#: The line a job's log ends with: where its time went (``benchmarks/job_split.py``).
+SPLIT_PREFIX = "job time (s):"
+SPLIT_PARTS = ("start-up", "imports", "compiled code", "compute", "writing")
+
+
+def _process_age() -> float:
+    """Seconds since this process started (Linux ``/proc``; NaN elsewhere)."""
+    try:
+        start = int(Path("/proc/self/stat").read_text().rsplit(")", 1)[1].split()[19])
+        uptime = float(Path("/proc/uptime").read_text().split()[0])
+    except (OSError, IndexError, ValueError):
+        return float("nan")
+    return uptime - start / os.sysconf("SC_CLK_TCK")
+
+
+def time_split(entered: float) -> str:
+    """Where this job's time went, as its log's last line: start-up (the interpreter and
+    Snakemake's preamble, until the package's first import), imports (until the job's
+    block, ``entered``), compiled code (loading it, :mod:`tennis_stroke.solver.compiled`),
+    compute, and writing its files (:func:`save`).  The start-up is read from ``/proc``
+    at a resolution of 10 ms."""
+    import tennis_stroke
+
+    now = time.perf_counter()
+    imports = entered - tennis_stroke.IMPORT_STARTED
+    startup = _process_age() - (now - tennis_stroke.IMPORT_STARTED)
+    compiled = sys.modules.get("tennis_stroke.solver.compiled")
+    loading = compiled.SECONDS[0] if compiled is not None else 0.0
+    compute = now - entered - loading - WRITE_SECONDS[0]
+    parts = (startup, imports, loading, compute, WRITE_SECONDS[0])
+    return f"{SPLIT_PREFIX} " + ", ".join(
+        f"{name} {value:.3f}" for name, value in zip(SPLIT_PARTS, parts, strict=True)
+    )
 
 
 def chunk_position(wildcards) -> tuple[int, int]:
@@ -98,5 +138,7 @@ def save(
     ds.attrs["config_sha256_16"] = params_hash(items)
     ds.attrs["config"] = json.dumps(items, sort_keys=True, default=str)
     ds.attrs["wall_time_s"] = float(wall_time)
+    start = time.perf_counter()
     write_netcdf(ds, path)
+    WRITE_SECONDS[0] += time.perf_counter() - start
     print(f"wrote {path} in {wall_time:.2f} s")

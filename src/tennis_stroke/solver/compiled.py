@@ -27,6 +27,7 @@ import os
 import shutil
 import subprocess
 import sys
+import time
 import traceback
 from pathlib import Path
 
@@ -140,6 +141,11 @@ def _heal(group: str, marker: Path, why: str) -> None:
     _compile(group, marker)
 
 
+#: Seconds this process spent making sure of and loading its compiled code (a job's log
+#: reports it apart from its compute, :func:`tennis_stroke.pipeline.jobs.logged`).
+SECONDS = [0.0]
+
+
 def ensure_compiled(group: str) -> None:
     """Make sure numba's cache holds the entry points of ``group`` (compiling them in a
     subprocess if not), and load them in this process.
@@ -156,6 +162,7 @@ def ensure_compiled(group: str) -> None:
     if marker is None:  # no cache: numba compiles in this process
         _done.add(group)
         return
+    start = time.perf_counter()
     _compile(group, marker)
     _done.add(group)  # the loading calls below come back here
     try:
@@ -163,6 +170,8 @@ def ensure_compiled(group: str) -> None:
     except BaseException:
         _done.discard(group)
         raise
+    finally:
+        SECONDS[0] += time.perf_counter() - start
 
 
 class CompileInPlace(Exception):
