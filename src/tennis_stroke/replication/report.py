@@ -429,40 +429,52 @@ def ladder_summary(error: float | None, claims: pd.DataFrame) -> dict:
     return {"error": f"{error:.2f}", "tolerance": f"{tolerance:g}", "above": error > tolerance}
 
 
-def _studies(studies: Sequence[str]) -> tuple[float | None, list[dict]]:
-    """The model ladder's largest error (km/h) and the tables of the stability and
-    optimum-search studies."""
-    ladder_error, tables = None, []
-    for path in studies:
-        ds = load_result(path)
-        if "max_error_impact_kmh" in ds.attrs:
-            ladder_error = float(ds.attrs["max_error_impact_kmh"])
-        elif "outcome" in ds:
-            names = ds["outcome"].attrs["flag_meanings"].split()
-            counts = pd.DataFrame(
-                [
-                    [int((row == i).sum()) for i in range(len(names))]
-                    for row in ds["outcome"].values
-                ],
-                index=[str(c) for c in ds["case"].values],
-                columns=names,
-            )
-            tables.append(
-                {
-                    "title": "Stability: outcomes of the isolated contact over k = "
-                    f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
-                    "html": _table(counts),
-                }
-            )
-        else:
-            tables.append(
-                {
-                    "title": "The optimum of Figs. 5-6: nested grids (coarse grid, fine "
-                    "grid, parabola) and searches (bracket, compass search) against a "
-                    "finer reference grid",
-                    "html": _table(ds.to_dataframe().round(4)),
-                }
-            )
+def _optimum_table(ds: xr.Dataset) -> dict:
+    """The optimum-search study's table: each method's errors and time."""
+    return {
+        "title": "The optimum of Figs. 5-6: nested grids (coarse grid, fine grid, parabola) "
+        "and searches (bracket, compass search) against a finer reference grid",
+        "html": _table(ds.to_dataframe().round(4)),
+    }
+
+
+def _stability_table(ds: xr.Dataset) -> dict:
+    """The stability study's table: per case (method and setting), how many spring
+    constants end in each outcome."""
+    names = ds["outcome"].attrs["flag_meanings"].split()
+    counts = pd.DataFrame(
+        [[int((row == i).sum()) for i in range(len(names))] for row in ds["outcome"].values],
+        index=[str(c) for c in ds["case"].values],
+        columns=names,
+    )
+    return {
+        "title": "Stability: outcomes of the isolated contact over k = "
+        f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
+        "html": _table(counts),
+    }
+
+
+#: The studies' tables on the page, in its order: the study (its key in the table of
+#: experiments, :data:`~tennis_stroke.experiments.specs.STUDY_RESULTS`) and the function
+#: that makes its title and table.
+STUDY_TABLES = {"optimum_cost": _optimum_table, "stability": _stability_table}
+#: The study whose file gives the model ladder's largest v_out error (km/h), its
+#: attribute ``max_error_impact_kmh``.
+LADDER_STUDY = "ladder"
+
+
+def _studies(studies: Mapping[str, str]) -> tuple[float | None, list[dict]]:
+    """The model ladder's largest error (km/h; None without its file) and the tables of
+    the studies (:data:`STUDY_TABLES`) whose files are given (``studies``: the studies'
+    keys -> paths)."""
+    ladder_error = None
+    if LADDER_STUDY in studies:
+        ladder_error = float(load_result(studies[LADDER_STUDY]).attrs["max_error_impact_kmh"])
+    tables = [
+        tabulate(load_result(studies[key]))
+        for key, tabulate in STUDY_TABLES.items()
+        if key in studies
+    ]
     return ladder_error, tables
 
 
@@ -574,6 +586,11 @@ def _checked_claims(claims_csv: str, claims_yaml: str | None) -> pd.DataFrame:
     return table
 
 
+def _figures_of(entries: Mapping[str, dict], section: str) -> list[dict]:
+    """The figures (:func:`_figure_entry`, by name) the registry puts in ``section``."""
+    return [e for n, e in entries.items() if n in FIGURES and FIGURES[n].section == section]
+
+
 def build_report(
     figures: Sequence[str],
     claims_csv: str,
@@ -583,14 +600,17 @@ def build_report(
     benchmarks_dir: str,
     output: str,
     assumptions_md: str | None = None,
-    studies: Sequence[str] = (),
+    studies: Mapping[str, str] | None = None,
     statements_yaml: str | None = None,
 ) -> None:
     """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
-    ``statements_yaml``: ``config/claims.yaml``, whose ``statements`` quote the paper on
-    each figure and whose ``sections`` name the paper's sections).  A claims table whose
-    configuration departs from the paper's (its record beside it,
-    :mod:`tennis_stroke.inference.paper_config`) is said so at the top."""
+    ``studies``: the studies' result files by key,
+    :data:`~tennis_stroke.experiments.specs.STUDY_RESULTS`; ``statements_yaml``:
+    ``config/claims.yaml``, whose ``statements`` quote the paper on each figure and whose
+    ``sections`` name the paper's sections).  Each figure goes where the registry's
+    ``section`` puts it.  A claims table whose configuration departs from the paper's
+    (its record beside it, :mod:`tennis_stroke.inference.paper_config`) is said so at the
+    top."""
     claims = _checked_claims(claims_csv, statements_yaml)
     try:
         record = read_record(claims_csv)
@@ -603,7 +623,7 @@ def build_report(
     statements, sections = paper.get("statements") or {}, paper.get("sections") or {}
     rows = [_claim_row(c) for c in claims.to_dict("records")]
     entries = {e["name"]: e for e in map(_figure_entry, figures)}
-    paper_figures = {n: e for n, e in entries.items() if FIGURES.get(n) and n.startswith("fig")}
+    paper_figures = {n: e for n, e in entries.items() if n in FIGURES and FIGURES[n].of_paper}
     held = claims["fit_set"] == ""
     score = {
         "held": int(held.sum()),
@@ -657,24 +677,21 @@ def build_report(
         "CPU": environment["cpu"],
         "numba compile target": environment["compile_target"],
     }
-    ladder_error, study_tables = _studies(studies)
+    ladder_error, study_tables = _studies(studies or {})
     html = ENVIRONMENT.get_template("report.html.j2").render(
         departures=departures,
         score=score,
         deviation_groups=_deviation_groups(rows),
         toc=toc,
         sections=page_sections,
-        inference={"figures": [e for n, e in entries.items() if n.startswith("inference")]},
-        model_ladder={
-            **_model_ladder(inference),
-            "figures": [e for n, e in entries.items() if n.startswith("ladder")],
-        },
+        inference={"figures": _figures_of(entries, "inference")},
+        model_ladder={**_model_ladder(inference), "figures": _figures_of(entries, "ladder")},
         fits=_fit_tables(inference),
         robustness=robustness,
         validation=validation,
         views_head=views_head,
         multiverse=views.get("multiverse"),
-        study_figures=[e for n, e in entries.items() if n.startswith("study")],
+        study_figures=_figures_of(entries, "study"),
         study_tables=study_tables,
         ladder=ladder_summary(ladder_error, claims),
         readings=list(READINGS.values()),
