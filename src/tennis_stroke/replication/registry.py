@@ -64,6 +64,7 @@ class Figure:
         # a job's param gives the entry as plain data (dataclasses.asdict)
         marks = tuple(m if isinstance(m, Mark) else Mark(**m) for m in self.marks)
         object.__setattr__(self, "marks", marks)
+        object.__setattr__(self, "files", tuple(self.files))
         object.__setattr__(self, "args", tuple(self.args))
         object.__setattr__(self, "axes", tuple(self.axes))
 
