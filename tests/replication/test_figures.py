@@ -1,12 +1,17 @@
-"""The figure registry drawn: every figure from a tiny run's files, its axes labelled, the
-paper's value of each claim it marks drawn and named (the figures job's params)."""
+"""The figure registry drawn: every figure from a tiny run's files, each panel drawing the
+files' data, its axes labelled from the files' ``long_name`` and ``units`` (the coordinates
+the registry declares along x and y exactly), and the paper's value of each claim it marks
+drawn and named at the paper's coordinates (the figures job's params)."""
 
 import matplotlib.pyplot as plt
+import numpy as np
 import pytest
 from conftest import ROOT
+from matplotlib.collections import PathCollection, QuadMesh
 
 from tennis_stroke.experiments.specs import RESULT_FILES
 from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.replication.figures import drawn
 from tennis_stroke.replication.marks import mark_values
 from tennis_stroke.replication.registry import FIGURES
@@ -14,27 +19,98 @@ from tennis_stroke.replication.registry import FIGURES
 CLAIMS = {c["id"]: c for c in load_claims(ROOT / "config/claims.yaml")}
 
 
+def _units_by_name(datasets) -> dict[str, set[str]]:
+    """The units of every variable and coordinate of the files, by its long name."""
+    out: dict[str, set[str]] = {}
+    for ds in datasets:
+        for var in [*ds.data_vars.values(), *ds.coords.values()]:
+            if "long_name" in var.attrs:
+                out.setdefault(var.attrs["long_name"], set()).add(var.attrs.get("units"))
+    return out
+
+
+def _file_label(ds, name: str) -> str:
+    """The label of the file's variable ``name``: its long name and units (CF)."""
+    return f"{ds[name].attrs['long_name']} ({ds[name].attrs['units']})"
+
+
+def _drawn(ax) -> tuple[int, np.ndarray]:
+    """What the data artists of ``ax`` draw (lines in data coordinates other than the
+    paper's marks, meshes, scatter points): how many finite values, and the points (x, y)
+    they cover: a map's (its mesh's corners) where the panel has one, else the curves'."""
+    count, curves, meshes = 0, [np.empty((0, 2))], []
+    for line in ax.get_lines():
+        if line.get_transform() is ax.transData and not line.get_label().startswith("paper: "):
+            curves.append(line.get_xydata())
+    curves += [c.get_offsets() for c in ax.collections if isinstance(c, PathCollection)]
+    for curve in curves:
+        count += int(np.isfinite(curve).all(axis=1).sum())
+    for mesh in (c for c in ax.collections if isinstance(c, QuadMesh)):
+        values = np.ma.filled(np.ma.asarray(mesh.get_array(), float), np.nan)
+        count += int(np.isfinite(values).sum())
+        meshes.append(mesh.get_coordinates().reshape(-1, 2))
+    points = np.concatenate(meshes or curves)
+    return count, points[np.isfinite(points).all(axis=1)]
+
+
+def _check_labels_and_data(fig, figure, datasets) -> None:
+    """Every labelled panel draws data and every label naming a variable of the files
+    carries its units; the coordinates the registry puts along x and y are labelled as the
+    first file labels them, and the first panel's data span their values."""
+    panels = [ax for ax in fig.axes if ax.get_xlabel()]  # colour bars have no x label
+    assert panels and panels[0] is fig.axes[0], "the first panel has no x label"
+    units = _units_by_name(datasets)
+    for ax in panels:
+        assert ax.get_ylabel(), ax.get_xlabel()
+        assert _drawn(ax)[0] > 0, f"a blank panel: {ax.get_xlabel()}"
+    for ax in fig.axes:
+        for label in (ax.get_xlabel(), ax.get_ylabel()):
+            assert label not in units, f"{label!r} has no units"
+            name, _, unit = label.rpartition(" (")
+            if name in units:
+                assert unit.removesuffix(")") in units[name], label
+    ax, first = fig.axes[0], datasets[0]
+    points = _drawn(ax)[1]
+    for i, (name, label) in enumerate(
+        zip(figure.axes, (ax.get_xlabel(), ax.get_ylabel()), strict=False)
+    ):
+        if name not in first.variables:  # not a variable of the file (omega1 and omega2)
+            continue
+        assert label == _file_label(first, name), ("xy"[i], label)
+        if name in first.dims:  # a coordinate: the data cover its values
+            low, high = float(first[name].min()), float(first[name].max())
+            along = points[:, i]
+            assert along.min() <= low + 1e-9 and along.max() >= high - 1e-9, (name, along)
+
+
+def _check_marks(ax, figure, marks) -> None:
+    """Each mark is named once in the legend and drawn at the paper's value: a point at
+    the paper's coordinates, a line across the axes at the paper's value."""
+    legend = ax.get_legend()
+    named = [t.get_text() for t in legend.get_texts()] if legend else []
+    for mark in marks:
+        prefix = f"paper: {mark['claim']} "
+        assert sum(t.startswith(prefix) for t in named) == 1, named
+        [line] = [line for line in ax.get_lines() if line.get_label().startswith(prefix)]
+        along_x = mark["axis"] == figure.axes[0]
+        if mark["other_paper"] is None:  # a line across the axes
+            at = line.get_xdata() if along_x else line.get_ydata()
+            assert list(at) == pytest.approx([mark["paper"]] * 2)
+        else:
+            x, y = (mark["paper"], mark["other_paper"])[:: 1 if along_x else -1]
+            assert line.get_xydata().tolist() == [pytest.approx([x, y])]
+
+
 @pytest.mark.parametrize("name", sorted(FIGURES))
 def test_every_figure_is_drawn_labelled_and_marked(tiny_run, name):
     figure = FIGURES[name]
     marks = mark_values(figure, CLAIMS)
-    fig = drawn(figure, [tiny_run / RESULT_FILES[k] for k in figure.files], marks=marks)
+    inputs = [tiny_run / RESULT_FILES[k] for k in figure.files]
+    fig = drawn(figure, inputs, marks=marks)
     try:
-        ax = fig.axes[0]
-        assert ax.get_title()
-        assert ax.get_xlabel() and ax.get_ylabel()  # the first panel's (colour bars aside)
-        legend = ax.get_legend()
-        named = [t.get_text() for t in legend.get_texts()] if legend else []
-        for mark in marks:
-            assert any(t.startswith(f"paper: {mark['claim']} ") for t in named), named
-            x, y = (mark["paper"], mark["other_paper"])
-            if y is not None:  # a point, at the paper's coordinates on the figure's axes
-                at = (x, y) if mark["axis"] == figure.axes[0] else (y, x)
-                points = [
-                    line.get_xydata()[0].tolist()
-                    for line in ax.get_lines()
-                    if line.get_label().startswith(f"paper: {mark['claim']} ")
-                ]
-                assert points == [pytest.approx(list(at))]
+        title = fig.axes[0].get_title() or fig.get_suptitle()
+        assert title and "{" not in title
+        _check_labels_and_data(fig, figure, [load_result(p) for p in inputs])
+        _check_marks(fig.axes[0], figure, marks)
     finally:
         plt.close(fig)

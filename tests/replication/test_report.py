@@ -3,6 +3,7 @@ the page in a real browser (Debian's headless Chromium), and Snakemake's own rep
 
 import json
 import os
+import re
 import shutil
 import subprocess
 from pathlib import Path
@@ -12,11 +13,12 @@ import pytest
 import yaml
 from conftest import ROOT, merged, record_configuration, run_snakemake
 
-from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS
-from tennis_stroke.experiments.specs import RESULT_FILES as FILES
+from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS, STUDY_RESULTS
+from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.replication.registry import FIGURES
 from tennis_stroke.replication.report import (
     _paper_place,
+    _studies,
     build_report,
     ladder_summary,
     markdown_html,
@@ -46,7 +48,7 @@ def _build(work: Path, output: Path, claims_csv: Path, statements: Path) -> str:
         benchmarks_dir=str(work / "benchmarks/workflow"),
         output=str(output),
         assumptions_md=str(ROOT / "docs/assumptions.md"),
-        studies=[str(work / FILES[k]) for k in ("ladder", "optimum_cost", "stability")],
+        studies={k: str(work / v) for k, v in STUDY_RESULTS.items()},
         statements_yaml=str(statements),
     )
     return output.read_text()
@@ -83,6 +85,36 @@ def test_markdown_renders_tables_and_escapes_raw_html():
 def test_each_claim_is_placed_by_its_source(source, claim_id, place):
     sections = {"V": {}, "VI": {"tables": ["Table I"]}}
     assert _paper_place(source, claim_id, sections) == place
+
+
+#: The page's sections of our own by the registry's section (the template's ids; a
+#: section of the paper, ``III``, is ``sec-iii``).
+OUR_SECTION_IDS = {"inference": "inference", "ladder": "model-ladder", "study": "studies"}
+
+
+def test_each_figure_is_in_the_section_the_registry_declares(tiny_run):
+    html = (tiny_run / "report/index.html").read_text()
+    shown = {
+        alt: section
+        for section, body in re.findall(r'<section id="([^"]+)"[^>]*>(.*?)</section>', html, re.S)
+        for alt in re.findall(r'<img alt="([^"]+)"', body)
+    }
+    assert shown == {
+        name: OUR_SECTION_IDS.get(f.section, f"sec-{f.section.lower()}")
+        for name, f in FIGURES.items()
+    }
+
+
+def test_the_studies_are_read_by_their_keys(tiny_run):
+    """The model ladder's error from the ladder study's file, a table of each other study
+    the page tabulates, in the page's order; nothing without their files."""
+    files = {k: str(tiny_run / v) for k, v in STUDY_RESULTS.items()}
+    error, tables = _studies(files)
+    assert error == float(load_result(files["ladder"]).attrs["max_error_impact_kmh"])
+    assert [t["title"].split(":")[0] for t in tables] == ["The optimum of Figs. 5-6", "Stability"]
+    assert all("<table" in t["html"] for t in tables)
+    assert _studies({}) == (None, [])
+    assert [t["title"][:9] for t in _studies({"stability": files["stability"]})[1]] == ["Stability"]
 
 
 def test_text_from_files_is_escaped(tiny_run, tmp_path):

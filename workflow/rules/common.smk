@@ -19,6 +19,7 @@ from tennis_stroke.experiments.specs import (
     INFERENCE_RESULTS,
     PAPER_RESULTS,
     RESULT_FILES,
+    STUDY_RESULTS,
     EXPERIMENTS,
     VALIDATION_GROUPS,
     fit_set_arguments,

@@ -45,7 +45,7 @@ rule report_page:
         # the page's template is code of the report too (not a module: no import edge)
         template=template_files("report.html.j2"),
         assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
-        studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],
+        studies=list(STUDY_RESULTS.values()),
     output:
         "report/index.html",
     log:

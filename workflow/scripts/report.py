@@ -1,6 +1,6 @@
 """Build report/index.html from the figures, claims, ledger and run metadata."""
 
-from tennis_stroke.experiments.specs import INFERENCE_RESULTS
+from tennis_stroke.experiments.specs import INFERENCE_RESULTS, STUDY_RESULTS
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.report import build_report
 
@@ -14,6 +14,6 @@ with logged(snakemake.log[0]):
         benchmarks_dir=snakemake.params.benchmarks,
         output=snakemake.output[0],
         assumptions_md=snakemake.input.assumptions,
-        studies=list(snakemake.input.studies),
+        studies=STUDY_RESULTS,
         statements_yaml=snakemake.input.statements,
     )

@@ -34,15 +34,21 @@ class Mark:
     other: str | None = None
 
 
+#: The report's sections of our own, beside the paper's: the fits and the robustness
+#: analysis, the model ladder, the speed-against-accuracy studies.
+OUR_SECTIONS = ("inference", "ladder", "study")
+
+
 @dataclass(frozen=True)
 class Figure:
-    """One figure: file name (without ``.png``), section of the paper (``III`` ... ``VI``,
-    ``inference``, ``ladder`` or ``study``), result files (keys of :data:`RESULT_FILES`),
-    drawing function of :mod:`tennis_stroke.replication.figures` and its extra arguments,
-    and its title: a template filled from the first file's attributes (``{L1}`` is
-    ``param_L1``), so a title never states a value the file does not hold.  ``marks``:
-    the claims drawn on it; ``axes``: the coordinates along its x and y axes (a map's or
-    a curve's, where marks and the page's view place values); ``dpi`` of the PNG."""
+    """One figure: file name (without ``.png``), section (where the report shows it: one
+    of the paper's, ``III`` ... ``VI``, or of ours, :data:`OUR_SECTIONS`), result files
+    (keys of :data:`RESULT_FILES`), drawing function of
+    :mod:`tennis_stroke.replication.figures` and its extra arguments, and its title: a
+    template filled from the first file's attributes (``{L1}`` is ``param_L1``), so a
+    title never states a value the file does not hold.  ``marks``: the claims drawn on it;
+    ``axes``: the coordinates along its x and y axes (a map's or a curve's, where marks
+    and the page's view place values); ``dpi`` of the PNG."""
 
     name: str
     section: str
@@ -58,6 +64,7 @@ class Figure:
         # a job's param gives the entry as plain data (dataclasses.asdict)
         marks = tuple(m if isinstance(m, Mark) else Mark(**m) for m in self.marks)
         object.__setattr__(self, "marks", marks)
+        object.__setattr__(self, "files", tuple(self.files))
         object.__setattr__(self, "args", tuple(self.args))
         object.__setattr__(self, "axes", tuple(self.axes))
 
@@ -68,6 +75,11 @@ class Figure:
         context = {k: v for k, v in attrs.items() if np.ndim(v) == 0}
         context.update({k.removeprefix("param_"): v for k, v in context.items()})
         return self.title.format(**context)
+
+    @property
+    def of_paper(self) -> bool:
+        """Whether it is one of the paper's figures (its section is the paper's)."""
+        return self.section not in OUR_SECTIONS
 
     @property
     def inputs(self) -> list[str]:
@@ -261,12 +273,12 @@ LIVE = {"fig02_angle_map": "fig2", "fig03_angle_map": "fig3", "fig09_v_tau": "fi
 def paper_figure(name: str) -> str:
     """The registry name of one of the paper's figures from what a user types: its name
     (``fig09_v_tau``) or number (``fig9``, ``fig09``); raises KeyError naming them."""
-    if name in FIGURES and name.startswith("fig"):
+    if name in FIGURES and FIGURES[name].of_paper:
         return name
     digits = name.removeprefix("fig")
     if digits.isdigit():
         matches = [n for n in FIGURES if n.startswith(f"fig{int(digits):02d}_")]
         if matches:
             return matches[0]
-    shown = ", ".join(n for n in FIGURES if n.startswith("fig"))
+    shown = ", ".join(n for n, f in FIGURES.items() if f.of_paper)
     raise KeyError(f"no figure {name!r} of the paper (its figures: {shown})")

@@ -166,6 +166,62 @@ def _anchor(text: str) -> str:
     return re.sub(r"[^A-Za-z0-9]+", "-", text).strip("-").lower()
 
 
+def _block(anchor: str, heading: str, claims: list[dict], **shown) -> dict:
+    """One block of a section: its anchor and heading, its claims, and what it shows
+    beside them (``figure``, ``statement``, ``key``; none by default)."""
+    return {
+        "anchor": anchor,
+        "heading": heading,
+        "figure": None,
+        "statement": "",
+        **shown,
+        "claims": claims,
+    }
+
+
+def _figure_blocks(
+    sid: str,
+    figures: Mapping[str, dict],
+    statements: Mapping[str, str],
+    placed: Mapping[tuple[str | None, str], list[dict]],
+) -> list[dict]:
+    """The blocks of the figures of section ``sid`` (the registry's ``section``), in the
+    order of their names: the paper's statement, the figure and its claims."""
+    blocks = []
+    for name in sorted(n for n in figures if FIGURES[n].section == sid):
+        key = name[:5]
+        blocks.append(
+            _block(
+                _anchor(name),
+                f"Fig. {int(key[3:])}",
+                placed.get((sid, key), []),
+                key=key,
+                figure=figures[name],
+                statement=statements.get(key, ""),
+            )
+        )
+    return blocks
+
+
+def _table_blocks(
+    sid: str,
+    tables: Sequence[str],
+    statements: Mapping[str, str],
+    placed: Mapping[tuple[str | None, str], list[dict]],
+) -> list[dict]:
+    """The blocks of the paper's ``tables`` in section ``sid``: statement and claims."""
+    return [
+        _block(
+            _anchor(f"{sid} {table}"),
+            table,
+            placed.get((sid, table), []),
+            key=table,
+            statement=statements.get(_anchor(table).replace("-", ""), ""),
+        )
+        for table in tables
+    ]
+
+
 def _paper_sections(
     rows: list[dict],
     figures: Mapping[str, dict],
@@ -178,74 +234,23 @@ def _paper_sections(
     placed: dict[tuple[str | None, str], list[dict]] = {}
     for row in rows:
         placed.setdefault(_paper_place(row["source"], row["id"], sections), []).append(row)
-    out, used = [], set()
+    out = []
     for sid, meta in sections.items():
-        blocks = []
-        for name in sorted(n for n in figures if FIGURES[n].section == sid):
-            key = name[:5]
-            number = int(key[3:])
-            blocks.append(
-                {
-                    "key": key,
-                    "anchor": _anchor(name),
-                    "heading": f"Fig. {number}",
-                    "figure": figures[name],
-                    "statement": statements.get(key, ""),
-                    "claims": placed.get((sid, key), []),
-                }
-            )
-            used.add((sid, key))
-        for table in meta.get("tables", ()):
-            key = _anchor(table).replace("-", "")
-            blocks.append(
-                {
-                    "key": table,
-                    "anchor": _anchor(f"{sid} {table}"),
-                    "heading": table,
-                    "figure": None,
-                    "statement": statements.get(key, ""),
-                    "claims": placed.get((sid, table), []),
-                }
-            )
-            used.add((sid, table))
-        rest = [r for (s, b), rs in placed.items() if s == sid and (s, b) not in used for r in rs]
+        blocks = [
+            *_figure_blocks(sid, figures, statements, placed),
+            *_table_blocks(sid, meta.get("tables", ()), statements, placed),
+        ]
+        shown = {(sid, b["key"]) for b in blocks}
+        rest = [r for (s, b), rs in placed.items() if s == sid and (s, b) not in shown for r in rs]
         if rest:
-            blocks.append(
-                {
-                    "anchor": _anchor(f"sec {sid} other"),
-                    "heading": f"Other claims of Sec. {sid}",
-                    "figure": None,
-                    "statement": "",
-                    "claims": rest,
-                }
-            )
-        for s, b in placed:
-            if s == sid:
-                used.add((s, b))
-        out.append(
-            {
-                "anchor": _anchor(f"sec {sid}"),
-                "heading": f"Sec. {sid}. {meta['title']}",
-                "blocks": blocks,
-            }
-        )
-    leftover = [r for key, rs in placed.items() if key not in used for r in rs]
+            blocks.append(_block(_anchor(f"sec {sid} other"), f"Other claims of Sec. {sid}", rest))
+        heading = f"Sec. {sid}. {meta['title']}"
+        out.append({"anchor": _anchor(f"sec {sid}"), "heading": heading, "blocks": blocks})
+    leftover = [r for (s, _), rs in placed.items() if s not in sections for r in rs]
     if leftover:
-        out.append(
-            {
-                "anchor": "other-claims",
-                "heading": "Claims outside the sections above",
-                "blocks": [
-                    {
-                        "anchor": "other-claims-list",
-                        "heading": "Other claims",
-                        "figure": None,
-                        "statement": "",
-                        "claims": leftover,
-                    }
-                ],
-            }
-        )
+        block = _block("other-claims-list", "Other claims", leftover)
+        heading = "Claims outside the sections above"
+        out.append({"anchor": "other-claims", "heading": heading, "blocks": [block]})
     return out
 
 
@@ -296,6 +301,10 @@ def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
     """The robustness section: the consistent set, the classes and the evidence."""
     if "robustness" not in inference or "robustness" not in claims:
         return {}
+    numeric = ("paper_value", "best_value", "best_residual", "objective_gap")
+    claims = claims.assign(
+        **{c: pd.to_numeric(claims[c], errors="coerce") for c in numeric if c in claims}
+    )
     screen = load_result(inference["robustness_screen"])
     kept = load_result(inference["robustness"])
     combos = sorted(
@@ -434,40 +443,52 @@ def ladder_summary(error: float | None, claims: pd.DataFrame) -> dict:
     return {"error": f"{error:.2f}", "tolerance": f"{tolerance:g}", "above": error > tolerance}
 
 
-def _studies(studies: Sequence[str]) -> tuple[float | None, list[dict]]:
-    """The model ladder's largest error (km/h) and the tables of the stability and
-    optimum-search studies."""
-    ladder_error, tables = None, []
-    for path in studies:
-        ds = load_result(path)
-        if "max_error_impact_kmh" in ds.attrs:
-            ladder_error = float(ds.attrs["max_error_impact_kmh"])
-        elif "outcome" in ds:
-            names = ds["outcome"].attrs["flag_meanings"].split()
-            counts = pd.DataFrame(
-                [
-                    [int((row == i).sum()) for i in range(len(names))]
-                    for row in ds["outcome"].values
-                ],
-                index=[str(c) for c in ds["case"].values],
-                columns=names,
-            )
-            tables.append(
-                {
-                    "title": "Stability: outcomes of the isolated contact over k = "
-                    f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
-                    "html": _table(counts),
-                }
-            )
-        else:
-            tables.append(
-                {
-                    "title": "The optimum of Figs. 5-6: nested grids (coarse grid, fine "
-                    "grid, parabola) and searches (bracket, compass search) against a "
-                    "finer reference grid",
-                    "html": _table(ds.to_dataframe().round(4)),
-                }
-            )
+def _optimum_table(ds: xr.Dataset) -> dict:
+    """The optimum-search study's table: each method's errors and time."""
+    return {
+        "title": "The optimum of Figs. 5-6: nested grids (coarse grid, fine grid, parabola) "
+        "and searches (bracket, compass search) against a finer reference grid",
+        "html": _table(ds.to_dataframe().round(4)),
+    }
+
+
+def _stability_table(ds: xr.Dataset) -> dict:
+    """The stability study's table: per case (method and setting), how many spring
+    constants end in each outcome."""
+    names = ds["outcome"].attrs["flag_meanings"].split()
+    counts = pd.DataFrame(
+        [[int((row == i).sum()) for i in range(len(names))] for row in ds["outcome"].values],
+        index=[str(c) for c in ds["case"].values],
+        columns=names,
+    )
+    return {
+        "title": "Stability: outcomes of the isolated contact over k = "
+        f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
+        "html": _table(counts),
+    }
+
+
+#: The studies' tables on the page, in its order: the study (its key in the table of
+#: experiments, :data:`~tennis_stroke.experiments.specs.STUDY_RESULTS`) and the function
+#: that makes its title and table.
+STUDY_TABLES = {"optimum_cost": _optimum_table, "stability": _stability_table}
+#: The study whose file gives the model ladder's largest v_out error (km/h), its
+#: attribute ``max_error_impact_kmh``.
+LADDER_STUDY = "ladder"
+
+
+def _studies(studies: Mapping[str, str]) -> tuple[float | None, list[dict]]:
+    """The model ladder's largest error (km/h; None without its file) and the tables of
+    the studies (:data:`STUDY_TABLES`) whose files are given (``studies``: the studies'
+    keys -> paths)."""
+    ladder_error = None
+    if LADDER_STUDY in studies:
+        ladder_error = float(load_result(studies[LADDER_STUDY]).attrs["max_error_impact_kmh"])
+    tables = [
+        tabulate(load_result(studies[key]))
+        for key, tabulate in STUDY_TABLES.items()
+        if key in studies
+    ]
     return ladder_error, tables
 
 
@@ -580,38 +601,27 @@ def _checked_claims(claims_csv: str, claims_yaml: str | None) -> pd.DataFrame:
     return table
 
 
-def build_report(
-    figures: Sequence[str],
-    claims_csv: str,
-    inference: Mapping[str, str],
-    results: Sequence[str],
-    config: Mapping,
-    benchmarks_dir: str,
-    output: str,
-    assumptions_md: str | None = None,
-    studies: Sequence[str] = (),
-    statements_yaml: str | None = None,
-) -> None:
-    """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
-    ``statements_yaml``: ``config/claims.yaml``, whose ``statements`` quote the paper on
-    each figure and whose ``sections`` name the paper's sections).  A claims table whose
-    configuration departs from the paper's (its record beside it,
-    :mod:`tennis_stroke.inference.paper_config`) is said so at the top."""
+def _checked_inputs(
+    claims_csv: str, statements_yaml: str | None, assumptions_md: str | None
+) -> tuple[pd.DataFrame, list[str]]:
+    """The checked claims table (:func:`_checked_claims`) and the lines saying how its
+    configuration departs from the paper's (its record beside it); a record that does not
+    read or an empty assumption ledger is a :class:`ReportInputError`."""
     claims = _checked_claims(claims_csv, statements_yaml)
     try:
         record = read_record(claims_csv)
     except PaperConfigError as exc:
         raise ReportInputError(str(exc)) from None
-    departures = departure_lines(record)
     if assumptions_md and not Path(assumptions_md).read_text(encoding="utf-8").strip():
         raise ReportInputError(f"the assumption ledger {assumptions_md} is empty")
-    paper = load_yaml(statements_yaml) if statements_yaml else {}
-    statements, sections = paper.get("statements") or {}, paper.get("sections") or {}
-    rows = [_claim_row(c) for c in claims.to_dict("records")]
-    entries = {e["name"]: e for e in map(_figure_entry, figures)}
-    paper_figures = {n: e for n, e in entries.items() if FIGURES.get(n) and n.startswith("fig")}
+    return claims, departure_lines(record)
+
+
+def _score(claims: pd.DataFrame) -> dict[str, int]:
+    """The scoreboard's counts: held-out claims and how many pass, deviations, failures,
+    fit claims and how many of them the fit meets."""
     held = claims["fit_set"] == ""
-    score = {
+    return {
         "held": int(held.sum()),
         "pass": int((held & (claims.status == "pass")).sum()),
         "deviate": int((claims.status == "known_deviation").sum()),
@@ -619,33 +629,40 @@ def build_report(
         "fit": int((~held).sum()),
         "fit_ok": int((claims.status == "used_for_fit").sum()),
     }
-    page_sections = _paper_sections(rows, paper_figures, statements, sections)
-    views_head, views = _interactive(paper_figures, results, inference, claims, statements_yaml)
-    for block in (b for s in page_sections for b in s["blocks"]):
+
+
+def _figures_of(entries: Mapping[str, dict], section: str) -> list[dict]:
+    """The figures (:func:`_figure_entry`, by name) the registry puts in ``section``."""
+    return [e for n, e in entries.items() if n in FIGURES and FIGURES[n].section == section]
+
+
+def _attach_views(sections: list[dict], views: Mapping[str, Markup]) -> None:
+    """Give each block of the paper's ``sections`` its figure's interactive view (with
+    the live explorer's name for it, if it has one) and its strokes' animation."""
+    for block in (b for s in sections for b in s["blocks"]):
         name = block["figure"]["name"] if block.get("figure") else None
         block["view"] = views.get(name) if name else None
         block["live"] = LIVE.get(name) if block["view"] else None
         block["strokes"] = views.get(f"strokes-{block.get('key')}")
-    validation = _validation(claims, inference)
-    robustness = _robustness(
-        claims.assign(
-            **{
-                c: pd.to_numeric(claims[c], errors="coerce")
-                for c in ("paper_value", "best_value", "best_residual", "objective_gap")
-                if c in claims
-            }
-        ),
-        inference,
-    )
-    toc = [
+
+
+def _toc(sections: Sequence[dict]) -> list[dict]:
+    """The page's table of contents: the deviations, the paper's ``sections``, ours."""
+    return [
         {"anchor": "deviations", "label": "What does not reproduce, and why"},
-        *({"anchor": s["anchor"], "label": s["heading"]} for s in page_sections),
+        *({"anchor": s["anchor"], "label": s["heading"]} for s in sections),
         {"anchor": "inference", "label": "The paper's unstated readings: fits and robustness"},
         {"anchor": "model-ladder", "label": "Model no more than a scene needs: the ladder"},
         {"anchor": "studies", "label": "Speed against accuracy"},
         {"anchor": "ledger", "label": "Assumption ledger"},
         {"anchor": "run", "label": "Configuration, provenance and timings"},
     ]
+
+
+def _run(config: Mapping, results: Sequence[str], benchmarks_dir: str) -> dict:
+    """The run's section: the configuration as YAML, provenance (versions, commit, the
+    solver's settings from the first result file, the environment), the installed
+    distributions, failed strokes per file and per-job timings."""
     with xr.open_dataset(results[0]) as ds:
         solver = {k: v for k, v in ds.attrs.items() if k.startswith("solver_")}
     environment = environment_table()
@@ -663,34 +680,66 @@ def build_report(
         "CPU": environment["cpu"],
         "numba compile target": environment["compile_target"],
     }
-    ladder_error, study_tables = _studies(studies)
+    return {
+        "config_yaml": yaml.safe_dump(_builtin(config), sort_keys=False),
+        "meta": meta,
+        "distributions": environment["distributions"],
+        "failure_table": _table(_failures(results), index=False, na_rep="-"),
+        "timing_table": _table(_timings(Path(benchmarks_dir)), index=False),
+        "max_failure_share": f"{100 * float(config['max_failure_share']):g} %",
+    }
+
+
+def build_report(
+    figures: Sequence[str],
+    claims_csv: str,
+    inference: Mapping[str, str],
+    results: Sequence[str],
+    config: Mapping,
+    benchmarks_dir: str,
+    output: str,
+    assumptions_md: str | None = None,
+    studies: Mapping[str, str] | None = None,
+    statements_yaml: str | None = None,
+) -> None:
+    """Write the report page to ``output`` (``assumptions_md``: the ledger's text;
+    ``studies``: the studies' result files by key,
+    :data:`~tennis_stroke.experiments.specs.STUDY_RESULTS`; ``statements_yaml``:
+    ``config/claims.yaml``, whose ``statements`` quote the paper on each figure and whose
+    ``sections`` name the paper's sections).  Each figure goes where the registry's
+    ``section`` puts it.  A claims table whose configuration departs from the paper's
+    (its record beside it, :mod:`tennis_stroke.inference.paper_config`) is said so at the
+    top."""
+    claims, departures = _checked_inputs(claims_csv, statements_yaml, assumptions_md)
+    paper = load_yaml(statements_yaml) if statements_yaml else {}
+    rows = [_claim_row(c) for c in claims.to_dict("records")]
+    entries = {e["name"]: e for e in map(_figure_entry, figures)}
+    paper_figures = {n: e for n, e in entries.items() if n in FIGURES and FIGURES[n].of_paper}
+    page_sections = _paper_sections(
+        rows, paper_figures, paper.get("statements") or {}, paper.get("sections") or {}
+    )
+    views_head, views = _interactive(paper_figures, results, inference, claims, statements_yaml)
+    _attach_views(page_sections, views)
+    ladder_error, study_tables = _studies(studies or {})
     html = ENVIRONMENT.get_template("report.html.j2").render(
         departures=departures,
-        score=score,
+        score=_score(claims),
         deviation_groups=_deviation_groups(rows),
-        toc=toc,
+        toc=_toc(page_sections),
         sections=page_sections,
-        inference={"figures": [e for n, e in entries.items() if n.startswith("inference")]},
-        model_ladder={
-            **_model_ladder(inference),
-            "figures": [e for n, e in entries.items() if n.startswith("ladder")],
-        },
+        inference={"figures": _figures_of(entries, "inference")},
+        model_ladder={**_model_ladder(inference), "figures": _figures_of(entries, "ladder")},
         fits=_fit_tables(inference),
-        robustness=robustness,
-        validation=validation,
+        robustness=_robustness(claims, inference),
+        validation=_validation(claims, inference),
         views_head=views_head,
         multiverse=views.get("multiverse"),
-        study_figures=[e for n, e in entries.items() if n.startswith("study")],
+        study_figures=_figures_of(entries, "study"),
         study_tables=study_tables,
         ladder=ladder_summary(ladder_error, claims),
         readings=list(READINGS.values()),
         ledger=markdown_html(Path(assumptions_md).read_text()) if assumptions_md else "",
-        config_yaml=yaml.safe_dump(_builtin(config), sort_keys=False),
-        meta=meta,
-        distributions=environment["distributions"],
-        failure_table=_table(_failures(results), index=False, na_rep="-"),
-        timing_table=_table(_timings(Path(benchmarks_dir)), index=False),
-        max_failure_share=f"{100 * float(config['max_failure_share']):g} %",
+        **_run(config, results, benchmarks_dir),
     )
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     Path(output).write_text(html)

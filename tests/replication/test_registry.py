@@ -1,0 +1,83 @@
+"""The figure registry as data: each entry names files, a drawing function and a section
+that exist, its marks lie along its axes and resolve to the paper's values, it survives
+the trip through a job's params, and its title is filled from a file's attributes."""
+
+import re
+from dataclasses import asdict
+
+import pytest
+import yaml
+from conftest import ROOT
+
+from tennis_stroke.experiments.specs import RESULT_FILES, sorted_data
+from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.replication.figures import DRAWERS
+from tennis_stroke.replication.marks import mark_values
+from tennis_stroke.replication.registry import FIGURES, OUR_SECTIONS, Figure, Mark
+
+CLAIMS = {c["id"]: c for c in load_claims(ROOT / "config/claims.yaml")}
+PAPER_SECTIONS = yaml.safe_load((ROOT / "config/claims.yaml").read_text())["sections"]
+
+
+@pytest.mark.parametrize("name", sorted(FIGURES))
+def test_an_entry_names_what_exists(name):
+    """Its files are result files, its drawing function is one of figures.py's, and its
+    section is one of the paper's (config/claims.yaml) or of ours; a figure of the paper
+    is named by its number (``fig09_...``: the report finds its statement and claims by
+    it), no other is."""
+    figure = FIGURES[name]
+    assert figure.name == name
+    assert set(figure.files) <= set(RESULT_FILES)
+    assert figure.draw in DRAWERS
+    assert figure.section in PAPER_SECTIONS or figure.section in OUR_SECTIONS
+    assert figure.of_paper == (figure.section in PAPER_SECTIONS)
+    assert figure.of_paper == bool(re.fullmatch(r"fig\d\d_\w+", name))
+
+
+@pytest.mark.parametrize("name", sorted(n for n, f in FIGURES.items() if f.marks))
+def test_marks_lie_along_the_figure_s_axes_at_the_paper_s_values(name):
+    """A mark's value lies along one of the two axes the figure declares; the paper's
+    value and the other coordinate of a point come from the declared claims."""
+    figure = FIGURES[name]
+    assert len(figure.axes) == 2
+    values = mark_values(figure, CLAIMS, {m.claim: 1.5 for m in figure.marks})
+    for mark, value in zip(figure.marks, values, strict=True):
+        claim = CLAIMS[mark.claim]
+        assert mark.axis in figure.axes
+        assert value["paper"] == float(claim["paper_value"]) and value["ours"] == 1.5
+        if mark.at:
+            assert value["other_paper"] == float(claim["measure"][mark.at])
+        elif mark.other:
+            assert value["other_paper"] == float(CLAIMS[mark.other]["paper_value"])
+        else:
+            assert value["other_paper"] is None
+
+
+def test_a_mark_naming_no_claim_or_argument_is_refused():
+    base = FIGURES["fig02_angle_map"]
+    for mark, message in (
+        (Mark("no_such_claim", "delta0"), "no_such_claim"),
+        (Mark("fig2_best_delta0_at_120", "delta0", at="nothing"), "nothing"),
+        (Mark("fig9_v_H", "v_out", other="no_such_claim"), "no_such_claim"),
+    ):
+        figure = Figure(**{**asdict(base), "marks": (mark,)})
+        with pytest.raises(KeyError, match=message):
+            mark_values(figure, CLAIMS)
+
+
+@pytest.mark.parametrize("name", sorted(FIGURES))
+def test_an_entry_survives_a_job_s_params(name):
+    """The figure job gets its entry as plain data (``asdict``, sorted): the same entry
+    comes back, its marks Marks again."""
+    figure = FIGURES[name]
+    assert Figure(**sorted_data(asdict(figure))) == figure
+
+
+def test_a_title_is_filled_from_a_file_s_attributes():
+    """``{L1}`` is the file's ``param_L1``, ``{theta0_deg}`` its own attribute; an
+    attribute the file does not hold is an error, never a title with a gap."""
+    figure = Figure("x", "III", ("fig2",), "angle_map", "L1 = {L1:g} m at {theta0_deg:g} deg")
+    attrs = {"param_L1": 0.35, "theta0_deg": 120.0, "solver_rtol": [1e-9, 1e-10]}
+    assert figure.filled_title(attrs) == "L1 = 0.35 m at 120 deg"
+    with pytest.raises(KeyError, match="theta0_deg"):
+        figure.filled_title({"param_L1": 0.35})
