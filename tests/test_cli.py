@@ -759,9 +759,9 @@ def test_claims_prints_every_claim_as_a_table_then_the_counts(tmp_path, capsys):
     assert code == 0, err
     lines = out.splitlines()
     assert lines[0].split() == ["claim", "status", "paper", "ours", "unit", "tolerance"]
-    assert lines[1].split() == ["speed", "pass", "150", "151.2", "km/h", "2"]
-    assert lines[2].split() == ["angle", "known", "deviation", "76", "232.4", "degree", "5"]
-    assert lines[3] == "claims: 2 (1 pass, 1 known deviation)"
+    assert lines[1].split() == ["speed", "reproduces", "150", "151.2", "km/h", "2"]
+    assert lines[2].split() == ["angle", "deviates", "76", "232.4", "degree", "5"]
+    assert lines[3] == "claims: 2 (1 reproduces, 1 deviates)"
     assert "{" not in out
     # a table the check refuses prints nothing but the one error line
     table.write_text(header + rows[0].replace(",pass,", ",fail,") + rows[1])

@@ -72,7 +72,7 @@ def test_the_block_speaks_the_reports_words(tmp_path):
         from readme_results import block
     finally:
         sys.path.remove(str(TOOL.parent))
-    from tennis_stroke.replication.report import STATUS_WORDS
+    from tennis_stroke.replication.claims import STATUS_WORDS
 
     table = pd.read_csv(_claims(tmp_path / "claims.csv"), keep_default_na=False)
     extra = {**table.iloc[1].to_dict(), "id": "c", "status": "fail", "robustness": "robust"}

@@ -30,8 +30,8 @@ from tennis_stroke.inference.paper_config import (
     describe_departures,
     read_record,
 )
+from tennis_stroke.replication.claims import STATUS_WORDS
 from tennis_stroke.replication.ladder import findings, verdict
-from tennis_stroke.replication.report import STATUS_WORDS
 
 PAGES = ("README.md", "docs/inference.md", "docs/assumptions.md")
 STATUSES = ("pass", "used_for_fit", "known_deviation", "fail")
@@ -95,8 +95,8 @@ def block(table: pd.DataFrame) -> str:
 
 def _claims_that(n: int, status: str) -> str:
     """``9 claims that deviate``, ``1 claim that fails``: the report's verb for ``status``."""
-    verb = STATUS_WORDS[status][1]
-    return f"{n} claim that {verb}" if n == 1 else f"{n} claims that {verb.removesuffix('s')}"
+    singular, plural = STATUS_WORDS[status][1:]
+    return f"{n} claim that {singular}" if n == 1 else f"{n} claims that {plural}"
 
 
 def held_out(table: pd.DataFrame, results: Path) -> str:

@@ -615,12 +615,14 @@ def _params(args: argparse.Namespace) -> int:
 
 
 def _claims_table(table) -> str:
-    """Every claim of a claims table (checked) as one aligned line: id, status, the
-    paper's value, ours, unit and tolerance."""
+    """Every claim of a claims table (checked) as one aligned line: id, status (in the
+    report's words), the paper's value, ours, unit and tolerance."""
+    from .replication.claims import STATUS_WORDS
+
     rows = [
         (
             row["id"],
-            row["status"].replace("_", " "),
+            STATUS_WORDS[row["status"]][1],
             f"{float(row['paper_value']):.4g}",
             f"{float(row['reproduced_value']):.4g}",
             row["unit"],

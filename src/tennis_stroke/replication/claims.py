@@ -94,6 +94,20 @@ def evaluate(
 
 #: The statuses a claims table may hold.
 STATUSES = ("pass", "fail", "known_deviation", "used_for_fit")
+#: Each status in the words every reader sees (the report's scoreboard, the README's
+#: results, ``tennis-stroke claims``): a symbol, the verb for one claim, the verb for
+#: several.
+STATUS_WORDS = {
+    "pass": ("\u2713", "reproduces", "reproduce"),
+    "known_deviation": ("!", "deviates", "deviate"),
+    "fail": ("\u2717", "fails", "fail"),
+    "used_for_fit": ("\u25cb", "used for fit", "used for fit"),
+}
+
+
+def status_count(n: int, status: str) -> str:
+    """``26 reproduce``, ``1 deviates``: a count of claims with the verb of ``status``."""
+    return f"{n} {STATUS_WORDS[status][1 if n == 1 else 2]}"
 
 
 class ClaimsTableError(ValueError):
@@ -194,7 +208,7 @@ def check(
             raise ClaimsTableError(errors[0])
     failed = table[table["status"] == "fail"]
     counts = table["status"].value_counts()
-    shown = ", ".join(f"{n} {status.replace('_', ' ')}" for status, n in counts.items())
+    shown = ", ".join(status_count(int(n), status) for status, n in counts.items())
     print(f"claims: {len(table)} ({shown})")
     for _, row in failed.iterrows():
         print(

@@ -40,11 +40,11 @@ from ..io.environment import environment_table
 from ..io.failures import failure_counts
 from ..io.netcdf import git_commit, load_result
 from ..model.params import READINGS
-from .claims import ClaimsTableError, consistency_errors, read_table
+from .claims import STATUS_WORDS, ClaimsTableError, consistency_errors, read_table
 from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
 from .marks import mark_values
 from .registry import FIGURES, LIVE
-from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING
+from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING, ROBUSTNESS_WORDS
 
 #: The page template, rendered with autoescape.
 ENVIRONMENT = jinja2.Environment(
@@ -53,13 +53,6 @@ ENVIRONMENT = jinja2.Environment(
     undefined=jinja2.StrictUndefined,
     trim_blocks=False,
 )
-#: What a claim's status says, as a word and a symbol (never colour alone).
-STATUS_WORDS = {
-    "pass": ("\u2713", "reproduces"),
-    "known_deviation": ("!", "deviates"),
-    "fail": ("\u2717", "fails"),
-    "used_for_fit": ("\u25cb", "used for fit"),
-}
 #: Units as the page prints them beside a number.
 UNIT_SHORT = {"degree": "deg", "1": ""}
 
@@ -329,7 +322,7 @@ def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
         "variants": kept.sizes["variant"],
         "combos": combos,
         "classes": [
-            {"word": k.replace("_", " "), "n": int(counts[k]), "meaning": meaning}
+            {"word": ROBUSTNESS_WORDS[k], "n": int(counts[k]), "meaning": meaning}
             for k, meaning in ROBUSTNESS_MEANING.items()
             if k in counts
         ],

@@ -31,6 +31,13 @@ ROBUSTNESS_MEANING = {
     "not_reproduced": "fails under every consistent reading",
 }
 ROBUSTNESS = tuple(ROBUSTNESS_MEANING)
+#: Each robustness class in the words every reader sees (the report, the README).
+ROBUSTNESS_WORDS = {
+    "used_for_fit": "used for fit",
+    "robust": "robust",
+    "reading_dependent": "reading-dependent",
+    "not_reproduced": "not reproduced under any reading",
+}
 #: Evidence classes of a deviation (a claim that does not pass under the default
 #: reading) with their meaning, in the order of config/readings.yaml.
 EVIDENCE_MEANING = {
