@@ -1,9 +1,11 @@
 """Shared fixtures: the paper's default parameters and handy coefficient rows."""
 
+import re
 import shutil
 import signal
 import subprocess
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -133,6 +135,46 @@ def tiny_run(tmp_path_factory):
     done = run_snakemake("report", work, "--cores", "2", timeout=1200)
     assert done.returncode == 0, done.stderr[-3000:]
     return work
+
+
+@dataclass(frozen=True)
+class Plan:
+    """What a dry run plans: its jobs as (rule, input files, output files), and the
+    names of every rule of the workflow."""
+
+    jobs: list[tuple[str, list[str], list[str]]]
+    rules: list[str]
+
+    def writers(self, path: str) -> list[str]:
+        """The rules of the planned jobs that write ``path``."""
+        return [rule for rule, _, outputs in self.jobs if path in outputs]
+
+
+def planned_jobs(log: str) -> list[tuple[str, list[str], list[str]]]:
+    """The jobs of a dry run's log (``snakemake -n``): each ``rule NAME:`` block with
+    its ``input:`` and ``output:`` lines, split at ", "."""
+    jobs = []
+    for block in re.split(r"\n(?=(?:local)?rule \w+:\n)", log):
+        head = re.match(r"(?:local)?rule (\w+):\n", block)
+        if head:
+            files = dict(re.findall(r"^    (input|output): (.*)$", block, re.M))
+            split = [[f for f in files.get(k, "").split(", ") if f] for k in ("input", "output")]
+            jobs.append((head[1], *split))
+    return jobs
+
+
+@pytest.fixture(scope="session")
+def report_plan(tmp_path_factory) -> Plan:
+    """A dry run of ``report`` on the shipped configuration in an empty working
+    directory, so every job is planned; the workflow's own rules and file patterns, not
+    the package's tables, say what it writes."""
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    work = workdir(tmp_path_factory.mktemp("plan"), config)
+    done = run_snakemake("report", work, "-n")
+    assert done.returncode == 0, done.stderr[-3000:]
+    listed = run_snakemake([], work, "--list-rules")
+    assert listed.returncode == 0, listed.stderr[-3000:]
+    return Plan(planned_jobs(done.stdout + done.stderr), listed.stdout.split())
 
 
 def record_configuration(folder, scenario=None, departures=()) -> None:

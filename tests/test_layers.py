@@ -1,15 +1,18 @@
 """The package's layers import downwards only: model -> solver -> io -> experiments ->
 studies -> inference -> replication -> entry points (the workflow's support and the
 CLI), and no two modules import each other, even through others or from inside a
-function.  Checked by parsing every import (also those inside functions) of every
-module; run it alone with ``pytest tests/test_layers.py``."""
+function.  The imports are read by the package's own parser
+(:func:`tennis_stroke._imports.imports_of_file`, every import, those inside functions
+too): the graph these tests check is the one the workflow's code inputs and the compiled
+solver's cache key follow.  Run it alone with ``pytest tests/test_layers.py``."""
 
-import ast
+import graphlib
 from pathlib import Path
 
 import pytest
 
-PACKAGE = Path(__file__).resolve().parents[1] / "src" / "tennis_stroke"
+from tennis_stroke import _imports
+from tennis_stroke._imports import PACKAGE, imports_of_file, module_name
 
 #: Rank of each layer: a module may import from its own rank or below.  Folders are
 #: layers; of the top-level modules, ``_version``, ``_imports`` (the import graph) and
@@ -33,37 +36,44 @@ LAYERS = {
 }
 
 
-def _module(path: Path) -> str:
-    parts = path.relative_to(PACKAGE).with_suffix("").parts
-    return ".".join(parts)
-
-
 def _layer(module: str) -> str:
-    return module.split(".")[0]
+    """The layer of a module (dotted, below the package; "" is the package's start-up)."""
+    return module.split(".")[0] or "__init__"
 
 
-def _imports(path: Path) -> set[str]:
-    """Modules of the package that ``path`` imports (dotted, relative to the package)."""
-    here = _module(path).split(".")
-    package = here[:-1]  # a module's package; for __init__ ("x.__init__") the package x
-    found = set()
-    for node in ast.walk(ast.parse(path.read_text())):
-        if isinstance(node, ast.ImportFrom):
-            if node.level:
-                base = package[: len(package) - (node.level - 1)]
-                target = [*base, *(node.module.split(".") if node.module else [])]
-                names = [a.name for a in node.names]
-                if not node.module:  # from . import x: x is a module
-                    found.update(".".join([*target, n]) for n in names)
-                else:
-                    found.add(".".join(target))
-            elif node.module and node.module.startswith("tennis_stroke"):
-                found.add(node.module.removeprefix("tennis_stroke").lstrip(".") or "__init__")
-        elif isinstance(node, ast.Import):
-            for alias in node.names:
-                if alias.name.startswith("tennis_stroke"):
-                    found.add(alias.name.removeprefix("tennis_stroke").lstrip(".") or "__init__")
-    return {m for m in found if m}
+def _upward_imports(path: Path) -> list[str]:
+    """What ``path`` (a module of the package) imports from a layer above its own, or
+    from no layer."""
+    name = module_name(path)
+    own = LAYERS[_layer(name)]
+    found = []
+    for target in sorted(imports_of_file(path)):
+        rank = LAYERS.get(_layer(target))
+        if rank is None:
+            found.append(f"{name} imports {target}, which is in no layer")
+        elif rank > own:
+            found.append(f"{name} (rank {own}) imports {target} (rank {rank})")
+    return found
+
+
+def _graph() -> dict[str, set[str]]:
+    """Module -> the package modules it imports (a subpackage stands for its
+    ``__init__``), for the package the parser reads.  The packages a module lies in are
+    left out: Python runs their ``__init__`` before the module, not because of it."""
+    graph = {}
+    for path in sorted(_imports.PACKAGE.rglob("*.py")):
+        name = module_name(path)
+        graph[name] = {t for t in imports_of_file(path) if not (name + ".").startswith(t + ".")}
+    return graph
+
+
+def _cycle(graph: dict[str, set[str]]) -> list[str]:
+    """One import cycle of ``graph`` (each module imports the next), or [] if none."""
+    try:
+        graphlib.TopologicalSorter(graph).prepare()
+    except graphlib.CycleError as err:
+        return err.args[1][::-1]
+    return []
 
 
 MODULES = sorted(PACKAGE.rglob("*.py"))
@@ -71,22 +81,16 @@ MODULES = sorted(PACKAGE.rglob("*.py"))
 
 def test_every_module_belongs_to_a_layer():
     for path in MODULES:
-        assert _layer(_module(path)) in LAYERS, f"{path}: not in a declared layer"
+        assert _layer(module_name(path)) in LAYERS, f"{path}: not in a declared layer"
 
 
-@pytest.mark.parametrize("path", MODULES, ids=lambda p: _module(p))
+@pytest.mark.parametrize("path", MODULES, ids=lambda p: module_name(p) or "__init__")
 def test_imports_only_go_downwards(path):
-    own = LAYERS[_layer(_module(path))]
-    for target in _imports(path):
-        layer = _layer(target)
-        assert layer in LAYERS, f"{_module(path)} imports {target}, which is in no layer"
-        assert LAYERS[layer] <= own, (
-            f"{_module(path)} (rank {own}) imports {target} (rank {LAYERS[layer]})"
-        )
+    assert not _upward_imports(path)
 
 
 def test_the_reference_path_shares_the_model_but_not_the_compiled_driver():
-    imports = _imports(PACKAGE / "solver" / "reference.py")
+    imports = imports_of_file(PACKAGE / "solver" / "reference.py")
     assert "model.dynamics" in imports
     assert not imports & {"solver.stroke", "solver.integrate", "solver._kernels"}
 
@@ -95,76 +99,90 @@ def test_the_registry_is_pure_data():
     """The Snakefile imports it: no package module but the table of result files, no
     plotting library."""
     source = (PACKAGE / "replication" / "registry.py").read_text()
-    assert _imports(PACKAGE / "replication" / "registry.py") == {"experiments.specs"}
+    assert imports_of_file(PACKAGE / "replication" / "registry.py") == {
+        "experiments",
+        "experiments.specs",
+    }
     assert "matplotlib" not in source and "xarray" not in source
-
-
-def _graph(package: Path) -> dict[str, set[str]]:
-    """Module -> the package modules it imports (a folder's ``__init__`` for a folder)."""
-    global PACKAGE
-    saved, PACKAGE = PACKAGE, package
-    try:
-        modules = {_module(p): p for p in sorted(package.rglob("*.py"))}
-        graph = {}
-        for name, path in modules.items():
-            targets = set()
-            for target in _imports(path):
-                if target in modules:
-                    targets.add(target)
-                elif f"{target}.__init__" in modules:
-                    targets.add(f"{target}.__init__")
-            graph[name] = targets - {name}
-        return graph
-    finally:
-        PACKAGE = saved
-
-
-def _cycle(graph: dict[str, set[str]]) -> list[str]:
-    """One import cycle of ``graph`` (its modules in order), or [] when there is none."""
-    state: dict[str, int] = {}
-    stack: list[str] = []
-
-    def visit(node):
-        state[node] = 1
-        stack.append(node)
-        for nxt in sorted(graph.get(node, ())):
-            if state.get(nxt) == 1:
-                return [*stack[stack.index(nxt) :], nxt]
-            if nxt not in state and (found := visit(nxt)):
-                return found
-        stack.pop()
-        state[node] = 2
-        return []
-
-    for node in sorted(graph):
-        if node not in state and (found := visit(node)):
-            return found
-    return []
 
 
 def test_no_import_cycle_anywhere():
     """No module imports itself through others, lazy imports inside functions included."""
-    cycle = _cycle(_graph(PACKAGE))
+    cycle = _cycle(_graph())
     assert not cycle, "import cycle: " + " -> ".join(cycle)
 
 
-def test_the_cycle_check_sees_a_lazy_cycle(tmp_path):
+@pytest.fixture
+def package(tmp_path, monkeypatch):
+    """A package of the same name in ``tmp_path``, which the parser reads instead of the
+    real one while the test runs: ``package({"path": "source", ...})`` writes modules."""
+    root = tmp_path / "tennis_stroke"
+
+    def write(files: dict[str, str]) -> Path:
+        for name, text in files.items():
+            (root / name).parent.mkdir(parents=True, exist_ok=True)
+            (root / name).write_text(text)
+        return root
+
+    write({"__init__.py": ""})
+    monkeypatch.setattr(_imports, "PACKAGE", root)
+    imports_of_file.cache_clear()
+    yield write
+    imports_of_file.cache_clear()
+
+
+def test_the_cycle_check_sees_a_lazy_cycle(package):
     """The check can fail: two modules importing each other, one inside a function."""
-    (tmp_path / "solver").mkdir()
-    (tmp_path / "solver" / "a.py").write_text("from .b import x\n")
-    (tmp_path / "solver" / "b.py").write_text("def x():\n    from .a import y\n")
-    assert _cycle(_graph(tmp_path)) == ["solver.a", "solver.b", "solver.a"]
+    package(
+        {
+            "solver/__init__.py": "",
+            "solver/a.py": "from .b import x\n",
+            "solver/b.py": "def x():\n    from .a import y\n",
+        }
+    )
+    assert _cycle(_graph()) == ["solver.a", "solver.b", "solver.a"]
 
 
-def test_the_checker_sees_an_upward_import(tmp_path):
-    """The check can fail: a model module importing the solver is caught."""
-    bad = tmp_path / "model" / "bad.py"
-    bad.parent.mkdir()
-    bad.write_text("from ..solver.stroke import strike\n")
-    global PACKAGE
-    saved, PACKAGE = PACKAGE, tmp_path
-    try:
-        with pytest.raises(AssertionError, match="imports solver.stroke"):
-            test_imports_only_go_downwards(bad)
-    finally:
-        PACKAGE = saved
+def test_a_subpackage_importing_its_own_modules_is_no_cycle(package):
+    """A folder's ``__init__`` may import its modules: they do not import it back."""
+    package({"solver/__init__.py": "from .a import x\n", "solver/a.py": "x = 1\n"})
+    assert _graph()["solver.a"] == set()
+    assert not _cycle(_graph())
+
+
+@pytest.mark.parametrize(
+    "source",
+    [
+        "from ..solver.stroke import strike\n",
+        "from tennis_stroke.solver.stroke import strike\n",
+        "import tennis_stroke.solver.stroke\n",
+        "from .. import solver\n",
+        "def f():\n    from ..solver import stroke\n",
+    ],
+)
+def test_the_checker_sees_an_upward_import(package, source):
+    """The check can fail: a model module importing the solver is caught, however the
+    import is written."""
+    root = package({"solver/__init__.py": "", "solver/stroke.py": "", "model/bad.py": source})
+    assert any("imports solver" in e for e in _upward_imports(root / "model" / "bad.py"))
+
+
+@pytest.mark.xfail(
+    strict=True,
+    reason="the parser leaves the package's __init__ out, so a name of its lazy public "
+    "API (from tennis_stroke import strike) is not followed to its module",
+)
+def test_an_upward_import_through_the_public_api_is_caught(package):
+    """The package's own start-up (its lazy table of public names) in a package where
+    a model module takes ``strike`` from it: counting the start-up (an entry point) or
+    following the name to solver.stroke both catch it."""
+    root = package(
+        {
+            "__init__.py": (PACKAGE / "__init__.py").read_text(),
+            "solver/__init__.py": "",
+            "solver/stroke.py": "",
+            "model/__init__.py": "",
+            "model/bad.py": "from tennis_stroke import strike\n",
+        }
+    )
+    assert _upward_imports(root / "model" / "bad.py")

@@ -1,6 +1,7 @@
 """The table of experiments (tennis_stroke.experiments.specs): every row names a function
 that takes what the row gives it, reads keys the shipped config has, and splits along
-one of its arguments; the registry of result files is the table's."""
+one of its arguments; the workflow writes every registered result file with one rule,
+an experiment's with the rule its row names."""
 
 import inspect
 from pathlib import Path
@@ -10,9 +11,7 @@ import yaml
 
 from tennis_stroke.experiments.specs import (
     EXPERIMENTS,
-    PAPER_RESULTS,
     RESULT_FILES,
-    STUDY_RESULTS,
     sorted_data,
 )
 from tennis_stroke.io.config_files import ConfigKeyError, value_at
@@ -47,10 +46,26 @@ def test_every_row_reads_keys_of_the_shipped_config(key):
     assert e.path == RESULT_FILES[key] and e.path.startswith("results/")
 
 
-def test_the_registry_of_result_files_is_the_table():
-    assert set(PAPER_RESULTS) | set(STUDY_RESULTS) == set(EXPERIMENTS)
-    assert len({e.path for e in EXPERIMENTS.values()}) == len(EXPERIMENTS)
-    assert len({e.rule for e in EXPERIMENTS.values()}) == len(EXPERIMENTS)
+def test_every_result_file_is_written_by_one_job_of_the_workflow(report_plan):
+    """The registry against the workflow's rules (a dry run of ``report``): each file
+    has one writer, so no two rules claim it and none is left to no rule."""
+    writers = {key: report_plan.writers(path) for key, path in RESULT_FILES.items()}
+    assert {key: rules for key, rules in writers.items() if len(rules) != 1} == {}
+
+
+@pytest.mark.parametrize("key", sorted(EXPERIMENTS))
+def test_every_row_s_file_is_made_by_the_rule_it_names(key, report_plan):
+    """A chunked map is gathered from chunks its own rule writes; any other row's file is
+    written by its rule."""
+    e = EXPERIMENTS[key]
+    (writer,) = report_plan.writers(e.path)
+    if not e.chunks:
+        assert writer == e.rule
+        return
+    assert writer == "gather_map"
+    (inputs,) = [i for rule, i, outputs in report_plan.jobs if e.path in outputs]
+    chunks = [path for path in inputs if path.startswith("results/chunks/")]
+    assert chunks and {w for c in chunks for w in report_plan.writers(c)} == {e.rule}
 
 
 def test_keys_are_dotted_paths_with_list_indices():

@@ -72,6 +72,18 @@ def test_statuses(tmp_path):
     assert check(csv) == 0
 
 
+def test_a_claim_either_side_of_the_paper_by_more_than_its_tolerance_fails(tmp_path):
+    """The verdict is the closed band around the paper's value: 1.5 tolerances below
+    fails as above does, half a tolerance below passes."""
+    nc = tmp_path / "f.nc"
+    xr.Dataset({"low": ((), 0.85), "high": ((), 1.15), "close": ((), 0.95)}).to_netcdf(nc)
+    claims = [
+        {**GOOD, "id": v, "measure": {"file": "f", "var": v}} for v in ("low", "high", "close")
+    ]
+    table = evaluate(load_claims(_write(tmp_path, claims), files=["f"]), {"f": nc})
+    assert list(table["status"]) == ["fail", "fail", "pass"]
+
+
 def test_delay_threshold_on_a_synthetic_map():
     c2 = np.arange(0.0, 3.01, 0.5)
     best = np.array([0.08, 0.0, 0.0, 0.0, 0.07, 0.1, 0.12])  # leaves 0 between 1.5 and 2

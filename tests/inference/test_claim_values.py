@@ -1,0 +1,60 @@
+"""A claim's value and its verdict (tennis_stroke.inference.claims): :func:`measure`
+reads the value from the result files, :func:`within` compares it with the paper's.
+(Not test_claims.py: tests/replication has one, and pytest needs unique basenames.)"""
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from tennis_stroke.inference.claims import measure, within
+
+
+@pytest.mark.parametrize(
+    "value, paper, tolerance, expected",
+    [
+        (1.05, 1.0, 0.1, True),
+        (0.95, 1.0, 0.1, True),  # below the paper's value as above it
+        (1.15, 1.0, 0.1, False),  # 1.5 tolerances above
+        (0.85, 1.0, 0.1, False),  # 1.5 tolerances below
+        (-5.0, 1.0, 0.1, False),  # far below: the difference's size counts, not its sign
+        (1.0, 1.0, 0.0, True),  # a qualitative claim: the same answer
+        (0.0, 1.0, 0.0, False),
+        (1e-12, 0.0, 0.0, True),  # the rounding margin of 1e-12 belongs to the bound
+        (3e-12, 0.0, 0.0, False),
+        (np.nan, 1.0, 0.1, False),
+        (np.inf, np.inf, 1.0, False),
+    ],
+)
+def test_within_is_the_closed_band_of_the_tolerance_around_the_paper(
+    value, paper, tolerance, expected
+):
+    assert bool(within(value, paper, tolerance)) is expected
+
+
+def test_within_compares_element_by_element():
+    """The robustness analysis compares readings by claims in one call."""
+    values = np.array([[1.05, 2.0], [0.0, 2.05]])
+    got = within(values, np.array([1.0, 2.0]), np.array([0.1, 0.01]))
+    assert got.tolist() == [[True, True], [False, False]]
+
+
+FILES = {
+    "f": xr.Dataset(
+        {"v": ("tau", [-3.0, -1.0, 2.0]), "w": ("tau", [10.0, 20.0, 30.0])},
+        coords={"tau": [0.0, 0.1, 0.2]},
+    )
+}
+
+
+@pytest.mark.parametrize(
+    "spec, expected",
+    [
+        ({"var": "w", "sel": {"tau": 1}}, 20.0),
+        ({"var": "v", "sel": {"tau": 0}}, -3.0),
+        ({"var": "v", "sel": {"tau": 0}, "abs": True}, 3.0),
+        ({"var": "v", "sel": {"tau": 0}, "abs": False}, -3.0),
+        ({"var": "v", "sel": {"tau": 0.2}, "abs": True}, 2.0),
+    ],
+)
+def test_measure_reads_the_named_variable_at_its_selection(spec, expected):
+    assert measure({"file": "f", **spec}, FILES) == expected

@@ -1,0 +1,327 @@
+"""Mutation check: does a deliberately wrong version of a central function fail a test?
+
+Usage: ``python tools/mutation_check.py [--only NAME ...] [--list]``
+
+Each mutant of :data:`MUTANTS` is one text substitution in one source file: the claims'
+rule (:func:`tennis_stroke.inference.claims.within`), a claim's measurement
+(:func:`~tennis_stroke.inference.claims.measure`) and the compiled solver's event
+location (:func:`tennis_stroke.solver.integrate.locate_event`).  For each, the tests it
+names run (``pytest -m "not slow"``) on a copy of the package that holds the mutant, and
+the table printed at the end says which tests failed: "survived" where none did.  The
+unmutated copy runs the same tests first; a test that fails there is reported and not
+counted as a kill.
+
+The working tree is never written: the package (``src/tennis_stroke``) is copied to a
+temporary folder, which the pytest subprocess finds first (``PYTHONPATH``), and the
+folder is removed at the end, on Ctrl-C and on SIGTERM too (the running pytest is
+stopped first).  numba compiles the copy into a temporary ``NUMBA_CACHE_DIR``, one
+folder per hash of the compiled sources (:func:`tennis_stroke._cache.source_hash`, as
+the package itself does): numba keys its cache by each function's own file only, and
+:func:`~tennis_stroke.solver.integrate.locate_event` is inlined into the compiled stroke
+of another module, which would load unmutated from a shared folder.  The mutants of
+uncompiled modules share the unmutated copy's folder; a mutant of a compiled module
+recompiles the solver (a few minutes on two cores).  The user's cache is neither used
+nor polluted.
+
+A mutant whose text no longer occurs exactly once in its file is an error: the function
+changed, and the mutant must be written again.
+"""
+
+from __future__ import annotations
+
+import argparse
+import contextlib
+import datetime
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import xml.etree.ElementTree as ET
+from dataclasses import dataclass
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+PACKAGE = ROOT / "src" / "tennis_stroke"
+
+#: The tests each function's mutants run: those that call it, directly or through the
+#: claims table, the robustness analysis and the ladder (within, measure), or the
+#: compiled stroke (locate_event).
+CLAIM_TESTS = (
+    "tests/inference/test_claim_values.py",
+    "tests/inference/test_claims_check.py",
+    "tests/inference/test_robustness.py",
+    "tests/inference/test_ladder.py",
+    "tests/inference/test_validation.py",
+    "tests/replication/test_claims.py",
+)
+SOLVER_TESTS = (
+    "tests/solver/test_stroke.py",
+    "tests/solver/test_integrate.py",
+)
+
+
+@dataclass(frozen=True)
+class Mutant:
+    """``old`` replaced by ``new`` in ``path`` (below the package): what ``what`` says."""
+
+    name: str
+    what: str
+    path: str
+    old: str
+    new: str
+    tests: tuple[str, ...]
+
+
+MUTANTS = (
+    Mutant(
+        "within_strict",
+        "within: < instead of <= (the bound excluded)",
+        "inference/claims.py",
+        "np.abs(value - paper) <= np.asarray(tolerance)",
+        "np.abs(value - paper) < np.asarray(tolerance)",
+        CLAIM_TESTS,
+    ),
+    Mutant(
+        "within_double_tolerance",
+        "within: twice the tolerance",
+        "inference/claims.py",
+        "np.abs(value - paper) <= np.asarray(tolerance)",
+        "np.abs(value - paper) <= 2 * np.asarray(tolerance)",
+        CLAIM_TESTS,
+    ),
+    Mutant(
+        "within_no_abs",
+        "within: the signed difference (abs dropped)",
+        "inference/claims.py",
+        "np.abs(value - paper) <= np.asarray(tolerance)",
+        "(value - paper) <= np.asarray(tolerance)",
+        CLAIM_TESTS,
+    ),
+    Mutant(
+        "measure_no_abs",
+        "measure: the 'abs' of a variable measure ignored",
+        "inference/claims.py",
+        'return abs(value) if spec.get("abs") else value',
+        "return value",
+        CLAIM_TESTS,
+    ),
+    Mutant(
+        "measure_wrong_variable",
+        "measure: the file's first variable, not the one named",
+        "inference/claims.py",
+        'da = files[spec["file"]][spec["var"]]',
+        'da = files[spec["file"]][next(iter(files[spec["file"]].data_vars))]',
+        CLAIM_TESTS,
+    ),
+    Mutant(
+        "measure_off_by_one",
+        "measure: the selection one position lower",
+        "inference/claims.py",
+        'da = da.isel(selection(da, spec["sel"], spec["file"]))',
+        'da = da.isel({k: i - 1 for k, i in selection(da, spec["sel"], spec["file"]).items()})',
+        CLAIM_TESTS,
+    ),
+    Mutant(
+        "locate_event_step_end",
+        "locate_event: the step's end, not the root",
+        "solver/integrate.py",
+        "            if gx == 0.0:\n                break\n    return hi\n",
+        "            if gx == 0.0:\n                break\n    return 1.0\n",
+        SOLVER_TESTS,
+    ),
+    Mutant(
+        "locate_event_linear",
+        "locate_event: the event value interpolated linearly over the step (no iteration)",
+        "solver/integrate.py",
+        "    side = 0\n    for _ in range(EVENT_MAX_ITER):\n",
+        "    side = 0\n    hi = glo / (glo - ghi)\n    for _ in range(0):\n",
+        SOLVER_TESTS,
+    ),
+    Mutant(
+        "locate_event_early_stop",
+        "locate_event: four iterations at most (was 60)",
+        "solver/integrate.py",
+        "    for _ in range(EVENT_MAX_ITER):\n",
+        "    for _ in range(4):\n",
+        SOLVER_TESTS,
+    ),
+    Mutant(
+        "locate_event_one_fewer",
+        "locate_event: one iteration fewer at most (59)",
+        "solver/integrate.py",
+        "    for _ in range(EVENT_MAX_ITER):\n",
+        "    for _ in range(EVENT_MAX_ITER - 1):\n",
+        SOLVER_TESTS,
+    ),
+)
+
+
+class Interrupted(Exception):
+    """SIGTERM: stop as Ctrl-C does (the temporary folder is removed)."""
+
+
+def _on_sigterm(signum, frame):
+    raise Interrupted
+
+
+def _stop(proc: subprocess.Popen) -> None:
+    """Stop ``proc`` and the processes of its session (SIGTERM, then SIGKILL)."""
+    with contextlib.suppress(ProcessLookupError):
+        os.killpg(proc.pid, signal.SIGTERM)
+    try:
+        proc.wait(timeout=10)
+    except subprocess.TimeoutExpired:
+        pass
+    with contextlib.suppress(ProcessLookupError):
+        os.killpg(proc.pid, signal.SIGKILL)
+    proc.wait()
+
+
+def _copy_run(src: Path, expression: str) -> str:
+    """``expression`` (of the module ``tennis_stroke``, its ``_cache`` imported) evaluated
+    in a new process that imports the package's copy at ``src``."""
+    code = (
+        f"import tennis_stroke\nfrom tennis_stroke import _cache\nprint(tennis_stroke.{expression})"
+    )
+    env = {**os.environ, "PYTHONPATH": str(src)}
+    env.pop("NUMBA_CACHE_DIR", None)
+    done = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True, text=True)
+    if done.returncode != 0 or not done.stdout.strip():
+        raise SystemExit(f"the package's copy does not import: {done.stderr.strip()[-500:]}")
+    return done.stdout.strip()
+
+
+def run_tests(tests: tuple[str, ...], src: Path, work: Path) -> tuple[set[str], str]:
+    """Run ``tests`` with the package at ``src`` first on the path: the ids of the tests
+    that failed (collection errors included), and "" or why the run itself broke."""
+    report = work / "junit.xml"
+    report.unlink(missing_ok=True)
+    env = {
+        **os.environ,
+        "PYTHONPATH": os.pathsep.join([str(src), os.environ.get("PYTHONPATH", "")]),
+        "PYTHONDONTWRITEBYTECODE": "1",  # a mutant as long as the original, written
+    }  # within the second, would load the other's bytecode
+    env["NUMBA_CACHE_DIR"] = str(work / "numba" / _copy_run(src, "_cache.source_hash()"))
+    command = [sys.executable, "-m", "pytest", "-q", "-m", "not slow"]
+    command += ["-p", "no:cacheprovider", f"--junitxml={report}", *tests]
+    # A session of its own: an interrupt stops pytest and every process it started
+    # (they write into the temporary folder) before the folder is removed.
+    proc = subprocess.Popen(
+        command,
+        cwd=ROOT,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.STDOUT,
+        text=True,
+        start_new_session=True,
+    )
+    try:
+        out, _ = proc.communicate()
+    except BaseException:
+        _stop(proc)
+        raise
+    if proc.returncode not in (0, 1) or not report.exists():
+        return set(), f"pytest exit {proc.returncode}: {out.strip().splitlines()[-1:]}"
+    failed = set()
+    for case in ET.parse(report).iter("testcase"):
+        if case.find("failure") is not None or case.find("error") is not None:
+            module = case.get("classname", "").rpartition(".")[2]
+            failed.add(f"{module}.py::{case.get('name')}")
+    return failed, ""
+
+
+def apply(mutant: Mutant, src: Path) -> str:
+    """Write ``mutant`` into the copy at ``src``; returns the original text."""
+    path = src / "tennis_stroke" / mutant.path
+    text = path.read_text()
+    if text.count(mutant.old) != 1:
+        raise SystemExit(
+            f"{mutant.name}: its text occurs {text.count(mutant.old)} times in "
+            f"{mutant.path} (must be once): write the mutant again"
+        )
+    path.write_text(text.replace(mutant.old, mutant.new))
+    return text
+
+
+def check(mutants: list[Mutant]) -> list[tuple[Mutant, set[str], str]]:
+    """Run every mutant's tests on the unmutated copy, then on each mutant."""
+    rows = []
+    with tempfile.TemporaryDirectory(prefix="mutation-check-") as tmp:
+        work = Path(tmp)
+        src = work / "src"
+        shutil.copytree(
+            PACKAGE, src / "tennis_stroke", ignore=shutil.ignore_patterns("__pycache__")
+        )
+        for m in mutants:  # the texts first: a stale mutant fails before any run
+            (src / "tennis_stroke" / m.path).write_text(apply(m, src))
+        found = _copy_run(src, "__file__")
+        if Path(found).parent != src / "tennis_stroke":
+            raise SystemExit(f"the copy is not the package pytest imports ({found})")
+        baseline: dict[tuple[str, ...], set[str]] = {}
+        for tests in dict.fromkeys(m.tests for m in mutants):
+            print(f"unmutated: {len(tests)} test files ...", flush=True)
+            baseline[tests], broke = run_tests(tests, src, work)
+            if broke or baseline[tests]:
+                print(f"  fails unmutated ({broke or ', '.join(sorted(baseline[tests]))})")
+        for m in mutants:
+            print(f"{m.name}: {m.what} ...", flush=True)
+            original = apply(m, src)
+            try:
+                failed, broke = run_tests(m.tests, src, work)
+            finally:
+                (src / "tennis_stroke" / m.path).write_text(original)
+            killed = failed - baseline[m.tests]
+            print(f"  killed by {len(killed)} tests" if killed else f"  survived {broke}")
+            rows.append((m, killed, broke))
+    return rows
+
+
+def _tests(ids: set[str]) -> str:
+    """Test ids as ``file::function`` (how many of its parameter sets failed, if several)."""
+    count: dict[str, int] = {}
+    for i in sorted(ids):
+        count[i.partition("[")[0]] = count.get(i.partition("[")[0], 0) + 1
+    return ", ".join(f"`{t}`" + (f" ({n})" if n > 1 else "") for t, n in count.items())
+
+
+def table(rows: list[tuple[Mutant, set[str], str]]) -> str:
+    """A Markdown table: mutant, what it changes, the tests that failed."""
+    lines = ["| mutant | what it changes | killed by |", "| --- | --- | --- |"]
+    for m, killed, broke in rows:
+        by = _tests(killed) or f"**survived** {broke}".strip()
+        lines.append(f"| `{m.name}` | {m.what} | {by} |")
+    return "\n".join(lines)
+
+
+def main() -> int:
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--only", nargs="+", metavar="NAME", help="these mutants only")
+    parser.add_argument("--list", action="store_true", help="list the mutants and stop")
+    args = parser.parse_args()
+    known = {m.name: m for m in MUTANTS}
+    unknown = sorted(set(args.only or ()) - set(known))
+    if unknown:
+        parser.error(f"unknown mutant(s) {', '.join(unknown)} (known: {', '.join(known)})")
+    mutants = [known[n] for n in args.only] if args.only else list(MUTANTS)
+    if args.list:
+        print("\n".join(f"{m.name}: {m.what} ({m.path})" for m in mutants))
+        return 0
+    signal.signal(signal.SIGTERM, _on_sigterm)
+    signal.signal(signal.SIGINT, signal.default_int_handler)  # also when started with &
+    commit = subprocess.run(
+        ["git", "rev-parse", "--short", "HEAD"], cwd=ROOT, capture_output=True, text=True
+    ).stdout.strip()
+    try:
+        rows = check(mutants)
+    except (KeyboardInterrupt, Interrupted):
+        print("interrupted: nothing to restore, the working tree was never written")
+        return 130
+    print(f"\nMutation check, {datetime.date.today()}, commit {commit}:\n")
+    print(table(rows))
+    return 1 if any(not killed for _, killed, _ in rows) else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
