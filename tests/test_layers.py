@@ -167,15 +167,10 @@ def test_the_checker_sees_an_upward_import(package, source):
     assert any("imports solver" in e for e in _upward_imports(root / "model" / "bad.py"))
 
 
-@pytest.mark.xfail(
-    strict=True,
-    reason="the parser leaves the package's __init__ out, so a name of its lazy public "
-    "API (from tennis_stroke import strike) is not followed to its module",
-)
 def test_an_upward_import_through_the_public_api_is_caught(package):
     """The package's own start-up (its lazy table of public names) in a package where
-    a model module takes ``strike`` from it: counting the start-up (an entry point) or
-    following the name to solver.stroke both catch it."""
+    a model module takes ``strike`` from it: the parser follows the name to
+    solver.stroke (_imports.public_api), so the upward import is caught."""
     root = package(
         {
             "__init__.py": (PACKAGE / "__init__.py").read_text(),

@@ -60,6 +60,24 @@ def _absolute(source: str, module: str, is_package: bool) -> str | None:
     return ".".join([*base, *([name] if name else [])])
 
 
+_API_ENTRY = re.compile(r'^\s*"(\w+)":\s*"\.([.\w]+)",?\s*$', re.M)
+
+
+def public_api() -> dict[str, str]:
+    """The package's lazy public API (``_API`` of its ``__init__``, read as text): each
+    name and the module below the package that defines it, so that ``from tennis_stroke
+    import strike`` counts as importing ``solver.stroke``."""
+    path = PACKAGE / "__init__.py"
+    return _api_of(path, path.stat().st_mtime_ns) if path.is_file() else {}
+
+
+@cache
+def _api_of(path: Path, mtime_ns: int) -> dict[str, str]:
+    text = path.read_text()
+    block = text.split("_API = {", 1)[1].split("}", 1)[0] if "_API = {" in text else ""
+    return dict(_API_ENTRY.findall(block))
+
+
 @cache
 def imports_of_file(path: Path) -> frozenset[str]:
     """Package modules that the Python file ``path`` imports (anywhere in it), and the
@@ -84,6 +102,8 @@ def imports_of_file(path: Path) -> frozenset[str]:
             sub = f"{target}.{alias}" if target else alias
             if alias and module_path(sub) is not None:  # "from . import x": a module
                 found.add(sub)
+            elif not target and alias in public_api():  # the lazy API: its module
+                found.add(public_api()[alias])
     for names in _IMPORT.findall(text):
         for alias in names.split(","):
             alias = alias.split(" as ")[0].strip()
