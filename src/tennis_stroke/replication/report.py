@@ -87,7 +87,7 @@ def _number(value, digits: int = 4) -> str:
 
 def _claim_row(claim: Mapping) -> dict:
     """What the page shows of one claim (a row of ``results/claims.csv``)."""
-    symbol, word = STATUS_WORDS.get(claim["status"], ("?", claim["status"]))
+    symbol, word, _ = STATUS_WORDS.get(claim["status"], ("?", claim["status"], ""))
     qualitative = str(claim["unit"]) == "1" and float(claim["tolerance"]) == 0
     if qualitative:
         paper = "yes" if float(claim["paper_value"]) else "no"
