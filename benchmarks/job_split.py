@@ -49,11 +49,10 @@ def kind(job: str) -> str:
     rule = re.split(r"[/]", job)[0]
     if rule.startswith("figure_"):
         return "figure"
-    if rule in KINDS:
-        return KINDS[rule]
     rule = re.sub(r"_\d+-of-\d+$", "", rule)  # a chunk's benchmark: fig2_0-of-1
-    if rule in KINDS:
-        return KINDS[rule]
+    for name in sorted(KINDS, key=len, reverse=True):  # claims_validation_fig7
+        if rule == name or rule.startswith(f"{name}_"):
+            return KINDS[name]
     family = {e.rule: e.family for e in EXPERIMENTS.values()}.get(rule)
     if family is None:
         raise SystemExit(f"job_split: no kind for job {job!r}")
