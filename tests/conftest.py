@@ -65,11 +65,9 @@ ROOT = Path(__file__).resolve().parents[1]
 def snakemake_command(targets, workdir, *options) -> list[str]:
     """Command line running this project's Snakefile on ``targets`` (a path or a list) in
     ``workdir``; targets come first, as options that take several values would swallow
-    them.  ``--quiet host`` replaces the workflow profile's ``quiet: [rules]``: the tests
-    read the rule blocks of a plan (tests/workflow/test_workflow.py checks the quiet log)."""
+    them."""
     targets = [targets] if isinstance(targets, str) else list(targets)
     snakemake = Path(sys.executable).with_name("snakemake")
-    quiet = [] if {"-q", "--quiet"} & set(options) else ["--quiet", "host"]
     return [
         str(snakemake),
         *targets,
@@ -77,7 +75,6 @@ def snakemake_command(targets, workdir, *options) -> list[str]:
         str(ROOT / "Snakefile"),
         "--directory",
         str(workdir),
-        *quiet,
         *options,
     ]
 

@@ -127,7 +127,7 @@ def test_claims_reads_a_table_with_a_byte_order_mark(tmp_path, capsys, monkeypat
     csv = tmp_path / "claims.csv"
     csv.write_bytes(b"\xef\xbb\xbf" + _table(tmp_path).to_csv(index=False).encode())
     code, out, err = _run(capsys, "claims", str(csv))
-    assert code == 0 and re.search(r"^claims: \d+ \(\d+ pass", out, re.M), (out, err)
+    assert code == 0 and re.search(r"^claims: \d+ \(\d+ reproduce", out, re.M), (out, err)
 
 
 def test_claims_exits_1_only_for_a_failed_claim(tmp_path, capsys, monkeypatch):

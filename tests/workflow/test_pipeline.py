@@ -5,7 +5,7 @@ from pathlib import Path
 
 import pytest
 
-from tennis_stroke.pipeline.jobs import logged
+from tennis_stroke.pipeline.jobs import SPLIT_PREFIX, logged
 
 
 def test_output_goes_to_the_log(tmp_path):
@@ -13,7 +13,9 @@ def test_output_goes_to_the_log(tmp_path):
     with logged(log):
         print("hello from the job")
         print("to stderr", file=sys.stderr)
-    assert log.read_text() == "hello from the job\nto stderr\n"
+    lines = log.read_text().splitlines()
+    assert lines[:2] == ["hello from the job", "to stderr"]
+    assert len(lines) == 3 and lines[2].startswith(SPLIT_PREFIX)  # then where time went
 
 
 def test_an_exception_ends_the_job_with_one_line_and_the_traceback_in_the_log(tmp_path, capsys):

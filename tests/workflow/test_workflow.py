@@ -350,22 +350,3 @@ def test_every_job_of_a_run_writes_its_benchmark_file(tiny_run):
     kinds = {path.relative_to(tiny_run / "benchmarks" / "workflow").parts[0] for path in benchmarks}
     assert "gather_map" in kinds and any(k.startswith("figure_") for k in kinds)
     assert len(benchmarks) == len(finished) > 0, (len(benchmarks), len(finished))
-
-
-def test_the_workflow_profile_keeps_the_log_to_progress_and_errors(tmp_path):
-    """profiles/default (read by Snakemake unasked) sets quiet: [rules]: a plan shows the
-    job stats but no rule block with its input paths; --quiet host shows them again."""
-    work = workdir(tmp_path, yaml.safe_load((ROOT / "config" / "config.yaml").read_text()))
-    command = snakemake_command("report", work, "-n", "--quiet", "host")
-    loud = subprocess.run(command, capture_output=True, text=True, timeout=300)
-    quiet = subprocess.run(
-        [c for c in command if c not in ("--quiet", "host")],
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    for done in (loud, quiet):
-        assert done.returncode == 0 and "Job stats" in done.stdout + done.stderr
-    assert "rule report_page:" in loud.stdout + loud.stderr
-    assert "rule report_page:" not in quiet.stdout + quiet.stderr
-    assert "    input: " not in quiet.stdout + quiet.stderr
