@@ -36,7 +36,7 @@ lock:
 ## target rule report names every result as an input, so one deleted by hand is rebuilt
 ## (docs/workflow.md, "Failing safe").
 report: $(STAMP)
-	$(BIN)/snakemake --cores $(JOBS) --quiet rules report
+	$(BIN)/snakemake report --cores $(JOBS) --quiet rules
 	$(BIN)/tennis-stroke claims results/claims.csv --junit results/claims.xml
 	$(BIN)/python tools/readme_results.py --check
 
