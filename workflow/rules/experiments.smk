@@ -9,6 +9,13 @@
 # Each row of the paper's experiments has a second rule for the what-if scenarios
 # (config/scenarios.yaml): the same job under results/scenarios/{scenario}/, its params
 # those of the scenario's configuration (tennis_stroke.pipeline.scenarios).
+#
+# The robustness analysis is the report's longest chain of jobs (identification ->
+# screen -> chunks -> claims), so its jobs go first when they are ready, and the
+# validation jobs after them; the other jobs fill the cores around them.  A priority
+# orders ready jobs only: it changes no result.
+
+CHAIN_PRIORITY = 20
 
 
 for _experiment, _where in ROW_RULES:
@@ -101,6 +108,7 @@ rule identification:
     benchmark:
         "benchmarks/workflow/identification.tsv"
     threads: 1
+    priority: CHAIN_PRIORITY
     params:
         **fit_set_arguments(config),
         common=common_params(),
@@ -123,6 +131,7 @@ rule robustness_screen:
     benchmark:
         "benchmarks/workflow/robustness_screen.tsv"
     threads: 1
+    priority: CHAIN_PRIORITY
     params:
         **fit_set_arguments(config),
         common=common_params(),
@@ -143,6 +152,7 @@ rule robustness_chunk:
     benchmark:
         "benchmarks/workflow/robustness_chunk_{chunk}-of-{chunks}.tsv"
     threads: 1
+    priority: CHAIN_PRIORITY
     params:
         common=common_params(),
         experiments=paper_experiments(),
@@ -165,6 +175,7 @@ rule claims_validation:
     wildcard_constraints:
         group="|".join(VALIDATION_GROUPS),
     threads: 1
+    priority: CHAIN_PRIORITY // 2
     params:
         common=common_params(),
         experiments=lambda w: job_params.group_config(config, w.group),

@@ -244,21 +244,26 @@ def real_array(what: str, value: object) -> np.ndarray:
     """``value`` as an array of finite floats, or :class:`ParameterError` naming ``what``:
     a boolean, a string, None or an array holding one is not a number (numpy would take
     ``True`` for 1 and ``'2'`` for 2), nor is a ragged list."""
-    bad = ParameterError(f"{what} must be a number or an array of numbers, got {_brief(value)}")
     if value is None or isinstance(value, (str, bytes)) or _has_bool(value):
-        raise bad
+        raise _not_a_number(what, value)
     try:
         arr = np.asarray(value)
         if arr.dtype == object:
             arr = np.asarray(arr.tolist())
     except (TypeError, ValueError):
-        raise bad from None
+        raise _not_a_number(what, value) from None
     if arr.dtype.kind not in "iuf":
-        raise bad
+        raise _not_a_number(what, value)
     arr = arr.astype(float)
     if not np.all(np.isfinite(arr)):
         raise ParameterError(f"{what} must be finite, got {_brief(value)}")
     return arr
+
+
+def _not_a_number(what: str, value: object) -> ParameterError:
+    """The error of a value that is not a number (made only when raised: the value's
+    ``repr`` costs more than the check on every stroke batch of a search)."""
+    return ParameterError(f"{what} must be a number or an array of numbers, got {_brief(value)}")
 
 
 def _brief(value: object) -> str:
