@@ -1,6 +1,7 @@
 """Parameters: defaults with units, derived quantities, readings, bad values."""
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -77,3 +78,29 @@ def test_parse_value():
     assert parse_value("inertia", "paper_text") == "paper_text"
     with pytest.raises(ParameterError, match="unknown parameter"):
         parse_value("nope", "1")
+
+
+def _probes(spec):
+    """Values of a parameter at, just beside and between its bounds."""
+    values = [spec.default if spec.default is not None else 1.0]
+    for bound in (spec.lower, spec.upper):
+        if bound is not None:
+            nudge = 1e-9 * max(abs(bound), 1.0)
+            values += [bound, bound - nudge, bound + nudge]
+    return values
+
+
+@pytest.mark.parametrize("name", sorted(PARAMETERS))
+def test_scalar_short_path_equals_the_array_path(name):
+    """A plain float (the short path of the checks) and the same value as a 1-element
+    array are accepted or refused alike, with the same float."""
+    for value in _probes(PARAMETERS[name]):
+        for kind in (float, np.float64):
+            try:
+                scalar = resolve_params({name: kind(value)})[name]
+            except ParameterError as exc:
+                with pytest.raises(ParameterError, match=re.escape(str(exc).split(", got")[0])):
+                    resolve_params({name: np.array([value])})
+                continue
+            assert type(scalar) is float
+            assert scalar == resolve_params({name: np.array([value])})[name][0]

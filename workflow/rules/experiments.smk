@@ -107,8 +107,8 @@ rule identification:
         "logs/identification.log",
     benchmark:
         "benchmarks/workflow/identification.tsv"
-    threads: 1
     priority: CHAIN_PRIORITY
+    threads: 1
     params:
         **fit_set_arguments(config),
         common=common_params(),
@@ -130,8 +130,8 @@ rule robustness_screen:
         "logs/robustness_screen.log",
     benchmark:
         "benchmarks/workflow/robustness_screen.tsv"
-    threads: 1
     priority: CHAIN_PRIORITY
+    threads: 1
     params:
         **fit_set_arguments(config),
         common=common_params(),
@@ -151,8 +151,8 @@ rule robustness_chunk:
         "logs/robustness_chunk/{chunk}-of-{chunks}.log",
     benchmark:
         "benchmarks/workflow/robustness_chunk_{chunk}-of-{chunks}.tsv"
-    threads: 1
     priority: CHAIN_PRIORITY
+    threads: 1
     params:
         common=common_params(),
         experiments=paper_experiments(),
@@ -174,8 +174,8 @@ rule claims_validation:
         "benchmarks/workflow/claims_validation_{group}.tsv"
     wildcard_constraints:
         group="|".join(VALIDATION_GROUPS),
-    threads: 1
     priority: CHAIN_PRIORITY // 2
+    threads: 1
     params:
         common=common_params(),
         experiments=lambda w: job_params.group_config(config, w.group),
