@@ -1,0 +1,21 @@
+"""Helpers the drawing functions share: axis labels from the files' attributes, a colour
+map with its colour bar."""
+
+from __future__ import annotations
+
+import matplotlib.pyplot as plt
+import xarray as xr
+
+
+def axis_label(da: xr.DataArray) -> str:
+    """``long_name (units)`` of ``da`` (its name without a long name)."""
+    return f"{da.attrs.get('long_name', da.name)} ({da.attrs.get('units', '')})"
+
+
+def colour_map(ax, da: xr.DataArray, x: str, y: str, cmap="viridis"):
+    """Colour map of ``da`` with ``x`` horizontal and ``y`` vertical, and its colour bar."""
+    mesh = ax.pcolormesh(da[x], da[y], da.transpose(y, x), shading="auto", cmap=cmap)
+    ax.set_xlabel(axis_label(da[x]))
+    ax.set_ylabel(axis_label(da[y]))
+    plt.colorbar(mesh, ax=ax, label=axis_label(da))
+    return mesh
