@@ -11,7 +11,7 @@ from conftest import ROOT
 
 from tennis_stroke.experiments.specs import RESULT_FILES, sorted_data
 from tennis_stroke.inference.claims import load_claims
-from tennis_stroke.replication.figures import DRAWERS
+from tennis_stroke.replication.figures import drawer, drawing_names
 from tennis_stroke.replication.marks import mark_values
 from tennis_stroke.replication.registry import FIGURES, OUR_SECTIONS, Figure, Mark
 
@@ -28,7 +28,7 @@ def test_an_entry_names_what_exists(name):
     figure = FIGURES[name]
     assert figure.name == name
     assert set(figure.files) <= set(RESULT_FILES)
-    assert figure.draw in DRAWERS
+    assert figure.draw in drawing_names()
     assert figure.section in PAPER_SECTIONS or figure.section in OUR_SECTIONS
     assert figure.of_paper == (figure.section in PAPER_SECTIONS)
     assert figure.of_paper == bool(re.fullmatch(r"fig\d\d_\w+", name))
@@ -81,3 +81,15 @@ def test_a_title_is_filled_from_a_file_s_attributes():
     assert figure.filled_title(attrs) == "L1 = 0.35 m at 120 deg"
     with pytest.raises(KeyError, match="theta0_deg"):
         figure.filled_title({"param_L1": 0.35})
+
+
+def test_every_drawing_module_is_one_function_of_its_name_and_a_bad_name_is_refused():
+    """Each module of the drawing package holds the function of its name (what
+    :func:`drawer` loads), every one is drawn by some figure, and an unknown name is a
+    one-line error naming the known ones."""
+    names = drawing_names()
+    assert set(names) == {f.draw for f in FIGURES.values()}
+    for name in names:
+        assert drawer(name).__name__ == name
+    with pytest.raises(KeyError, match="no drawing function 'axes'.*angle_map"):
+        drawer("axes")

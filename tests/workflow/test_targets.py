@@ -4,6 +4,7 @@ workflow's rules plan (a dry run of ``report``), not against the tables targets(
 built from."""
 
 import re
+from pathlib import Path
 
 from tennis_stroke.pipeline.targets import targets
 
@@ -60,3 +61,26 @@ def test_damaged_results_are_listed_and_a_results_file_is_one(tmp_path):
     assert damaged_results(tmp_path / "plain") == [
         (str(tmp_path / "plain"), "a file where the results folder should be")
     ]
+
+
+def test_a_figure_job_s_code_is_its_own_drawing_and_no_other(report_plan):
+    """A figure job's code inputs hold the drawing module of its registry entry and none
+    of the other drawings (figures.py imports the drawing by name), so an edit of one
+    drawing reruns only the figures it draws; the report job reads no drawing code."""
+    from tennis_stroke.replication.registry import FIGURES
+
+    drawings = {f.draw for f in FIGURES.values()}
+    figure_jobs = 0
+    for rule, inputs, outputs in report_plan.jobs:
+        used = {
+            Path(p).stem
+            for p in inputs
+            if Path(p).parent.name == "drawing" and Path(p).stem in drawings
+        }
+        if rule == "figure":
+            (png,) = outputs
+            assert used == {FIGURES[Path(png).stem].draw}, png
+            figure_jobs += 1
+        else:
+            assert not used, rule
+    assert figure_jobs == len(FIGURES)

@@ -87,11 +87,11 @@ def test_every_figure_is_drawn(tiny_run):
 def test_each_figure_draws_from_the_tiny_files_with_labelled_axes(tiny_run, name):
     import matplotlib.pyplot as plt
 
-    from tennis_stroke.replication.figures import DRAWERS
+    from tennis_stroke.replication.figures import drawer
 
     figure = FIGURES[name]
     datasets = [xr.load_dataset(tiny_run / path) for path in figure.inputs]
-    drawn = DRAWERS[figure.draw](datasets, figure.title, *figure.args)
+    drawn = drawer(figure.draw)(datasets, figure.title, *figure.args)
     try:
         main = drawn.axes[0]
         assert main.get_xlabel() and main.get_ylabel() and main.get_title()

@@ -364,6 +364,19 @@ def figure_inputs(wildcards):
 REGISTRY = PACKAGE_DIR / "replication" / "registry.py"
 
 
+@cache
+def drawing_code(draw):
+    """The code inputs of a figure job: the figure script's imports and the figure's own
+    drawing module (figures.py imports it by name, so only that drawing's edit reruns the
+    figure), less the registry."""
+    return code_inputs("figure.py", f"replication.drawing.{draw}", leave_out=[REGISTRY])
+
+
+def figure_code(wildcards):
+    """The code inputs of the job of figure ``name`` (:func:`drawing_code`)."""
+    return drawing_code(FIGURES[wildcards.name].draw)
+
+
 def figure_entry(wildcards):
     """A figure's registry entry as plain data (a param: editing one entry reruns its
     figure only)."""

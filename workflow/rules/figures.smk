@@ -6,7 +6,7 @@
 rule figure:
     input:
         figure_inputs,
-        code_inputs("figure.py", leave_out=[REGISTRY]),
+        figure_code,
     output:
         report(
             "results/figures/{name}.png",
@@ -32,7 +32,7 @@ rule figure:
 rule scenario_figure:
     input:
         scenario_figure_inputs,
-        code_inputs("figure.py", leave_out=[REGISTRY]),
+        figure_code,
     output:
         "results/scenarios/{scenario}/figures/{name}.png",
     log:

@@ -7,6 +7,8 @@ colour-bar labels come from the files' ``long_name`` and ``units`` attributes.
 
 from __future__ import annotations
 
+import importlib
+import pkgutil
 import textwrap
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
@@ -14,44 +16,27 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 
 from ..io.netcdf import load_result
-from .drawing.angle_map import angle_map
-from .drawing.claims_readings import claims_readings
-from .drawing.delay_map import delay_map
-from .drawing.elbow_force import elbow_force
-from .drawing.elbow_paths import elbow_paths
-from .drawing.ladder import ladder
-from .drawing.ladder_claims import ladder_claims
-from .drawing.ladder_cost import ladder_cost
-from .drawing.mass_length import mass_length
-from .drawing.omegas import omegas
-from .drawing.score_profiles import score_profiles
-from .drawing.stability import stability
-from .drawing.strobe import strobe
-from .drawing.v_tau import v_tau
-from .drawing.work_precision import work_precision
 from .registry import FIGURES, Figure
 
-#: The drawing functions by name (:attr:`tennis_stroke.replication.registry.Figure.draw`).
-DRAWERS: dict[str, Callable[..., plt.Figure]] = {
-    fn.__name__: fn
-    for fn in (
-        angle_map,
-        omegas,
-        mass_length,
-        delay_map,
-        v_tau,
-        strobe,
-        elbow_force,
-        elbow_paths,
-        work_precision,
-        stability,
-        ladder,
-        score_profiles,
-        claims_readings,
-        ladder_claims,
-        ladder_cost,
-    )
-}
+#: The package of the drawing functions, one module each named after its function.
+DRAWING = f"{__package__}.drawing"
+#: The drawing package's module of shared helpers (not a drawing function).
+HELPERS = "axes"
+
+
+def drawing_names() -> tuple[str, ...]:
+    """The drawing functions (:attr:`~tennis_stroke.replication.registry.Figure.draw`):
+    the modules of :data:`DRAWING` but its helpers."""
+    folder = Path(__file__).parent / "drawing"
+    return tuple(sorted(m.name for m in pkgutil.iter_modules([str(folder)]) if m.name != HELPERS))
+
+
+def drawer(name: str) -> Callable[..., plt.Figure]:
+    """The drawing function ``name``, imported from its own module only: a figure job
+    loads (and its code inputs list) the drawing it runs, not the others."""
+    if name not in drawing_names():
+        raise KeyError(f"no drawing function {name!r} (known: {', '.join(drawing_names())})")
+    return getattr(importlib.import_module(f"{DRAWING}.{name}"), name)
 
 
 def paper_marks(ax, marks: Sequence[Mapping], axes: Sequence[str]) -> None:
@@ -81,7 +66,7 @@ def drawn(
     figure, the paper's ``marks`` in red, ``note`` (a scenario's changes) as a second
     title line."""
     datasets = [load_result(p) for p in inputs]
-    fig = DRAWERS[figure.draw](datasets, figure.filled_title(datasets[0].attrs), *figure.args)
+    fig = drawer(figure.draw)(datasets, figure.filled_title(datasets[0].attrs), *figure.args)
     paper_marks(fig.axes[0], marks, figure.axes)
     if note:  # below the drawing's own title, wrapped to the figure's width
         ax = fig.axes[0]
