@@ -3,8 +3,8 @@
 The result files are named in the table of experiments
 (:data:`tennis_stroke.experiments.specs.RESULT_FILES`, by the key that claims and figures
 use).  :data:`FIGURES` gives every figure its
-section of the paper, the files it is drawn from, the drawing function of
-:mod:`tennis_stroke.replication.figures` with its extra arguments, and its title.  What
+section of the paper, the files it is drawn from, the drawing function (a module of
+:mod:`tennis_stroke.replication.drawing`) with its extra arguments, and its title.  What
 the paper says about a figure, with its numbers, is in ``config/claims.yaml``
 (``statements``), the only home of the paper's numbers.
 
@@ -43,8 +43,8 @@ OUR_SECTIONS = ("inference", "ladder", "study")
 class Figure:
     """One figure: file name (without ``.png``), section (where the report shows it: one
     of the paper's, ``III`` ... ``VI``, or of ours, :data:`OUR_SECTIONS`), result files
-    (keys of :data:`RESULT_FILES`), drawing function of
-    :mod:`tennis_stroke.replication.figures` and its extra arguments, and its title: a
+    (keys of :data:`RESULT_FILES`), drawing function (a module of
+    :mod:`tennis_stroke.replication.drawing`) and its extra arguments, and its title: a
     template filled from the first file's attributes (``{L1}`` is ``param_L1``), so a
     title never states a value the file does not hold.  ``marks``: the claims drawn on it;
     ``axes``: the coordinates along its x and y axes (a map's or a curve's, where marks
