@@ -17,6 +17,9 @@ SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 SOLVER = ("numba", "tennis_stroke.solver.stroke", "tennis_stroke.solver.compiled")
 #: Modules only some kinds of job use: drawing, the page's views, the searches and fits.
 DRAWING, VIEWS, SCIPY = ("matplotlib",), ("bokeh",), ("scipy",)
+#: The samplers' module (about 1 s to import): only the jobs that draw a Sobol design
+#: (the identification's starts, the screen's candidates) load it, when they sample.
+SAMPLING = ("scipy.stats",)
 #: Each script's heavy modules it must not import, by what the job does.
 ABSENT = {
     "simulate.py": (*SOLVER, *DRAWING, *VIEWS, *SCIPY),  # the solver loads on its first stroke
@@ -24,12 +27,12 @@ ABSENT = {
     "figure.py": (*SOLVER, *VIEWS, *SCIPY),  # draws from files
     "report.py": (*SOLVER, *DRAWING, *SCIPY),  # embeds the drawn figures, views on demand
     "scenario_report.py": (*SOLVER, *DRAWING, *SCIPY),
-    "claims.py": (*DRAWING, *VIEWS),  # searches: the solver and scipy.optimize
-    "claims_validation.py": (*DRAWING, *VIEWS),
-    "identification.py": (*DRAWING, *VIEWS),
-    "model_ladder.py": (*DRAWING, *VIEWS),
-    "robustness_chunk.py": (*DRAWING, *VIEWS),
-    "robustness_screen.py": (*DRAWING, *VIEWS),
+    "claims.py": (*DRAWING, *VIEWS, *SAMPLING),  # searches: the solver and scipy.optimize
+    "claims_validation.py": (*DRAWING, *VIEWS, *SAMPLING),
+    "identification.py": (*DRAWING, *VIEWS, *SAMPLING),  # samples when it fits
+    "model_ladder.py": (*DRAWING, *VIEWS, *SAMPLING),
+    "robustness_chunk.py": (*DRAWING, *VIEWS, *SAMPLING),
+    "robustness_screen.py": (*DRAWING, *VIEWS, *SAMPLING),  # samples when it screens
 }
 
 

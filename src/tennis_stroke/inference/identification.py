@@ -23,7 +23,6 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 from scipy.optimize import least_squares
-from scipy.stats import qmc
 
 from ..experiments.strokes import table1_cases
 from ..io.netcdf import labelled, provenance
@@ -197,6 +196,8 @@ def _starts(n_unknowns: int, count: int, seed: int) -> np.ndarray:
     """The range's centre and ``count - 1`` points of a scrambled Sobol design."""
     pts = [np.full(n_unknowns, 0.5)]
     if count > 1:
+        from scipy.stats import qmc  # about 1 s to import: only the samplers load it
+
         sobol = qmc.Sobol(n_unknowns, scramble=True, seed=seed)
         pts.extend(sobol.random(2 ** math.ceil(math.log2(count - 1)))[: count - 1])
     return np.array(pts)

@@ -26,7 +26,6 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
-from scipy.stats import qmc
 
 from ..experiments.specs import EXPERIMENTS, compute, merged
 from ..io.netcdf import labelled, provenance
@@ -52,6 +51,8 @@ def design(space: ReadingSpace) -> dict[str, np.ndarray]:
     spec = space.raw["multiverse"]
     names = unknowns(space)
     n = int(spec["candidates"])
+    from scipy.stats import qmc  # about 1 s to import: only the samplers load it
+
     sobol = qmc.Sobol(len(names), scramble=True, seed=int(spec["seed"]))
     u = sobol.random(2 ** math.ceil(math.log2(n)))[:n]
     return {name: space.continuous[name].from_unit(u[:, i]) for i, name in enumerate(names)}
