@@ -29,6 +29,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 from bokeh.core.properties import value as fixed_text
+from bokeh.document import Document
 from bokeh.embed import components
 from bokeh.layouts import column, row
 from bokeh.models import (
@@ -856,6 +857,13 @@ def _parallel_lines(ds: xr.Dataset, passed: np.ndarray) -> dict[str, list]:
 
 def page_views(views: Mapping[str, object]) -> tuple[str, dict[str, str]]:
     """Bokeh's inline resources with the one script of all ``views`` (one document), and
-    each view's div by name: what the page embeds."""
+    each view's div by name: what the page embeds.  The views go into one document in
+    one step: Bokeh walks a document's models again after each root it adds, so adding
+    them one by one (what ``components`` does with views of no document) walks them
+    once per view."""
+    document = Document()
+    with document.models.freeze():
+        for view in views.values():
+            document.add_root(view)
     script, divs = components(dict(views))
     return RESOURCES.render() + script, divs
