@@ -103,3 +103,37 @@ def test_the_cache_subfolder_is_numbas():
 
     for source in compiled_sources():
         assert cache_subfolder(source) == _CacheLocator.get_suitable_cache_subpath(str(source))
+
+
+#: The solver studies' fixed-step RK4 in a process that may not compile in place: a
+#: stroke (the work-precision study) and an isolated contact with RK4 and with a scipy
+#: method (the stability study).
+RK4 = """
+from tennis_stroke.solver.rk4 import fixed_step_stroke
+from tennis_stroke.solver.stroke import refusing_compiles
+from tennis_stroke.studies.stability import isolated_contact
+with refusing_compiles():
+    print(isolated_contact("scipy.DOP853", 1e-8, 1000.0))
+    print(isolated_contact("fixed.RK4", 1e-5, 1000.0))
+    print(fixed_step_stroke(100.0, 60.0, {}, 2e-4)["v_out_kmh"].hex())
+"""
+
+
+def test_the_studies_rk4_compiles_in_the_warm_up_not_in_the_job(tmp_path):
+    """RK4 runs model functions from Python: the warm-up's ``rk4`` group compiles them in
+    its own process, so a study job only loads them (it compiled them in place before,
+    and two such jobs could compile the same functions at once); twice the same bits."""
+    runs = [
+        subprocess.run(
+            [sys.executable, "-c", RK4],
+            env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)},
+            capture_output=True,
+            text=True,
+            timeout=900,
+        )
+        for _ in range(2)
+    ]
+    for done in runs:
+        assert done.returncode == 0, done.stderr[-2000:]
+    assert any(p.name.startswith("compiled-rk4-") for p in tmp_path.iterdir())
+    assert runs[0].stdout == runs[1].stdout

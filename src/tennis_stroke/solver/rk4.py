@@ -38,6 +38,7 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.params import resolve_params
+from .compiled import ensure_compiled
 from .results import NO_APPROACH, NO_PHI_ZERO, NO_RELEASE, OK, STATUS_NAMES, STEP_FAILURE
 
 #: The one status fixed-step RK4 adds to the solver's codes (:data:`STATUS_NAMES`): its
@@ -82,6 +83,7 @@ def fixed_phase(cf, t, y, t_stop, h, contact, event=None, max_steps=None):
     :func:`hermite` interpolant (Brent's method, to rounding), whose end derivative costs
     one evaluation more.
     """
+    ensure_compiled("rk4")
     evals = steps = 0
     while t < t_stop:
         t_seg = next_switch(t, cf, t_stop)

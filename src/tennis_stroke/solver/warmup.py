@@ -19,6 +19,29 @@ def warm_up(group: str) -> None:
     from .settings import SolverSettings
     from .stroke import solve_contact, strike_batch
 
+    if group == "rk4":  # the model functions RK4 and the studies call from Python
+        import math
+
+        from ..model.dynamics import (
+            compression_angles,
+            contact_duration,
+            effective_mass,
+            hit_offset,
+            mechanical_energy,
+        )
+        from .rk4 import contact_missed, fixed_phase, fixed_step_stroke
+
+        fixed_step_stroke(120.0, 81.5, {}, 1e-3)  # the work-precision study's strokes
+        cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
+        y0 = np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0])
+        trig = (math.sin(1.0), math.cos(1.0), math.sin(0.0), math.cos(0.0))
+        hit_offset(trig[0], trig[2], cf_row)  # the stability study's isolated contact
+        effective_mass(*trig, cf_row)
+        contact_duration(*trig, cf_row)
+        mechanical_energy(0.0, y0, cf_row, True)
+        contact_missed(cf_row, 0.0, y0, 1e-4, 0.01)
+        fixed_phase(cf_row, 0.0, y0, 0.01, 1e-4, True, compression_angles)
+        return
     if group == "reference":  # scipy's path: imported only here
         from .reference import free_swing, solve_stroke
 
