@@ -113,7 +113,8 @@ from tennis_stroke.solver.rk4 import fixed_step_stroke
 from tennis_stroke.solver.stroke import refusing_compiles
 from tennis_stroke.studies.stability import isolated_contact
 with refusing_compiles():
-    print(isolated_contact("scipy.DOP853", 1e-8, 1000.0))
+    for method in ("scipy.DOP853", "scipy.Radau", "scipy.LSODA"):
+        print(isolated_contact(method, 1e-3, 1000.0))
     print(isolated_contact("fixed.RK4", 1e-5, 1000.0))
     print(fixed_step_stroke(100.0, 60.0, {}, 2e-4)["v_out_kmh"].hex())
 """

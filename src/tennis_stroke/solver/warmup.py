@@ -41,6 +41,12 @@ def warm_up(group: str) -> None:
         mechanical_energy(0.0, y0, cf_row, True)
         contact_missed(cf_row, 0.0, y0, 1e-4, 0.01)
         fixed_phase(cf_row, 0.0, y0, 0.01, 1e-4, True, compression_angles)
+        from scipy.integrate import solve_ivp
+
+        from ..model.dynamics import angle_rhs
+
+        for method in ("Radau", "LSODA"):  # their Jacobians pass states of another layout
+            solve_ivp(angle_rhs(cf_row, 0.0, True), (0.0, 1e-3), y0, method=method)
         return
     if group == "reference":  # scipy's path: imported only here
         from .reference import free_swing, solve_stroke
