@@ -281,12 +281,7 @@ def _checked(spec: ParamSpec, value: object) -> float | np.ndarray:
     path with the same result: a search's stroke batches check some 25 scalars each."""
     if type(value) in _PLAIN_NUMBERS:
         number = float(value)
-        lo, hi = spec.lower, spec.upper
-        if (
-            math.isfinite(number)
-            and (lo is None or (number > lo if spec.strict else number >= lo))
-            and (hi is None or number <= hi)
-        ):
+        if math.isfinite(number) and _above_lower(spec, number) and _below_upper(spec, number):
             return number
     arr = _as_float_array(spec.name, value)
     _check_bounds(spec, arr)
@@ -297,15 +292,27 @@ def _checked(spec: ParamSpec, value: object) -> float | np.ndarray:
 _PLAIN_NUMBERS = (float, int, np.float64)
 
 
+def _above_lower(spec: ParamSpec, x):
+    """Whether ``x`` (a float, or elementwise an array) is within the lower bound."""
+    if spec.lower is None:
+        return True
+    return x > spec.lower if spec.strict else x >= spec.lower
+
+
+def _below_upper(spec: ParamSpec, x):
+    """Whether ``x`` (a float, or elementwise an array) is within the upper bound."""
+    return True if spec.upper is None else x <= spec.upper
+
+
 def _check_bounds(spec: ParamSpec, arr: np.ndarray) -> None:
     lo, hi = spec.lower, spec.upper
     unit = "" if spec.unit == "1" else f" {spec.unit}"  # a dimensionless bound reads bare
-    if lo is not None and (np.any(arr <= lo) if spec.strict else np.any(arr < lo)):
+    if not np.all(_above_lower(spec, arr)):
         rel = ">" if spec.strict else ">="
         raise ParameterError(
             f"parameter {spec.name!r} must be {rel} {lo:g}{unit}, got {_show(arr)}"
         )
-    if hi is not None and np.any(arr > hi):
+    if not np.all(_below_upper(spec, arr)):
         raise ParameterError(f"parameter {spec.name!r} must be <= {hi:g}{unit}, got {_show(arr)}")
 
 
