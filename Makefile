@@ -10,7 +10,7 @@ LOCK   := requirements.lock
 UV     := uv==0.13.9
 LOCKER := .venv-lock
 
-.PHONY: install lock report test lint bench kernels clean
+.PHONY: install lock report test check lint bench kernels clean
 
 install: $(STAMP)
 
@@ -40,9 +40,16 @@ report: $(STAMP)
 	$(BIN)/tennis-stroke claims results/claims.csv --junit results/claims.xml
 	$(BIN)/python tools/readme_results.py --check
 
-## The test suite (includes a tiny end-to-end workflow run).
+## The test suite on every core (pytest-xdist; tests that share a workflow run or a
+## server stay on one worker), the 25 slowest named at the end: every test, including a
+## tiny end-to-end workflow run, the browser, compile and SLURM tests (docs/testing.md).
 test: $(STAMP)
-	$(BIN)/python -m pytest
+	$(BIN)/python -m pytest -n $(JOBS) --dist loadgroup --durations=25
+
+## The fast tier while editing: every test that needs no workflow run, no browser, no
+## SLURM and no cold compile (pytest -m "not slow"), on every core.
+check: $(STAMP)
+	$(BIN)/python -m pytest -n $(JOBS) --dist loadgroup --durations=10 -m "not slow"
 
 lint: $(STAMP)
 	$(BIN)/check-jsonschema --builtin-schema vendor.github-workflows .github/workflows/replication.yml

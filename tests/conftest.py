@@ -1,5 +1,9 @@
 """Shared fixtures: the paper's default parameters and handy coefficient rows."""
 
+import fcntl
+import hashlib
+import json
+import os
 import re
 import shutil
 import signal
@@ -30,16 +34,31 @@ def pytest_configure(config):
         signal.signal(signal.SIGINT, signal.default_int_handler)
 
 
-#: Fixtures that run the workflow: a test using one is slow.
-WORKFLOW_FIXTURES = ("tiny_run", "moved")
+#: Fixtures that run the workflow (or plan it): a test using one is a workflow test.
+WORKFLOW_FIXTURES = ("tiny_run", "moved", "report_plan")
+#: The kinds of test that ``make check`` leaves out, by their markers (pyproject.toml), in
+#: the order a test's kind is named by (docs/testing.md, "Where the time goes").
+SLOW_KINDS = ("slurm", "browser", "compile", "workflow")
 
 
+@pytest.hookimpl(tryfirst=True)  # before xdist reads the groups (--dist loadgroup)
 def pytest_collection_modifyitems(items):
-    """Tests on a workflow run are marked slow: ``pytest -m "not slow"`` is the quick loop
-    while editing (``make test`` runs everything)."""
+    """A test's kind: a test on a workflow fixture is a workflow test; every test of a
+    kind of :data:`SLOW_KINDS` is also ``slow``, so ``pytest -m "not slow"`` (``make
+    check``) runs the fast tier.  The kind goes into the JUnit report as the property
+    ``kind`` (``tools/test_durations.py`` sums the durations by it)."""
     for item in items:
-        if set(WORKFLOW_FIXTURES) & set(getattr(item, "fixturenames", ())):
+        fixtures = set(getattr(item, "fixturenames", ()))
+        if set(WORKFLOW_FIXTURES) & fixtures:
+            item.add_marker(pytest.mark.workflow)
+        if "moved" in fixtures:  # one moved checkout, on one worker (make test: loadgroup)
+            item.add_marker(pytest.mark.xdist_group("moved"))
+        kinds = [k for k in SLOW_KINDS if item.get_closest_marker(k)]
+        if kinds:
             item.add_marker(pytest.mark.slow)
+        elif item.get_closest_marker("signals"):
+            kinds = ["signals"]
+        item.user_properties.append(("kind", kinds[0] if kinds else "unit"))
 
 
 @pytest.fixture(autouse=True)
@@ -125,16 +144,89 @@ def result_files(work, chunks=False):
     )
 
 
+def shared_folder(tmp_path_factory, name: str) -> Path:
+    """A folder ``name`` that every pytest-xdist worker of this test run shares, at the
+    depth of each worker's own temporary folders (a copy of it made by a test keeps the
+    relative paths of its code inputs); without xdist, one in the run's own folder."""
+    base = tmp_path_factory.getbasetemp()
+    root = base.parent / "shared" if os.environ.get("PYTEST_XDIST_WORKER") else base
+    return root / name
+
+
+def built_once(folder: Path, build) -> Path:
+    """``folder``, built by ``build(folder)`` by the first test process that asks for it
+    (an xdist worker) while the others wait on a file lock and then reuse it.  A build
+    that failed is not tried again: each asking process fails with its message."""
+    folder.parent.mkdir(parents=True, exist_ok=True)
+    done, failed = (folder.parent / f"{folder.name}.{s}" for s in ("done", "failed"))
+    with open(folder.parent / f"{folder.name}.lock", "w") as lock:
+        fcntl.flock(lock, fcntl.LOCK_EX)
+        if failed.exists():
+            pytest.fail(failed.read_text(), pytrace=False)
+        if not done.exists():
+            try:
+                build(folder)
+            except BaseException as error:
+                failed.write_text(f"building {folder.name} failed: {error}")
+                raise
+            done.touch()
+    return folder
+
+
 @pytest.fixture(scope="session")
 def tiny_run(tmp_path_factory):
-    """The whole workflow run once on the tiny configuration (tests/tiny.py); shared by the
-    workflow, report and file-format tests."""
+    """The whole workflow run once on the tiny configuration (tests/tiny.py), for the
+    whole test run (every xdist worker reads the same run): shared by the workflow,
+    report and file-format tests, which only read it.  A test that runs Snakemake in it
+    is in the xdist group ``tiny_run`` (one worker at a time)."""
     from tiny import TINY, TINY_READINGS
 
-    work = workdir(tmp_path_factory.mktemp("workflow"), TINY, TINY_READINGS)
-    done = run_snakemake("report", work, "--cores", "2", timeout=1200)
-    assert done.returncode == 0, done.stderr[-3000:]
-    return work
+    def build(folder):
+        work = workdir(folder, TINY, TINY_READINGS)
+        done = run_snakemake("report", work, "--cores", "2", timeout=1200)
+        assert done.returncode == 0, done.stderr[-3000:]
+
+    return built_once(shared_folder(tmp_path_factory, "workflow0"), build)
+
+
+#: The scenario of :func:`tiny_scenario`: its name, its override and its page.
+SCENARIO = ("strong", "scenarios={strong: {torque_delay: {base_stroke: {C2: 8.0}}}}")
+SCENARIO_PAGE = "report/scenarios/strong/index.html"
+
+
+def file_states(folder: Path) -> dict[str, list]:
+    """Every file below ``folder`` with the SHA-256 of its bytes and its modification
+    time (ns)."""
+    return {
+        str(p.relative_to(folder)): [
+            hashlib.sha256(p.read_bytes()).hexdigest(),
+            p.stat().st_mtime_ns,
+        ]
+        for p in sorted(folder.rglob("*"))
+        if p.is_file()
+    }
+
+
+@pytest.fixture(scope="session")
+def tiny_scenario(tiny_run, tmp_path_factory):
+    """A copy of the tiny run (at its depth, times kept) with the scenario of
+    :data:`SCENARIO` run beside the paper (its page :data:`SCENARIO_PAGE`), once per test
+    run: ``(folder, states)``, ``states`` the paper's ``results`` and ``report`` files
+    before the scenario ran (:func:`file_states`)."""
+    folder = shared_folder(tmp_path_factory, "scenario0")
+    before = folder.parent / "scenario0.before.json"
+
+    def build(work):
+        shutil.copytree(tiny_run, work, symlinks=True)
+        states = {top: file_states(work / top) for top in ("results", "report")}
+        before.write_text(json.dumps(states))
+        done = run_snakemake(
+            SCENARIO_PAGE, work, "--cores", "2", "--config", SCENARIO[1], timeout=1200
+        )
+        assert done.returncode == 0, done.stderr[-3000:]
+
+    built_once(folder, build)
+    return folder, json.loads(before.read_text())
 
 
 @dataclass(frozen=True)

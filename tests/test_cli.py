@@ -363,6 +363,7 @@ def _cpu_seconds(pid: int) -> float:
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
+@pytest.mark.signals
 @pytest.mark.skipif(not os.path.exists("/proc/self/stat"), reason="needs /proc (Linux)")
 def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path):
     """Ctrl-C while the sweep computes: exit 130 within a few seconds (a fail-safe bound,

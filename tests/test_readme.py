@@ -214,7 +214,7 @@ def test_the_readme_scenario_is_the_declared_one_and_valid():
     assert scenario_config(paper, name, overrides, schema)["torque_delay"]["base_stroke"]["C2"] == 8
 
 
-@pytest.mark.slow
+@pytest.mark.workflow
 def test_the_readme_scenario_commands_plan_what_they_say(tmp_path):
     """Each command of the README's scenario block as a dry run: the snakemake ones in a
     fresh working folder with the project's config (the checkout's own results may hold

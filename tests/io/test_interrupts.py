@@ -96,6 +96,7 @@ def test_the_previous_sigterm_handler_is_back_after_the_block():
     assert signal.getsignal(signal.SIGTERM) is before
 
 
+@pytest.mark.signals
 @pytest.mark.parametrize("signum, status", [(signal.SIGINT, 130), (signal.SIGTERM, 143)])
 def test_a_sweep_stopped_by_a_signal_ends_in_one_line(tmp_path, signum, status):
     out = tmp_path / "map.nc"
@@ -138,6 +139,7 @@ with terminate_raises():
 """
 
 
+@pytest.mark.signals
 def test_a_job_stops_when_its_snakemake_is_killed():
     """After kill -9 of Snakemake its jobs computed on and wrote their files: a job
     watches the Snakemake process named in its environment and stops within a second."""

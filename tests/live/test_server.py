@@ -21,6 +21,8 @@ from tennis_stroke.solver.stroke import strike_batch
 
 EXPLORE = [sys.executable, "-m", "tennis_stroke.cli", "explore"]
 browser_needed = pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason=MISSING)
+#: One worker runs the module: one explorer server and one browser for its tests.
+pytestmark = pytest.mark.xdist_group("explorer_server")
 
 #: The maps the page received since it opened (generation, level, time).
 MAPS_JS = "return window.__explore_maps || []"
@@ -106,6 +108,7 @@ def page_map(driver) -> np.ndarray:
     return np.array(rows, dtype=float).T
 
 
+@pytest.mark.browser
 @browser_needed
 def test_a_moved_control_shows_the_solver_s_strokes_at_the_new_setting(server, browser):
     folder, port = server
@@ -124,6 +127,7 @@ def test_a_moved_control_shows_the_solver_s_strokes_at_the_new_setting(server, b
         np.testing.assert_array_equal(shown, before["v_out_kmh"].astype(np.float32))
 
 
+@pytest.mark.browser
 @browser_needed
 def test_a_clicked_point_plays_its_stroke(server, browser):
     from selenium.webdriver.common.actions.action_builder import ActionBuilder
@@ -172,6 +176,7 @@ def test_a_websocket_from_another_origin_is_refused(server):
     assert websocket_status(port, f"http://127.0.0.1:{port}") != 403
 
 
+@pytest.mark.signals
 @pytest.mark.parametrize(
     ("signum", "code", "name"), [(signal.SIGINT, 130, "SIGINT"), (signal.SIGTERM, 143, "SIGTERM")]
 )
@@ -224,6 +229,7 @@ return null;
 """
 
 
+@pytest.mark.browser
 @browser_needed
 def test_a_value_out_of_bounds_cannot_be_typed(server, browser):
     from selenium.webdriver.common.keys import Keys

@@ -11,7 +11,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 import yaml
-from conftest import ROOT, merged, record_configuration, run_snakemake
+from conftest import ROOT, SCENARIO_PAGE, merged, record_configuration, run_snakemake
 
 from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS, STUDY_RESULTS
 from tennis_stroke.io.netcdf import load_result
@@ -244,6 +244,7 @@ def _in_browser(page: Path, width: int) -> dict:
     return json.loads(text)
 
 
+@pytest.mark.browser
 @pytest.mark.skipif(CHROMIUM is None, reason="no chromium on PATH (.ci/run installs it)")
 # 500 px: the narrowest window headless Chromium opens (a narrower --window-size gives 500).
 @pytest.mark.parametrize("width", [1280, 500])
@@ -268,16 +269,13 @@ def test_the_page_in_a_real_browser(tiny_run, tmp_path, width):
     print(f"screenshot: {shot}")
 
 
+@pytest.mark.browser
 @pytest.mark.skipif(CHROMIUM is None, reason="no chromium on PATH (.ci/run installs it)")
-def test_a_scenario_page_in_a_real_browser(tiny_run, tmp_path):
+def test_a_scenario_page_in_a_real_browser(tiny_scenario, tmp_path):
     """A scenario's page, built by the workflow beside the tiny run, at a phone width:
     its figures load, every claim is on it, nothing overflows, the network off."""
-    scenario = "scenarios={browsed: {torque_delay: {base_stroke: {C2: 8.0}}}}"
-    target = "report/scenarios/browsed/index.html"
-    work = tmp_path / "work"  # a copy: the shared tiny run keeps no scenario
-    shutil.copytree(tiny_run, work, symlinks=True)
-    done = run_snakemake(target, work, "--cores", "2", "--config", scenario, timeout=1200)
-    assert done.returncode == 0, done.stderr[-3000:]
+    work, _ = tiny_scenario  # a copy: the shared tiny run keeps no scenario
+    target = SCENARIO_PAGE
     page = tmp_path / "index.html"
     shutil.copy(work / target, page)
     seen = _in_browser(page, 500)

@@ -15,7 +15,11 @@ from tennis_stroke.experiments.specs import RESULT_FILES
 from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.replication import views
 
-pytestmark = pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason=MISSING)
+pytestmark = [
+    pytest.mark.browser,
+    pytest.mark.xdist_group("report_browser"),  # one browser for the module
+    pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason=MISSING),
+]
 
 
 @pytest.fixture(scope="module")

@@ -2,8 +2,11 @@
 gives the same bits as one that loads the cache (solver/warmup.py)."""
 
 import os
+import shutil
 import subprocess
 import sys
+
+import pytest
 
 #: Strokes of the tiny workflow's elbow-force map, where a process that compiled the
 #: solver in place once gave other last bits than the cached code (6e-14 km/h).
@@ -31,19 +34,36 @@ def _run(cache, **env):
     return done.stdout
 
 
-def test_an_empty_cache_gives_the_bits_of_a_full_one(tmp_path):
-    cold = _run(tmp_path)
-    assert any(p.name.startswith("compiled-") for p in tmp_path.iterdir())
-    assert (tmp_path / ".compile.lock").exists()
-    warm = _run(tmp_path)
+#: Tests that compile the solver (make check leaves them out).
+compiles = pytest.mark.compile
+#: One worker runs the module: its tests share one cold compile (cold_cache).
+pytestmark = pytest.mark.xdist_group("cold_cache")
+
+
+@pytest.fixture(scope="module")
+def cold_cache(tmp_path_factory):
+    """One process run on an empty cache (it compiles the default stroke batch), shared by
+    the tests that read what a cold compile leaves: ``(cache folder, its output)``.  A
+    test that changes the cache works on a copy."""
+    cache = tmp_path_factory.mktemp("cold-cache")
+    return cache, _run(cache)
+
+
+@compiles
+def test_an_empty_cache_gives_the_bits_of_a_full_one(cold_cache):
+    cache, cold = cold_cache
+    assert any(p.name.startswith("compiled-") for p in cache.iterdir())
+    assert (cache / ".compile.lock").exists()
+    warm = _run(cache)
     assert cold == warm
 
 
-def test_a_run_of_one_method_compiles_no_other(tmp_path):
+@compiles
+def test_a_run_of_one_method_compiles_no_other(cold_cache):
     """The method is a compile-time constant (solver/integrate.py): the stroke batch of
     DOP853 (the default) caches DOP853's step kernel and not DP54's."""
-    _run(tmp_path)
-    cached = {p.name.split("-")[0] for p in tmp_path.rglob("*.nbi")}
+    cache, _ = cold_cache
+    cached = {p.name.split("-")[0] for p in cache.rglob("*.nbi")}
     assert "_kernels.step_dop853" in cached
     assert not any("dp54" in name for name in cached), sorted(cached)
 
@@ -76,11 +96,14 @@ DAMAGES = {
 }
 
 
-def test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line(tmp_path):
+@compiles
+def test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line(cold_cache, tmp_path):
     """A truncated index or a data file of garbage gave a 40-line traceback through numba's
     caching on every call, as the marker still said the cache was complete; a lost data
     file made the process compile in place.  Each is now one line on stderr, the same
-    number, and a healthy cache for the next process."""
+    number, and a healthy cache for the next process (starting from a copy of the shared
+    cold cache)."""
+    shutil.copytree(cold_cache[0], tmp_path, dirs_exist_ok=True)
     first = _strike(tmp_path)
     assert first.returncode == 0 and "tennis-stroke" not in first.stderr, first.stderr[-2000:]
     for what, damage in DAMAGES.items():
@@ -120,6 +143,7 @@ with refusing_compiles():
 """
 
 
+@compiles
 def test_the_studies_rk4_compiles_in_the_warm_up_not_in_the_job(tmp_path):
     """RK4 runs model functions from Python: the warm-up's ``rk4`` group compiles them in
     its own process, so a study job only loads them (it compiled them in place before,

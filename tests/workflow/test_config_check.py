@@ -174,7 +174,7 @@ def test_bad_config_gives_one_line_naming_the_key(path, value, fragment):
     assert fragment in errors[0], errors[0]
 
 
-@pytest.mark.slow
+@pytest.mark.workflow
 def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
     config = copy.deepcopy(GOOD)
     config["solver"]["rtol"] = -1.0
@@ -190,7 +190,7 @@ def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
     assert "Traceback" not in done.stderr and "Job stats" not in done.stdout
 
 
-@pytest.mark.slow
+@pytest.mark.workflow
 @pytest.mark.parametrize(
     "path, value, fragment", BAD, ids=[".".join(map(str, b[0])) + f"={b[1]!r}"[:20] for b in BAD]
 )
@@ -259,7 +259,7 @@ def test_numbers_given_as_strings_are_numbers_again():
     }
 
 
-@pytest.mark.slow
+@pytest.mark.workflow
 def test_nested_command_line_overrides_work(tmp_path):
     # Snakemake reads the nested values as strings; the workflow takes them as numbers.
     done = run_snakemake(

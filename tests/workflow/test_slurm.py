@@ -14,7 +14,8 @@ import pytest
 from conftest import ROOT, assert_same_results, result_files, run_snakemake, workdir
 from tiny import TINY
 
-pytestmark = [pytest.mark.slurm, pytest.mark.slow]
+#: One worker runs the module (its two tests share the SLURM run of the module fixture).
+pytestmark = [pytest.mark.slurm, pytest.mark.xdist_group("slurm")]
 
 SCRIPT = ROOT / "tools" / "slurm" / "localhost_slurm.sh"
 #: The cluster's run directory, as in localhost_slurm.sh.

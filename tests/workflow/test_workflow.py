@@ -15,7 +15,9 @@ import xarray as xr
 import yaml
 from conftest import (
     ROOT,
+    SCENARIO_PAGE,
     assert_same_results,
+    file_states,
     result_files,
     run_snakemake,
     snakemake_command,
@@ -30,8 +32,8 @@ from tennis_stroke.replication.registry import FIGURES
 from tennis_stroke.replication.robustness import COLUMNS as ROBUSTNESS_COLUMNS
 from tennis_stroke.replication.robustness import ROBUSTNESS
 
-#: The workflow end to end: slow (pytest -m 'not slow' leaves it out).
-pytestmark = pytest.mark.slow
+#: The workflow end to end (make check leaves it out).
+pytestmark = pytest.mark.workflow
 
 
 def test_report_and_claims_are_built(tiny_run):
@@ -254,27 +256,15 @@ def override(section, value) -> str:
     return f"{section}={yaml.safe_dump(value, default_flow_style=True).strip()}"
 
 
-def _tree(folder):
-    """Every file below ``folder`` with its bytes and modification time."""
-    return {
-        str(p.relative_to(folder)): (p.read_bytes(), p.stat().st_mtime_ns)
-        for p in sorted(folder.rglob("*"))
-        if p.is_file()
-    }
-
-
-def test_a_scenario_runs_beside_the_paper_and_touches_none_of_its_files(tiny_run):
+def test_a_scenario_runs_beside_the_paper_and_touches_none_of_its_files(tiny_scenario):
     """A scenario given on the command line computes only the files its override changes,
     under results/scenarios/NAME/; every paper file keeps its bytes and time, the paper's
     configuration then plans no job, and the scenario's page and claims are explorations
     (no scoreboard, the gate says not graded)."""
-    paper = {top: _tree(tiny_run / top) for top in ("results", "report")}
-    scenario = "scenarios={strong: {torque_delay: {base_stroke: {C2: 8.0}}}}"
-    page = "report/scenarios/strong/index.html"
-    done = run_snakemake(page, tiny_run, "--cores", "2", "--config", scenario, timeout=1200)
-    assert done.returncode == 0, done.stderr[-3000:]
+    tiny_run, paper = tiny_scenario  # a copy of the tiny run, the scenario run beside it
+    page = SCENARIO_PAGE
     for top in ("results", "report"):
-        now = _tree(tiny_run / top)
+        now = file_states(tiny_run / top)
         assert {k: v for k, v in now.items() if not k.startswith("scenarios/")} == paper[top]
     own = sorted(
         str(p.relative_to(tiny_run / "results/scenarios/strong"))

@@ -24,7 +24,7 @@ from tennis_stroke.experiments.specs import EXPERIMENTS
 from tennis_stroke.pipeline.explain import rows_reading
 
 #: The workflow end to end: slow (pytest -m 'not slow' leaves it out).
-pytestmark = pytest.mark.slow
+pytestmark = pytest.mark.workflow
 
 #: The rules that must plan a job when a config key changes, by the key's path (the
 #: longest prefix applies): each key belongs to an experiment or a solver study, not only
