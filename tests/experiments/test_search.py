@@ -11,6 +11,7 @@ from tennis_stroke.experiments.search import (
     coarse_axis,
     first_crossing,
     maximize,
+    stacked,
 )
 from tennis_stroke.solver.settings import SolverSettings
 from tennis_stroke.solver.stroke import strike_batch
@@ -85,7 +86,9 @@ def test_failed_strokes_are_the_worst_value():
 
 def test_first_crossing_brackets_each_switch_to_its_tolerance():
     switch = np.array([0.123, 7.77, 2.5])
-    lo, hi = first_crossing(lambda x: x >= switch[:, None], np.zeros(3), np.full(3, 10.0), 1e-3)
+    lo, hi = first_crossing(
+        lambda x, index: x >= switch[index, None], np.zeros(3), np.full(3, 10.0), 1e-3
+    )
     assert np.all(hi - lo <= 1e-3) and np.all(lo < switch) and np.all(switch <= hi)
 
 
@@ -98,3 +101,57 @@ def test_the_stroke_objective_is_the_solver_and_counts_its_strokes():
     want = strike_batch(theta0[:, None], points[..., 0], {"L1": 0.35}, settings)["v_out_kmh"]
     assert np.array_equal(got, want)
     assert objective.evaluated.tolist() == [2, 2] and objective.failed.tolist() == [0, 0]
+
+
+def test_a_bracket_narrow_enough_is_left_alone_while_others_narrow():
+    """A problem's bracket is the same alone or beside others that need more iterations
+    (the searches of several readings run in lockstep)."""
+    switch = np.array([0.3, 7.77])
+    seen = []
+
+    def predicate(x, index):
+        seen.append(index.tolist())
+        return x >= switch[index, None]
+
+    together = first_crossing(predicate, np.array([0.0, 0.0]), np.array([1.0, 10.0]), 0.1)
+    alone = first_crossing(lambda x, i: x >= 0.3, np.zeros(1), np.ones(1), 0.1)
+    assert together[0][0] == alone[0][0] and together[1][0] == alone[1][0]
+    assert [0] not in seen[2:] and seen[0] == [0, 1] and seen[-1] == [1]
+
+
+def test_stacked_sets_share_what_they_give_alike_and_give_the_rest_per_problem():
+    models = [
+        {"L1": 0.4, "k_contact": 188.0, "inertia": "uniform_rod"},
+        {"L1": 0.4, "k_contact": 7800.0, "inertia": "paper_text"},
+    ]
+    shared, per = stacked(models, [2, 3])
+    assert shared == {"L1": 0.4}
+    assert per["k_contact"].tolist() == [188.0, 188.0, 7800.0, 7800.0, 7800.0]
+    assert per["inertia"].tolist() == ["uniform_rod"] * 2 + ["paper_text"] * 3
+    assert stacked(models[:1], [4]) == (models[0], {})
+    with pytest.raises(ValueError, match="do not all set 'k_contact'"):
+        stacked([{"k_contact": 1.0}, {"L1": 0.4}], [1, 1])
+
+
+def test_a_search_of_several_parameter_sets_gives_each_what_it_gives_alone():
+    """Two readings searched in lockstep (one batch of strokes per iteration): bit for
+    bit the optimum of each searched alone."""
+    settings = SolverSettings()
+    theta0 = np.array([80.0, 110.0])
+    models = [
+        {"L1": 0.4, "k_contact": 188.0, "inertia": "uniform_rod"},
+        {"L1": 0.4, "k_contact": 19000.0, "inertia": "paper_text"},
+    ]
+
+    def search(sets):
+        shared, per = stacked(sets, [theta0.size] * len(sets))
+        fixed = {"theta0": np.tile(theta0, len(sets)), **per}
+        n = theta0.size * len(sets)
+        objective = StrokeObjective(("delta0",), n, fixed, shared, settings)
+        return maximize(objective, n, [0.0], [100.0], [20.0], [0.5])
+
+    both = search(models)
+    alone = [search([m]) for m in models]
+    assert both.x.tobytes() == np.concatenate([a.x for a in alone]).tobytes()
+    assert both.value.tobytes() == np.concatenate([a.value for a in alone]).tobytes()
+    assert not np.array_equal(alone[0].value, alone[1].value)  # the readings differ

@@ -29,7 +29,7 @@ def args(key, config=CONFIG):
 def test_angle_rows_find_the_red_line_of_a_dense_map():
     a = args("fig2")
     a["theta0"] = {"start": 60.0, "stop": 120.0, "step": 30.0}
-    found = tg.angle_rows(a, SEARCH, {}, SETTINGS)
+    found = tg.angle_rows(a, SEARCH, [{}], SETTINGS)[0]
     dense = maps.angle_map(
         axis(a["theta0"]), np.arange(0.0, 100.01, 0.1), {"L1": a["L1"]}, SETTINGS
     )
@@ -44,7 +44,7 @@ def test_the_threshold_is_bracketed_to_its_tolerance_and_agrees_with_the_map():
     a = args("fig7")
     a["C2"] = {"start": 0.0, "stop": 4.0, "step": 0.05}
     a["tau"] = {"start": 0.0, "stop": 0.3, "step": 0.005}
-    found = tg.delay_threshold(a, SEARCH, {}, SETTINGS)
+    found = tg.delay_threshold(a, SEARCH, [{}], SETTINGS)[0]
     half = 0.5 * 0.005
     c2, best = found["C2"].values, found["best_tau"].values
     threshold = ms.measure_delay_threshold(found)
@@ -61,7 +61,7 @@ def test_the_threshold_is_bracketed_to_its_tolerance_and_agrees_with_the_map():
 
 
 def test_the_optima_of_figs_8_9_and_13_are_no_worse_than_any_grid_point():
-    fig9 = tg.delay_line(args("fig9"), SEARCH, {}, SETTINGS)
+    fig9 = tg.delay_line(args("fig9"), SEARCH, [{}], SETTINGS)[0]
     a9 = args("fig9")
     line = maps.torque_delay_section(
         a9["L1"], a9["theta0"], a9["C2"], a9["delta0"], a9["tau"], {}, SETTINGS
@@ -71,7 +71,7 @@ def test_the_optima_of_figs_8_9_and_13_are_no_worse_than_any_grid_point():
     a13 = copy.deepcopy(args("elbow_map"))
     a13["psi_f"] = {"start": 0.0, "stop": 360.0, "step": 20.0}
     a13["tau_f"] = {"start": -0.1, "stop": 0.1, "step": 0.05}
-    found = tg.elbow_extremes(a13, SEARCH, {}, SETTINGS)
+    found = tg.elbow_extremes(a13, SEARCH, [{}], SETTINGS)[0]
     grid = maps.elbow_force_section_map(
         a13["force"], a13["psi_f"], a13["tau_f"], a13["stroke"], {}, SETTINGS
     )
@@ -102,6 +102,48 @@ def test_the_targeted_evaluation_reads_no_map_step():
     assert stripped["torque_delay"]["fig7"]["tau"] == CONFIG["torque_delay"]["fig7"]["tau"]
     finer = copy.deepcopy(CONFIG)
     finer["torque_delay"]["fig9"]["tau"]["step"] = 0.001
-    a, b = (tg.delay_line(args("fig9", c), SEARCH, {}, SETTINGS) for c in (CONFIG, finer))
+    a, b = (tg.delay_line(args("fig9", c), SEARCH, [{}], SETTINGS)[0] for c in (CONFIG, finer))
     assert a.equals(b)
-    assert tg.delay_line(args("fig9", stripped), SEARCH, {}, SETTINGS).equals(a)
+    assert tg.delay_line(args("fig9", stripped), SEARCH, [{}], SETTINGS)[0].equals(a)
+
+
+def test_readings_searched_in_lockstep_get_the_files_each_gets_alone():
+    """Three readings (discrete and continuous unknowns, Figs. 5-6's largest L1) searched
+    together by searched_files_of: every file of every reading bit for bit the one
+    searched_files gives that reading alone (the robustness analysis' proof, on the tiny
+    grids; docs/inference.md, "Every reading's search in lockstep")."""
+    from conftest import assert_same_results
+    from snakemake.utils import validate
+    from tiny import TINY
+
+    config = copy.deepcopy(TINY)
+    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    models = [
+        {"k_contact": 7800.0, "ball_mass": 0.058, "inertia": "uniform_rod"},
+        {
+            "k_contact": 300.0,
+            "ball_mass": 0.057,
+            "inertia": "paper_text",
+            "contact_lead_rule": "half_period",
+            "collision_coupling": "paper_eq8",
+        },
+        {
+            "k_contact": 15000.0,
+            "ball_mass": 0.059,
+            "inertia": "uniform_rod",
+            "contact_lead_rule": "zero",
+            "collision_coupling": "newton",
+        },
+    ]
+    for m in models:  # every reading names every unknown, as experiment_config gives them
+        m.setdefault("contact_lead_rule", "quarter_period")
+        m.setdefault("collision_coupling", "newton")
+    l1_max = [None, 0.2, 0.5]
+    together = tg.searched_files_of([config] * 3, models, SETTINGS, l1_max)
+    for model, top, files in zip(models, l1_max, together, strict=True):
+        alone = tg.searched_files(config, model, SETTINGS, top)
+        assert files.keys() == alone.keys() == set(search_plan.SEARCHED)
+        for key in alone:
+            assert_same_results(files[key], alone[key])
+    # the readings differ, so the lockstep did not give every reading one answer
+    assert not together[0]["fig9"]["best_v_out"].equals(together[1]["fig9"]["best_v_out"])

@@ -104,3 +104,33 @@ def test_scalar_short_path_equals_the_array_path(name):
                 continue
             assert type(scalar) is float
             assert scalar == resolve_params({name: np.array([value])})[name][0]
+
+
+def test_a_reading_given_per_stroke_gives_each_stroke_the_rows_of_its_own_choice():
+    """Several readings in one batch (the claims' searches in lockstep): every stroke's
+    coefficient row is bit for bit the row of its choices given alone."""
+    from tennis_stroke.model.dynamics import coefficients
+
+    combos = [
+        ("uniform_rod", "half_period", "newton", "spring"),
+        ("paper_text", "quarter_period", "paper_eq8", "impact"),
+        ("uniform_rod", "zero", "paper_eq8", "swing_omega2"),
+    ]
+    names = ("inertia", "contact_lead_rule", "collision_coupling", "contact_model")
+    k = np.array([188.0, 7800.0, 19000.0])
+    per_stroke = {n: np.array([c[i] for c in combos], dtype=object) for i, n in enumerate(names)}
+    rows = coefficients(resolve_params({**per_stroke, "k_contact": k}), 90.0, 30.0)
+    for i, combo in enumerate(combos):
+        one = {**dict(zip(names, combo, strict=True)), "k_contact": k[i]}
+        alone = coefficients(resolve_params(one), 90.0, 30.0)
+        assert rows[i].tobytes() == alone[0].tobytes(), combo
+    # the choices matter: the rows differ where the readings do
+    assert len({r.tobytes() for r in rows}) == 3
+
+
+def test_a_bad_choice_among_per_stroke_choices_is_named():
+    bad = np.array(["uniform_rod", "hollow"], dtype=object)
+    with pytest.raises(ParameterError, match="reading 'inertia' must be one of .* got 'hollow'"):
+        resolve_params({"inertia": bad})
+    with pytest.raises(ParameterError, match="reading 'inertia' must be one of"):
+        resolve_params({"inertia": np.array([1.0, 2.0])})

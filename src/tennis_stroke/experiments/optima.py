@@ -4,7 +4,7 @@ so an edit of the search reruns this row and the claims' searches, not the maps.
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
@@ -12,7 +12,7 @@ import xarray as xr
 from ..solver.settings import SolverSettings
 from .grids import axis, select_rows
 from .maps import optimum_dataset
-from .search import StrokeObjective, maximize
+from .search import StrokeObjective, maximize, stacked
 
 
 def mass_length_optimum(
@@ -37,11 +37,37 @@ def mass_length_optimum(
     ``phi = 0`` of the optimal stroke; ``failed_strokes`` and ``evaluated_strokes`` count
     the strokes of each point's search that failed and that ran.
     """
-    mm, ll = np.meshgrid(np.asarray(m2, float), np.asarray(l1, float), indexing="ij")
-    n = mm.size
-    objective = StrokeObjective(
-        ("theta0", "delta0"), n, {"M2": mm.ravel(), "L1": ll.ravel()}, params, settings, threads
-    )
+    return mass_length_optima(
+        m2, [l1], coarse_step, tolerance, theta0_range, delta0_range, [params], settings, threads
+    )[0]
+
+
+def mass_length_optima(
+    m2: np.ndarray,
+    l1: Sequence[np.ndarray],
+    coarse_step: float,
+    tolerance: float,
+    theta0_range: tuple[float, float],
+    delta0_range: tuple[float, float],
+    models: Sequence[Mapping[str, object]],
+    settings: SolverSettings,
+    threads: int | None = None,
+) -> list[xr.Dataset]:
+    """:func:`mass_length_optimum` of every parameter set of ``models`` (model
+    overrides), set ``r`` on the ``L1`` values ``l1[r]``: one search for all of them,
+    every iteration one batch of strokes (the sets in lockstep).  Each set's file is the
+    one :func:`mass_length_optimum` gives it alone."""
+    m2 = np.asarray(m2, float)
+    meshes = [np.meshgrid(m2, np.asarray(x, float), indexing="ij") for x in l1]
+    counts = [mm.size for mm, _ in meshes]
+    n = sum(counts)
+    shared, per_problem = stacked(models, counts)
+    fixed = {
+        "M2": np.concatenate([mm.ravel() for mm, _ in meshes]),
+        "L1": np.concatenate([ll.ravel() for _, ll in meshes]),
+        **per_problem,
+    }
+    objective = StrokeObjective(("theta0", "delta0"), n, fixed, shared, settings, threads)
     lower, upper = (theta0_range[0], delta0_range[0]), (theta0_range[1], delta0_range[1])
     best = maximize(objective, n, lower, upper, (coarse_step, coarse_step), (tolerance, tolerance))
     at = objective.strike(best.x[:, None, :], np.arange(n))
@@ -59,10 +85,14 @@ def mass_length_optimum(
         "coarse_step_deg": coarse_step,
         "tolerance_deg": tolerance,
     }
-    variables = {k: v.reshape(mm.shape) for k, v in variables.items()}
-    return optimum_dataset(
-        np.asarray(m2, float), np.asarray(l1, float), variables, params, settings, attrs
-    )
+    out, offsets = [], np.cumsum([0, *counts])
+    for r, (mm, _) in enumerate(meshes):
+        part = slice(offsets[r], offsets[r + 1])
+        values = {k: v[part].reshape(mm.shape) for k, v in variables.items()}
+        out.append(
+            optimum_dataset(m2, np.asarray(l1[r], float), values, models[r], settings, attrs)
+        )
+    return out
 
 
 def mass_length_section(

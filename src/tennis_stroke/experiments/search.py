@@ -24,7 +24,7 @@ in one batch).
 
 from __future__ import annotations
 
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -172,7 +172,7 @@ def _bracketed(objective, grid, values, best, sign, tolerance):
 
 
 def first_crossing(
-    predicate: Callable[[np.ndarray], np.ndarray],
+    predicate: Callable[[np.ndarray, np.ndarray], np.ndarray],
     below: np.ndarray,
     above: np.ndarray,
     tolerance: float,
@@ -181,42 +181,79 @@ def first_crossing(
     """Narrow brackets ``[below, above]`` (one per problem, the predicate false at
     ``below`` and true at ``above``) around the switch of a boolean ``predicate`` to at
     most ``tolerance`` wide, evaluating ``points`` interior points per problem and
-    iteration (``predicate`` takes ``(problems, points)`` values and returns booleans of
-    that shape).  Returns the narrowed ``(below, above)``; where the predicate switches
-    more than once inside a bracket, the first switch of each iteration's points is
-    followed."""
+    iteration (``predicate`` takes ``(n, points)`` values of the problems ``index``
+    (``(n,)``, those whose bracket is still wider than ``tolerance``) and returns
+    booleans of that shape).  Returns the narrowed ``(below, above)``; where the
+    predicate switches more than once inside a bracket, the first switch of each
+    iteration's points is followed.  A problem's brackets do not depend on the other
+    problems: a bracket narrow enough is left as it is."""
     lo, hi = np.array(below, float), np.array(above, float)
     if tolerance <= 0:
         raise ValueError(f"the bracket tolerance must be > 0, got {tolerance}")
     fractions = np.arange(1, points + 1) / (points + 1)
-    while np.any(hi - lo > tolerance):
-        x = lo[:, None] + (hi - lo)[:, None] * fractions[None, :]
-        true = np.asarray(predicate(x), bool)
+    while True:
+        active = np.flatnonzero(hi - lo > tolerance)
+        if active.size == 0:
+            return lo, hi
+        a, b = lo[active], hi[active]
+        x = a[:, None] + (b - a)[:, None] * fractions[None, :]
+        true = np.asarray(predicate(x, active), bool)
         # the first true point: the bracket becomes (previous point, that point)
         first = np.where(true.any(axis=1), np.argmax(true, axis=1), points)
-        edges = np.concatenate([lo[:, None], x, hi[:, None]], axis=1)
-        rows = np.arange(lo.size)
-        lo, hi = edges[rows, first], edges[rows, first + 1]
-    return lo, hi
+        edges = np.concatenate([a[:, None], x, b[:, None]], axis=1)
+        rows = np.arange(active.size)
+        lo[active], hi[active] = edges[rows, first], edges[rows, first + 1]
 
 
 #: The axes a stroke search may vary: initial angles (degrees) and model parameters.
 ANGLES = ("theta0", "delta0")
 
 
+def _per_problem(value, problems: int) -> np.ndarray:
+    """One value per problem: numbers as floats, a reading's choices as strings."""
+    arr = np.asarray(value)
+    return np.broadcast_to(arr if arr.dtype.kind in "UO" else arr.astype(float), (problems,))
+
+
+def stacked(
+    models: Sequence[Mapping[str, object]], counts: Sequence[int]
+) -> tuple[dict[str, object], dict[str, np.ndarray]]:
+    """The model overrides of several parameter sets (``models``, each of plain scalars
+    and choices) as one batch of problems, set ``r`` owning the next ``counts[r]``
+    problems: ``(shared, per_problem)``, the values every set gives alike and, for the
+    others, one value per problem (:class:`StrokeObjective`'s ``params`` and
+    ``fixed``).  Every set must name the same parameters; one set is shared whole."""
+    if len(models) == 1:
+        return dict(models[0]), {}
+    keys = list(dict.fromkeys(k for m in models for k in m))
+    shared: dict[str, object] = {}
+    per_problem: dict[str, np.ndarray] = {}
+    for key in keys:
+        if any(key not in m for m in models):
+            raise ValueError(f"the parameter sets do not all set {key!r}")
+        values = [m[key] for m in models]
+        if any(np.ndim(v) != 0 for v in values):
+            raise ValueError(f"{key!r}: a parameter set searched in lockstep holds scalars")
+        if all(type(v) is type(values[0]) and v == values[0] for v in values):
+            shared[key] = values[0]
+        else:
+            kind = object if isinstance(values[0], str) else float
+            per_problem[key] = np.repeat(np.asarray(values, dtype=kind), counts)
+    return shared, per_problem
+
+
 class StrokeObjective:
     """The rebound speed v_out (km/h; NaN where the stroke fails) as a batch objective
     (:data:`Objective`) over ``axes`` (``theta0``, ``delta0`` in degrees, or model
     parameters such as ``tau`` or ``psi_F_deg``), with per-problem values ``fixed``
-    (arrays of one value per problem: angles or parameters) over the model overrides
-    ``params`` (which may hold ``theta0`` and ``delta0`` too).  ``failed`` and
-    ``evaluated`` count the strokes that failed and that ran, per problem."""
+    (arrays of one value per problem: angles, parameters or a reading's choices) over
+    the model overrides ``params`` (which may hold ``theta0`` and ``delta0`` too).
+    ``failed`` and ``evaluated`` count the strokes that failed and that ran, per
+    problem."""
 
     def __init__(self, axes, problems: int, fixed, params, settings, threads=None):
         self.axes, self.settings, self.threads = tuple(axes), settings, threads
-        self.fixed = {
-            k: np.broadcast_to(np.asarray(v, float), (problems,)) for k, v in fixed.items()
-        }
+        self.fixed = {k: _per_problem(v, problems) for k, v in fixed.items()}
         self.params = dict(params)
         self.failed = np.zeros(problems, dtype=np.int64)
         self.evaluated = np.zeros(problems, dtype=np.int64)

@@ -22,7 +22,7 @@ from .identification import quoted_variable
 from .labels import claim_facts, variable
 from .multiverse import experiment_config, reading_of
 from .reading_space import CLAIM_LEVEL, CURVE_FILES, ReadingSpace
-from .targeted import targeted_files
+from .targeted import targeted_files_of
 
 
 def variants(space: ReadingSpace) -> list[dict[str, str]]:
@@ -150,22 +150,24 @@ def evaluate_readings(
 ) -> xr.Dataset:
     """Every claim under every kept reading (or chunk ``rows = (index, count)`` of them,
     :func:`tennis_stroke.experiments.grids.chunk_rows`): the files the claims read, by
-    the targeted evaluation (:func:`tennis_stroke.inference.targeted.targeted_files`) on
-    the rows of the multiverse's resolution over the workflow ``config``, the claims
-    evaluated under every claim-level variant (:func:`readings_results`)."""
+    the targeted evaluation (:func:`tennis_stroke.inference.targeted.targeted_files_of`,
+    every reading's searches in lockstep) on the rows of the multiverse's resolution over
+    the workflow ``config``, the claims evaluated under every claim-level variant
+    (:func:`readings_results`)."""
     index = select_rows(np.arange(readings.sizes["reading"]), rows)
     cases = variants(space)
     values = np.full((index.size, len(cases), len(claims)), np.nan)
-    for n, i in enumerate(index):
-        reading = reading_of(readings, int(i))
-        cfg, model = experiment_config(config, space, reading)
-        results = targeted_files(
-            cfg,
-            model,
-            settings,
-            space.discrete["figure_curves"],
-            reading.get("fig6_L1_max"),
-            threads,
-        )
+    chosen = [reading_of(readings, int(i)) for i in index]
+    pairs = [experiment_config(config, space, r) for r in chosen]
+    configs, models = [c for c, _ in pairs], [m for _, m in pairs]
+    found = targeted_files_of(
+        configs,
+        models,
+        settings,
+        space.discrete["figure_curves"],
+        [r.get("fig6_L1_max") for r in chosen],
+        threads,
+    )
+    for n, (reading, results) in enumerate(zip(chosen, found, strict=True)):
         values[n] = evaluate_reading(claims, space, results, reading)[0]
     return readings_results(claims, space, readings.isel(reading=index), values, cases)

@@ -36,8 +36,14 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.grids import axis
-from ..experiments.optima import mass_length_optimum
-from ..experiments.search import StrokeObjective, coarse_axis, first_crossing, maximize
+from ..experiments.optima import mass_length_optima
+from ..experiments.search import (
+    StrokeObjective,
+    coarse_axis,
+    first_crossing,
+    maximize,
+    stacked,
+)
 from ..experiments.specs import EXPERIMENTS
 from ..experiments.strokes import table1_cases
 from ..solver.results import FILE_NAMES
@@ -57,49 +63,78 @@ def _dataset(variables: Mapping, coords: Mapping, **attrs) -> xr.Dataset:
     return ds
 
 
-def angle_rows(args: Mapping, search: Mapping, model, settings, threads=None) -> xr.Dataset:
-    """Figs. 2-3: the best ``delta0`` of every ``theta0`` row (a search along delta0)."""
+def _objective(axes, problems, fixed, models, counts, settings, threads) -> StrokeObjective:
+    """The objective of a search of several parameter sets in lockstep: set ``r`` of
+    ``models`` owns the next ``counts[r]`` problems; the search's per-problem values
+    ``fixed`` replace the sets' own, as they replace one set's overrides."""
+    shared, per_problem = stacked(models, counts)
+    return StrokeObjective(axes, problems, {**per_problem, **fixed}, shared, settings, threads)
+
+
+def _split(values: np.ndarray, sets: int) -> np.ndarray:
+    """Per-problem values of ``sets`` parameter sets with as many problems each, by set."""
+    return np.asarray(values).reshape(sets, -1, *np.shape(values)[1:])
+
+
+def angle_rows(
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+) -> list[xr.Dataset]:
+    """Figs. 2-3: the best ``delta0`` of every ``theta0`` row (a search along delta0),
+    for each parameter set of ``models`` (model overrides), all in one search."""
     theta0 = axis(args["theta0"])
-    d0 = args["delta0"]
-    objective = StrokeObjective(
+    d0, sets = args["delta0"], len(models)
+    n = theta0.size * sets
+    objective = _objective(
         ("delta0",),
-        theta0.size,
-        {"theta0": theta0},
-        {**model, "L1": args["L1"]},
+        n,
+        {"theta0": np.tile(theta0, sets)},
+        [{**m, "L1": args["L1"]} for m in models],
+        [theta0.size] * sets,
         settings,
         threads,
     )
     best = maximize(
         objective,
-        theta0.size,
+        n,
         [d0["start"]],
         [d0["stop"]],
         [search["angle_step"]],
         [search["angle_tolerance"]],
     )
-    return _dataset(
-        {"best_delta0": ("theta0", best.x[:, 0]), "best_v_out": ("theta0", best.value)},
-        {"theta0": theta0},
-    )
+    x, v = _split(best.x[:, 0], sets), _split(best.value, sets)
+    return [
+        _dataset(
+            {"best_delta0": ("theta0", x[r]), "best_v_out": ("theta0", v[r])},
+            {"theta0": theta0},
+        )
+        for r in range(sets)
+    ]
 
 
 def mass_length_ends(
-    args: Mapping, model, settings, l1_max: float | None = None, threads=None
-) -> xr.Dataset:
+    args: Mapping,
+    models: Sequence[Mapping],
+    settings,
+    l1_max: Sequence[float | None] | None = None,
+    threads=None,
+) -> list[xr.Dataset]:
     """Figs. 5-6: the optimum of every ``M2`` at the smallest and the largest ``L1`` of
-    the grid (the largest at most ``l1_max``)."""
-    l1 = axis(args["L1"])
-    if l1_max is not None:
-        l1 = l1[l1 <= l1_max + 1e-9]
-    ends = np.unique(l1[[0, -1]])
-    return mass_length_optimum(
+    the grid (the largest at most ``l1_max``, one per parameter set of ``models``)."""
+    l1_max = [None] * len(models) if l1_max is None else list(l1_max)
+    ends = []
+    for top in l1_max:
+        l1 = axis(args["L1"])
+        if top is not None:
+            l1 = l1[l1 <= top + 1e-9]
+        ends.append(np.unique(l1[[0, -1]]))
+    return mass_length_optima(
         axis(args["M2"]),
         ends,
         args["coarse_step"],
         args["tolerance"],
         tuple(args["theta0_range"]),
         tuple(args["delta0_range"]),
-        model,
+        models,
         settings,
         threads,
     )
@@ -110,36 +145,79 @@ def _ends(spec: Mapping) -> tuple[float, float]:
     return float(spec["start"]), float(spec["stop"])
 
 
-def _best_tau(c2: np.ndarray, tau, base, search, settings, threads):
-    objective = StrokeObjective(("tau",), c2.size, {"C2": c2}, base, settings, threads)
+def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, threads):
+    """The best delay of each ``C2`` value ``c2[i]`` under the parameter set
+    ``bases[owner[i]]`` (``owner`` ascending: each set's rows together)."""
+    counts = np.bincount(owner, minlength=len(bases))
+    used = np.flatnonzero(counts)
+    objective = _objective(
+        ("tau",),
+        c2.size,
+        {"C2": c2},
+        [bases[r] for r in used],
+        counts[used],
+        settings,
+        threads,
+    )
     return maximize(
         objective, c2.size, [tau[0]], [tau[-1]], [search["tau_step"]], [search["time_tolerance"]]
     )
 
 
-def delay_threshold(args: Mapping, search: Mapping, model, settings, threads=None) -> xr.Dataset:
+def delay_threshold(
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+) -> list[xr.Dataset]:
     """Fig. 7: ``best_tau`` on ``C2`` rows ``C2_step`` apart and on the two rows at most
     ``C2_tolerance`` apart where it leaves 0 for good (more than half a step of the
     configured ``tau`` grid, as :func:`~tennis_stroke.inference.measures.measure_delay_threshold`
-    reads it)."""
+    reads it), for each parameter set of ``models``."""
     tau = axis(args["tau"])
     half_step = 0.5 * float(tau[1] - tau[0])
     c2 = coarse_axis(args["C2"]["start"], args["C2"]["stop"], search["C2_step"])
-    base = {**model, "L1": args["L1"], "theta0": args["theta0"], "delta0": args["delta0"]}
-    best = _best_tau(c2, tau, base, search, settings, threads)
-    rows, taus, speeds = [c2], [best.x[:, 0]], [best.value]
-    positive = (best.x[:, 0] > half_step) & (c2 > 0)
-    first = next((i for i in range(c2.size) if c2[i] > 0 and positive[i:].all()), None)
-    if first is not None and first > 0:
+    sets = len(models)
+    bases = [
+        {**m, "L1": args["L1"], "theta0": args["theta0"], "delta0": args["delta0"]} for m in models
+    ]
+    best = _best_tau(
+        np.tile(c2, sets),
+        np.repeat(np.arange(sets), c2.size),
+        tau,
+        bases,
+        search,
+        settings,
+        threads,
+    )
+    found = [
+        ([c2], [x], [v])
+        for x, v in zip(_split(best.x[:, 0], sets), _split(best.value, sets), strict=True)
+    ]
+    crossing, below, above = [], [], []
+    for r, (_, (x,), _) in enumerate(found):
+        positive = (x > half_step) & (c2 > 0)
+        first = next((i for i in range(c2.size) if c2[i] > 0 and positive[i:].all()), None)
+        if first is not None and first > 0:
+            crossing.append(r)
+            below.append(c2[first - 1])
+            above.append(c2[first])
+    if crossing:
+        crossing = np.array(crossing)
 
-        def leaves_zero(values: np.ndarray) -> np.ndarray:
-            found = _best_tau(values.ravel(), tau, base, search, settings, threads)
-            rows.append(values.ravel())
-            taus.append(found.x[:, 0])
-            speeds.append(found.value)
-            return (found.x[:, 0] > half_step).reshape(values.shape)
+        def leaves_zero(values: np.ndarray, index: np.ndarray) -> np.ndarray:
+            owner = np.repeat(crossing[index], values.shape[1])
+            got = _best_tau(values.ravel(), owner, tau, bases, search, settings, threads)
+            x, v = got.x[:, 0].reshape(values.shape), got.value.reshape(values.shape)
+            for row, r in enumerate(crossing[index]):
+                found[r][0].append(values[row])
+                found[r][1].append(x[row])
+                found[r][2].append(v[row])
+            return x > half_step
 
-        first_crossing(leaves_zero, c2[[first - 1]], c2[[first]], search["C2_tolerance"])
+        first_crossing(leaves_zero, np.array(below), np.array(above), search["C2_tolerance"])
+    return [_threshold_file(rows, taus, speeds, tau) for rows, taus, speeds in found]
+
+
+def _threshold_file(rows, taus, speeds, tau) -> xr.Dataset:
+    """Fig. 7's file of one parameter set from the rows its searches evaluated."""
     c2_all, bt, bv = (np.concatenate(a) for a in (rows, taus, speeds))
     # keep the rows up to the narrowest bracket: every row below it false, above it true
     order = np.argsort(c2_all, kind="stable")
@@ -155,92 +233,122 @@ def _sec5_base(args: Mapping, model) -> dict:
     return {**model, "L1": args["L1"], "theta0": args["theta0"], "C2": args["C2"]}
 
 
-def delay_optimum(args: Mapping, search: Mapping, model, settings, threads=None) -> xr.Dataset:
-    """Fig. 8: the point of the largest ``v_out`` over ``(delta0, tau)``."""
+def delay_optimum(
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+) -> list[xr.Dataset]:
+    """Fig. 8: the point of the largest ``v_out`` over ``(delta0, tau)``, for each
+    parameter set of ``models``."""
     d0, tau = args["delta0"], _ends(args["tau"])
-    objective = StrokeObjective(
-        ("delta0", "tau"), 1, {}, _sec5_base(args, model), settings, threads
-    )
+    sets = len(models)
+    bases = [_sec5_base(args, m) for m in models]
+    objective = _objective(("delta0", "tau"), sets, {}, bases, [1] * sets, settings, threads)
     best = maximize(
         objective,
-        1,
+        sets,
         [d0["start"], tau[0]],
         [d0["stop"], tau[1]],
         [search["angle_step"], search["tau_step"]],
         [search["angle_tolerance"], search["time_tolerance"]],
     )
-    v = np.reshape(best.value, (1, 1))
-    return _dataset(
-        {
-            "v_out": (("delta0", "tau"), v),
-            "status": (("delta0", "tau"), np.where(np.isfinite(v), 0, 1)),
-        },
-        {"delta0": best.x[:, 0], "tau": best.x[:, 1]},
-    )
+    out = []
+    for r in range(sets):
+        v = np.reshape(best.value[r], (1, 1))
+        out.append(
+            _dataset(
+                {
+                    "v_out": (("delta0", "tau"), v),
+                    "status": (("delta0", "tau"), np.where(np.isfinite(v), 0, 1)),
+                },
+                {"delta0": best.x[r : r + 1, 0], "tau": best.x[r : r + 1, 1]},
+            )
+        )
+    return out
 
 
-def delay_line(args: Mapping, search: Mapping, model, settings, threads=None) -> xr.Dataset:
-    """Fig. 9: ``v_out`` at ``tau = 0`` (the grid's first delay) and at the best delay."""
+def delay_line(
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+) -> list[xr.Dataset]:
+    """Fig. 9: ``v_out`` at ``tau = 0`` (the grid's first delay) and at the best delay,
+    for each parameter set of ``models``."""
     tau = _ends(args["tau"])
-    base = {**_sec5_base(args, model), "delta0": args["delta0"]}
-    best = _best_tau(np.array([float(args["C2"])]), tau, base, search, settings, threads)
-    objective = StrokeObjective(("tau",), 1, {}, base, settings, threads)
-    v0 = objective(np.array([[[tau[0]]]]), np.arange(1))[0, 0]
-    v = np.array([[v0, best.value[0]]])
-    return _dataset(
-        {
-            "v_out": (("delta0", "tau"), v),
-            "status": (("delta0", "tau"), np.where(np.isfinite(v), 0, 1)),
-            "best_tau": ("delta0", best.x[:, 0]),
-            "best_v_out": ("delta0", best.value),
-        },
-        {"delta0": [float(args["delta0"])], "tau": [tau[0], best.x[0, 0]]},
-    )
+    sets = len(models)
+    bases = [{**_sec5_base(args, m), "delta0": args["delta0"]} for m in models]
+    c2 = np.full(sets, float(args["C2"]))
+    best = _best_tau(c2, np.arange(sets), tau, bases, search, settings, threads)
+    objective = _objective(("tau",), sets, {}, bases, [1] * sets, settings, threads)
+    v0 = objective(np.full((sets, 1, 1), tau[0]), np.arange(sets))[:, 0]
+    out = []
+    for r in range(sets):
+        v = np.array([[v0[r], best.value[r]]])
+        out.append(
+            _dataset(
+                {
+                    "v_out": (("delta0", "tau"), v),
+                    "status": (("delta0", "tau"), np.where(np.isfinite(v), 0, 1)),
+                    "best_tau": ("delta0", best.x[r : r + 1, 0]),
+                    "best_v_out": ("delta0", best.value[r : r + 1]),
+                },
+                {"delta0": [float(args["delta0"])], "tau": [tau[0], best.x[r, 0]]},
+            )
+        )
+    return out
 
 
-def elbow_extremes(args: Mapping, search: Mapping, model, settings, threads=None) -> xr.Dataset:
+def elbow_extremes(
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+) -> list[xr.Dataset]:
     """Fig. 13: ``v_out`` on the 2 x 2 grid of the directions and pulse delays of the
-    largest and the smallest ``v_out`` (each a search over ``(psi_F, tau_F)``)."""
+    largest and the smallest ``v_out`` (each a search over ``(psi_F, tau_F)``), for each
+    parameter set of ``models``."""
     force, stroke = args["force"], args["stroke"]
     psi, tau_f = _ends(args["psi_f"]), _ends(args["tau_f"])
     t_ref = float(stroke["tau_H"])
-    base = {
-        **model,
-        "L1": stroke["L1"],
-        "C2": stroke["C2"],
-        "tau": t_ref,
-        "F0": force["F0"],
-        "t_d": force["t_d"],
-        "theta0": stroke["theta0"],
-        "delta0": stroke["delta0"],
-    }
-    objective = StrokeObjective(("psi_F_deg", "t_F"), 1, {}, base, settings, threads)
+    sets = len(models)
+    bases = [
+        {
+            **m,
+            "L1": stroke["L1"],
+            "C2": stroke["C2"],
+            "tau": t_ref,
+            "F0": force["F0"],
+            "t_d": force["t_d"],
+            "theta0": stroke["theta0"],
+            "delta0": stroke["delta0"],
+        }
+        for m in models
+    ]
+    objective = _objective(("psi_F_deg", "t_F"), sets, {}, bases, [1] * sets, settings, threads)
     turn = 360.0 if np.isclose(psi[-1] - psi[0], 360.0) else None  # a full turn wraps
     found = [
         maximize(
             objective,
-            1,
+            sets,
             [psi[0], t_ref + tau_f[0]],
             [psi[-1], t_ref + tau_f[-1]],
             [search["psi_F_step"], search["tau_F_step"]],
             [search["angle_tolerance"], search["time_tolerance"]],
             sign=sign,
             periods=[turn, None],
-        ).x[0]
+        ).x
         for sign in (1.0, -1.0)
     ]
-    p = np.array([x[0] for x in found])
-    t = np.array([x[1] for x in found]) - t_ref
-    points = np.stack(np.meshgrid(p, t + t_ref, indexing="ij"), axis=-1).reshape(1, 4, 2)
-    res = objective.strike(points, np.arange(1))
-    return _dataset(
-        {
-            "v_out": (("psi_F", "tau_F"), res["v_out_kmh"].reshape(2, 2)),
-            "status": (("psi_F", "tau_F"), res["status"].reshape(2, 2)),
-        },
-        {"psi_F": p, "tau_F": t},
-        t_ref_s=t_ref,
-    )
+    p = np.stack([x[:, 0] for x in found], axis=1)  # (sets, 2): largest, smallest
+    t = np.stack([x[:, 1] for x in found], axis=1) - t_ref
+    points = np.stack(
+        [np.stack(np.meshgrid(p[r], t[r] + t_ref, indexing="ij"), axis=-1) for r in range(sets)]
+    ).reshape(sets, 4, 2)
+    res = objective.strike(points, np.arange(sets))
+    return [
+        _dataset(
+            {
+                "v_out": (("psi_F", "tau_F"), res["v_out_kmh"][r].reshape(2, 2)),
+                "status": (("psi_F", "tau_F"), res["status"][r].reshape(2, 2)),
+            },
+            {"psi_F": p[r], "tau_F": t[r]},
+            t_ref_s=t_ref,
+        )
+        for r in range(sets)
+    ]
 
 
 def table1_numbers(args: Mapping, model, settings) -> xr.Dataset:
@@ -257,6 +365,35 @@ def table1_numbers(args: Mapping, model, settings) -> xr.Dataset:
     )
 
 
+def _searched(key: str, args: Mapping, search: Mapping, models, l1_max, settings, threads):
+    """The files of the searched key ``key`` for the parameter sets ``models``."""
+    if key in ("fig2", "fig3"):
+        return angle_rows(args, search, models, settings, threads)
+    if key == "ml":
+        return mass_length_ends(args, models, settings, l1_max, threads)
+    run = {
+        "fig7": delay_threshold,
+        "fig8": delay_optimum,
+        "fig9": delay_line,
+        "elbow_map": elbow_extremes,
+    }
+    return run[key](args, search, models, settings, threads)
+
+
+def _same(a: object, b: object) -> bool:
+    """Whether two config values (mappings, sequences, arrays, scalars) are equal."""
+    if isinstance(a, Mapping) or isinstance(b, Mapping):
+        return (
+            isinstance(a, Mapping)
+            and isinstance(b, Mapping)
+            and a.keys() == b.keys()
+            and all(_same(a[k], b[k]) for k in a)
+        )
+    if isinstance(a, (list, tuple, np.ndarray)) or isinstance(b, (list, tuple, np.ndarray)):
+        return np.shape(a) == np.shape(b) and bool(np.all(np.asarray(a) == np.asarray(b)))
+    return type(a) is type(b) and a == b
+
+
 def searched_files(
     config: Mapping,
     model: Mapping[str, object],
@@ -269,17 +406,48 @@ def searched_files(
     ``config`` (its ``search`` section: the steps and tolerances; only the sections the
     files read are needed) with ``model`` overrides.  ``l1_max``: the largest ``L1`` of
     Figs. 5-6 (a reading; None: the grid's)."""
-    search, model = config["search"], dict(model)
-    run = {
-        "fig2": lambda a: angle_rows(a, search, model, settings, threads),
-        "fig3": lambda a: angle_rows(a, search, model, settings, threads),
-        "ml": lambda a: mass_length_ends(a, model, settings, l1_max, threads),
-        "fig7": lambda a: delay_threshold(a, search, model, settings, threads),
-        "fig8": lambda a: delay_optimum(a, search, model, settings, threads),
-        "fig9": lambda a: delay_line(a, search, model, settings, threads),
-        "elbow_map": lambda a: elbow_extremes(a, search, model, settings, threads),
-    }
-    return {key: run[key](EXPERIMENTS[key].arguments(config)) for key in keys}
+    return searched_files_of([config], [model], settings, [l1_max], threads, keys)[0]
+
+
+def searched_files_of(
+    configs: Sequence[Mapping],
+    models: Sequence[Mapping[str, object]],
+    settings: SolverSettings,
+    l1_max: Sequence[float | None] | None = None,
+    threads: int | None = 1,
+    keys: Sequence[str] = SEARCHED,
+) -> list[dict[str, xr.Dataset]]:
+    """:func:`searched_files` of several readings (reading ``r``: the workflow config
+    ``configs[r]``, the model overrides ``models[r]``, the largest ``L1`` ``l1_max[r]``)
+    in lockstep: the readings whose file reads the same arguments and search steps are
+    searched together, every iteration of the search one batch of strokes for all of
+    them.  Each reading gets the files :func:`searched_files` gives it alone: a search's
+    problems do not depend on each other."""
+    l1_max = [None] * len(models) if l1_max is None else list(l1_max)
+    out: list[dict[str, xr.Dataset]] = [{} for _ in models]
+    for key in keys:
+        groups: list[tuple[Mapping, Mapping, list[int]]] = []
+        for r, config in enumerate(configs):
+            args, search = EXPERIMENTS[key].arguments(config), config["search"]
+            for a, s, members in groups:
+                if _same(a, args) and _same(s, search):
+                    members.append(r)
+                    break
+            else:
+                groups.append((args, search, [r]))
+        for args, search, members in groups:
+            files = _searched(
+                key,
+                args,
+                search,
+                [models[r] for r in members],
+                [l1_max[r] for r in members],
+                settings,
+                threads,
+            )
+            for r, ds in zip(members, files, strict=True):
+                out[r][key] = ds
+    return out
 
 
 def targeted_files(
@@ -296,11 +464,29 @@ def targeted_files(
     :data:`SEARCHED` by :func:`searched_files`, Table I's numbers
     (:func:`table1_numbers`), the others (a few strokes each) computed whole.  ``keys``:
     only these result files (default: every paper file)."""
+    return targeted_files_of([config], [model], settings, curves, [l1_max], threads, keys)[0]
+
+
+def targeted_files_of(
+    configs: Sequence[Mapping],
+    models: Sequence[Mapping[str, object]],
+    settings: SolverSettings,
+    curves: Sequence[str] = ("free_swing",),
+    l1_max: Sequence[float | None] | None = None,
+    threads: int | None = 1,
+    keys: Sequence[str] | None = None,
+) -> list[dict[str, xr.Dataset]]:
+    """:func:`targeted_files` of several readings (as :func:`searched_files_of` takes
+    them), the searches in lockstep."""
     keys = [k for k in EXPERIMENTS if EXPERIMENTS[k].family == "paper"] if keys is None else keys
     skip = tuple(k for k in EXPERIMENTS if k not in keys) + SEARCHED + NUMBERS_ONLY
-    out = paper_results(config, dict(model), settings, curves, threads, skip=skip)
-    if "elbow" in keys:
-        elbow = EXPERIMENTS["elbow"].arguments({**config, "figure_curves": curves[0]})
-        out["elbow"] = table1_numbers(elbow, dict(model), settings)
     searched = [k for k in SEARCHED if k in keys]
-    return {**out, **searched_files(config, model, settings, l1_max, threads, searched)}
+    found = searched_files_of(configs, models, settings, l1_max, threads, searched)
+    out = []
+    for config, model, files in zip(configs, models, found, strict=True):
+        one = paper_results(config, dict(model), settings, curves, threads, skip=skip)
+        if "elbow" in keys:
+            elbow = EXPERIMENTS["elbow"].arguments({**config, "figure_curves": curves[0]})
+            one["elbow"] = table1_numbers(elbow, dict(model), settings)
+        out.append({**one, **files})
+    return out

@@ -35,7 +35,7 @@ from .labels import variable
 from .multiverse import experiment_config, paper_results, reading_of
 from .reading_space import ReadingSpace
 from .search_plan import SEARCHED
-from .targeted import searched_files
+from .targeted import searched_files_of
 
 #: The validation's jobs, by group: the searched files each checks.
 GROUPS = VALIDATION_GROUPS
@@ -103,12 +103,14 @@ def validate(
     checked = searched_claims(claims, keys)
     values = {k: np.full((index.size, len(checked)), np.nan) for k in ("targeted", "map")}
     half = np.zeros((index.size, len(checked)))
-    for n, i in enumerate(index):
-        reading = reading_of(readings, int(i))
-        cfg, model = experiment_config(config, space, reading)
-        l1_max = reading.get("fig6_L1_max")
+    chosen = [reading_of(readings, int(i)) for i in index]
+    pairs = [experiment_config(config, space, r) for r in chosen]
+    configs, models = [c for c, _ in pairs], [m for _, m in pairs]
+    l1_maxes = [r.get("fig6_L1_max") for r in chosen]
+    targeted = searched_files_of(configs, models, settings, l1_maxes, threads, keys)
+    for n, (cfg, model, l1_max) in enumerate(zip(configs, models, l1_maxes, strict=True)):
         found = {
-            "targeted": searched_files(cfg, model, settings, l1_max, threads, keys),
+            "targeted": targeted[n],
             "map": maps_of_reading(cfg, model, settings, l1_max, spec["ml_steps"], threads, keys),
         }
         for kind, results in found.items():

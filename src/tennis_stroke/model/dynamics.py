@@ -110,6 +110,18 @@ JIT_INNER = {**JIT, "no_cpython_wrapper": True}
 JIT_FAST_INNER = {**JIT_FAST, "no_cpython_wrapper": True}
 
 
+def _is_choice(value: object) -> bool:
+    """A reading's choice: a string, or an array of strings (one per stroke)."""
+    return isinstance(value, str) or np.asarray(value).dtype.kind in "UO"
+
+
+def _number_of(table: Mapping[str, float], choice) -> float | np.ndarray:
+    """The number ``table`` gives a choice, or each of an array of choices (one per
+    stroke).  (This module imports nothing of the package: tools/generate_kernels.py
+    loads it alone.)"""
+    return np.vectorize(table.__getitem__, otypes=[float])(choice)
+
+
 def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.ndarray:
     """Pack resolved parameters and initial angles into per-stroke coefficient rows.
 
@@ -125,7 +137,7 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
     ndarray, shape (n_strokes, N_CF)
         One row per stroke, all arrays broadcast together and flattened (C order).
     """
-    g = {k: np.asarray(v, dtype=float) for k, v in params.items() if not isinstance(v, str)}
+    g = {k: np.asarray(v, dtype=float) for k, v in params.items() if not _is_choice(v)}
     th0 = np.radians(np.asarray(theta0_deg, dtype=float))
     ph0 = th0 + np.radians(np.asarray(delta0_deg, dtype=float))
     shape = np.broadcast_shapes(th0.shape, ph0.shape, *(v.shape for v in g.values()))
@@ -151,7 +163,7 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
         CF_C2_OFF: g["C2_off"],
         CF_K: g["k_contact"],
         CF_MB: g["ball_mass"],
-        CF_COUPLING: _COUPLING_FACTOR[params["collision_coupling"]],
+        CF_COUPLING: _number_of(_COUPLING_FACTOR, params["collision_coupling"]),
         CF_VX1: g["vx_t1"],
         CF_VX2: g["vx_t2"],
         CF_VY1: g["vy_t1"],
@@ -165,7 +177,7 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
         CF_THETA0: th0,
         CF_PHI0: ph0,
         CF_FORCE_ON: (g["F0"] != 0.0).astype(float),
-        CF_CONTACT_MODEL: float(CONTACT_MODEL_IDS[params["contact_model"]]),
+        CF_CONTACT_MODEL: _number_of(CONTACT_MODEL_IDS, params["contact_model"]),
         CF_DAMP: contact_damping(g["restitution"], g["ball_mass"], g["M2"], g["k_contact"]),
     }
     # The columns that are one value for every stroke go in as one row, copied to every

@@ -349,6 +349,36 @@ def two_body_period(ball_mass, racket_mass, k_contact):
 
 
 _LEAD_FRACTION = {"half_period": 0.5, "quarter_period": 0.25, "zero": 0.0}
+#: I_cm / (M L^2) of each rod by the ``inertia`` reading.
+_INERTIA_FACTOR = {"uniform_rod": 1.0 / 12.0, "paper_text": 0.5}
+
+
+def choice_value(table: Mapping[str, float], choice: str | np.ndarray) -> float | np.ndarray:
+    """The number ``table`` gives a checked choice: a float for one choice, an array of
+    floats for one choice per stroke (the same numbers element by element)."""
+    if isinstance(choice, str):
+        return table[choice]
+    return np.array([table[c] for c in choice.ravel().tolist()], float).reshape(choice.shape)
+
+
+def _choice(reading: Reading, choice: object) -> str | np.ndarray:
+    """A checked choice of ``reading``: one string, or an array of strings (one per
+    stroke: several readings computed in one batch)."""
+    if isinstance(choice, np.ndarray) and choice.dtype.kind in "UO":
+        values = choice.astype(object)
+        for value in dict.fromkeys(values.ravel().tolist()):
+            _one_choice(reading, value)
+        return values
+    return _one_choice(reading, choice)
+
+
+def _one_choice(reading: Reading, choice: object) -> str:
+    if not isinstance(choice, str) or choice not in reading.choices:
+        kind = "reading" if reading.name in READINGS else "model option"
+        raise ParameterError(
+            f"{kind} {reading.name!r} must be one of {', '.join(reading.choices)}, got {choice!r}"
+        )
+    return choice
 
 
 def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, object]:
@@ -358,16 +388,17 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
     ----------
     overrides : mapping, optional
         Parameter values (scalars or arrays that broadcast together) and reading choices
-        (strings) that replace the defaults.
+        (strings, or arrays of strings: one choice per stroke, as the claims' searches
+        give several readings in one batch) that replace the defaults.
 
     Returns
     -------
     dict
         Every parameter of :data:`PARAMETERS` (float or ndarray, SI units) and every
-        reading and model option of :data:`CHOICES` (str).  Derived values: ``I1_cm =
-        f M1 L1^2`` and ``I2_cm = f M2 L2^2`` with ``f = 1/12`` (``uniform_rod``) or ``1/2``
-        (``paper_text``); ``contact_lead`` = the fraction of ``T`` (Eq. 12) set by
-        ``contact_lead_rule``.
+        reading and model option of :data:`CHOICES` (str, or an object array of str).
+        Derived values: ``I1_cm = f M1 L1^2`` and ``I2_cm = f M2 L2^2`` with ``f =
+        1/12`` (``uniform_rod``) or ``1/2`` (``paper_text``); ``contact_lead`` = the
+        fraction of ``T`` (Eq. 12) set by ``contact_lead_rule``.
 
     Raises
     ------
@@ -377,13 +408,7 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
     overrides = dict(overrides or {})
     out: dict[str, object] = {}
     for name, reading in CHOICES.items():
-        choice = overrides.pop(name, reading.default)
-        if choice not in reading.choices:
-            kind = "reading" if name in READINGS else "model option"
-            raise ParameterError(
-                f"{kind} {name!r} must be one of {', '.join(reading.choices)}, got {choice!r}"
-            )
-        out[name] = choice
+        out[name] = _choice(reading, overrides.pop(name, reading.default))
 
     unknown = [k for k in overrides if k not in PARAMETERS]
     if unknown:
@@ -395,14 +420,15 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
             out[name] = _checked(spec, overrides[name])
         else:
             out[name] = spec.default
-    factor = 1.0 / 12.0 if out["inertia"] == "uniform_rod" else 0.5
+    factor = choice_value(_INERTIA_FACTOR, out["inertia"])
     if out["I1_cm"] is None:
         out["I1_cm"] = _scalar(factor * np.asarray(out["M1"]) * np.asarray(out["L1"]) ** 2)
     if out["I2_cm"] is None:
         out["I2_cm"] = _scalar(factor * np.asarray(out["M2"]) * np.asarray(out["L2"]) ** 2)
     if out["contact_lead"] is None:
         period = two_body_period(out["ball_mass"], out["M2"], out["k_contact"])
-        out["contact_lead"] = _scalar(_LEAD_FRACTION[out["contact_lead_rule"]] * period)
+        fraction = choice_value(_LEAD_FRACTION, out["contact_lead_rule"])
+        out["contact_lead"] = _scalar(fraction * period)
     try:
         np.broadcast_shapes(*(np.shape(out[n]) for n in PARAMETERS))
     except ValueError:
