@@ -3,12 +3,13 @@ robustness chunk's work) on a few kept readings of a finished run.
 
 Usage (from the project's folder, after ``snakemake -j2 report``)::
 
-    python benchmarks/profile_readings.py [--readings 2] [--top 25]
+    python benchmarks/profile_readings.py [--readings 2] [--top 25] [--sort cumulative]
 
 It reads the shipped configuration as the workflow does (the schema's defaults, one
 spelling per value), the kept readings ``results/robustness/readings.nc``, evaluates the
 first ``--readings`` once untimed (the compiled code's first load), then again under
-cProfile, and prints the elapsed time and the functions by their own time.  Used in
+cProfile, and prints the elapsed time and the functions by their own time (or, with
+``--sort cumulative``, by the time spent in them and what they call).  Used in
 issue 35 to find the ``repr`` of every parameter value that a search's stroke batches
 paid for an error they never raised.
 """
@@ -37,6 +38,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--readings", type=int, default=2, help="kept readings to profile")
     parser.add_argument("--top", type=int, default=25, help="functions to print")
+    parser.add_argument(
+        "--sort", default="tottime", help="pstats order: tottime (own time) or cumulative"
+    )
     args = parser.parse_args()
     config = yaml.safe_load(open("config/config.yaml"))
     validate(config, SCHEMA, set_default=True)
@@ -55,7 +59,7 @@ def main() -> None:
     evaluate_readings(claims, space, kept, experiments, settings, rows, 1)
     profile.disable()
     print(f"elapsed under cProfile: {time.perf_counter() - start:.2f} s")
-    pstats.Stats(profile).sort_stats("tottime").print_stats(args.top)
+    pstats.Stats(profile).sort_stats(args.sort).print_stats(args.top)
 
 
 if __name__ == "__main__":
