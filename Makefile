@@ -14,8 +14,10 @@ LOCKER := .venv-lock
 
 install: $(STAMP)
 
-## Exactly the lock (hashes checked), then the project itself without dependencies.
+## Exactly the lock (hashes checked), then the project itself without dependencies; first
+## one line and nothing installed if pyproject.toml's dependencies changed after the lock.
 $(STAMP): pyproject.toml $(LOCK)
+	$(PYTHON) tools/lock_check.py
 	$(PYTHON) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --require-hashes --no-deps -r $(LOCK)
 	$(BIN)/python -m pip install --quiet --no-deps --no-build-isolation -e .
@@ -28,6 +30,7 @@ lock:
 	$(LOCKER)/bin/uv pip compile pyproject.toml --extra test --extra workflow --extra slurm \
 	    --generate-hashes --python-version 3.11 --python-platform x86_64-manylinux_2_28 \
 	    --custom-compile-command "make lock" $(if $(UPGRADE),--upgrade) -o $(LOCK)
+	$(PYTHON) tools/lock_check.py --write
 
 ## The replication: every experiment, figure and claim, then report/index.html; fails
 ## when a claim marked `reproduce` in config/claims.yaml fails, or when the results that

@@ -2,6 +2,9 @@
 `make install` installs exactly the lock, and the lock holds every declared dependency
 at a version the declared range admits."""
 
+import shutil
+import subprocess
+import sys
 import tomllib
 from pathlib import Path
 
@@ -51,3 +54,30 @@ def test_a_difference_from_the_lock_is_named(tmp_path):
     lock.write_text(LOCK.read_text().replace("\nnumpy==", "\nnumpy==0.0.1+x\n    # was ", 1))
     differ = lock_differences(lock)
     assert any(d.startswith("numpy ") and d.endswith("(locked 0.0.1+x)") for d in differ)
+
+
+def test_an_edit_of_the_dependencies_without_make_lock_stops_make_install_in_one_line(
+    tmp_path,
+):
+    """make install runs tools/lock_check.py first: the shipped lock is pyproject's; a new
+    range or a new dependency without `make lock` stops it in one line, before any venv
+    exists; a comment or the description changes nothing."""
+    for name in ("Makefile", "pyproject.toml", "requirements.lock", "tools/lock_check.py"):
+        (tmp_path / name).parent.mkdir(exist_ok=True)
+        shutil.copy(ROOT / name, tmp_path / name)
+    check = [sys.executable, str(tmp_path / "tools/lock_check.py"), "--root", str(tmp_path)]
+    assert subprocess.run(check, capture_output=True).returncode == 0
+    text = (tmp_path / "pyproject.toml").read_text()
+    harmless = text.replace('description = "', 'description = "A ', 1) + "\n# a comment\n"
+    (tmp_path / "pyproject.toml").write_text(harmless)
+    assert subprocess.run(check, capture_output=True).returncode == 0
+    for edit in ('"numpy>=2.0,<2.6"', '"numpy>=2.6"'), ('"tqdm>=4.60",', '"tqdm>=4.60", "rich",'):
+        (tmp_path / "pyproject.toml").write_text(text.replace(*edit, 1))
+        done = subprocess.run(
+            ["make", "-C", str(tmp_path), "install", "PYTHON=" + sys.executable],
+            capture_output=True,
+            text=True,
+        )
+        errors = [line for line in done.stderr.splitlines() if line.startswith("lock_check")]
+        assert done.returncode != 0 and len(errors) == 1 and "run make lock" in errors[0]
+        assert not (tmp_path / ".venv").exists()

@@ -738,19 +738,22 @@ def _config(args: argparse.Namespace) -> int:
 
 def _whatif(args: argparse.Namespace) -> int:
     import shlex
-    import subprocess
     from pathlib import Path
 
     import yaml
 
+    from .io.interrupts import run_forwarding
     from .pipeline.scenarios import ScenarioError, folder, load_scenarios, override_from
     from .replication.registry import paper_figure
 
     if not Path("Snakefile").is_file():
         raise ValueError(f"no Snakefile in {Path.cwd()}: run whatif from the project's folder")
     try:
-        declared = load_scenarios("config/scenarios.yaml")
+        others: dict = {}  # another scenario's error does not stop this one
+        declared = load_scenarios("config/scenarios.yaml", errors=others)
         overrides = override_from(args.set) if args.set else None
+        if overrides is None and args.name in others:
+            raise ScenarioError(others[args.name])
         if overrides is None and args.name not in declared:
             known = ", ".join(sorted(declared)) or "none"
             raise ScenarioError(
@@ -772,10 +775,10 @@ def _whatif(args: argparse.Namespace) -> int:
     if args.dry_run:
         command.append("-n")
     print("$ " + shlex.join(["snakemake", *command[3:]]), flush=True)
-    done = subprocess.run(command, check=False)
-    if done.returncode == 0 and not args.dry_run:
+    code = run_forwarding(command)  # Ctrl-C: Snakemake removes its locks, then we stop
+    if code == 0 and not args.dry_run:
         print("\n".join(targets))
-    return done.returncode
+    return code
 
 
 def main(argv: Sequence[str] | None = None) -> int:

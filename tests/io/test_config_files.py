@@ -2,10 +2,15 @@
 file and line, exponent numbers are numbers (as in YAML 1.2, also in claims.yaml), and a
 file that is not UTF-8 is one line."""
 
+import time
+from pathlib import Path
+
 import pytest
 import yaml
 
 from tennis_stroke.io.config_files import ConfigFileError, load_yaml
+
+ROOT = Path(__file__).resolve().parents[2]
 
 
 def test_a_duplicate_key_is_refused_naming_file_and_line(tmp_path):
@@ -51,3 +56,52 @@ def test_a_file_that_is_not_utf8_is_one_line(tmp_path):
     path.write_bytes(b"model: {}\nname: \xff\xfe\n")
     with pytest.raises(ConfigFileError, match="config.yaml: not a UTF-8 text file"):
         load_yaml(path)
+
+
+def bomb(levels: int, nested_in: str = "") -> str:
+    """YAML of ``levels`` levels of nine references each (9^levels values expanded),
+    below the mapping keys ``nested_in`` (dotted) if given."""
+    lines = ["l0: &l0 [1, 2, 3, 4, 5, 6, 7, 8, 9]"]
+    lines += [f"l{i}: &l{i} [{', '.join([f'*l{i - 1}'] * 9)}]" for i in range(1, levels)]
+    indent = ""
+    head = []
+    for key in filter(None, nested_in.split(".")):
+        head.append(f"{indent}{key}:")
+        indent += "  "
+    return "\n".join([*head, *(indent + line for line in lines)]) + "\n"
+
+
+@pytest.mark.parametrize(
+    "text",
+    [
+        bomb(9),  # a top-level mapping of lists
+        bomb(9, "scenario.model"),  # nested inside one scenario's overrides
+        "a: &a {x: 1, y: 2, z: 3}\n"  # merge keys: mappings of mappings
+        + "".join(
+            f"{c}: &{c} {{{', '.join(f'k{j}: *{p}' for j in range(12))}}}\n"
+            for p, c in zip("abcdefg", "bcdefgh", strict=True)
+        ),
+    ],
+    ids=["top-level", "in-a-scenario", "mappings"],
+)
+def test_an_alias_bomb_is_refused_in_one_line_at_once(tmp_path, text):
+    """Aliases that expand to more than MAX_VALUES values: one line, in well under a
+    second, before any reader walks the expanded data (sorted_data took minutes and
+    gigabytes on a bomb inside one scenario)."""
+    path = tmp_path / "scenarios.yaml"
+    path.write_text(text)
+    started = time.monotonic()
+    with pytest.raises(ConfigFileError, match=r"values once its YAML aliases are expanded") as err:
+        load_yaml(path)
+    assert time.monotonic() - started < 2.0 and "\n" not in str(err.value)
+
+
+def test_aliases_that_expand_to_a_few_values_are_read():
+    from tennis_stroke.io.config_files import MAX_VALUES, expanded_size
+
+    shared = [1, 2, 3]
+    assert expanded_size({"a": shared, "b": {"c": shared, "d": 4}}) == 1 + 4 + (1 + 4 + 1)
+    recursive: list = [1]
+    recursive.append(recursive)
+    assert expanded_size(recursive) == 3  # a node inside itself counts once
+    assert MAX_VALUES >= 100 * expanded_size(load_yaml(ROOT / "config" / "config.yaml"))

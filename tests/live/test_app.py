@@ -216,3 +216,40 @@ def test_a_second_pick_shows_its_stroke_in_the_same_view(shared):
     )
     plane = view.select_one({"name": "explore-stroke-plane"})
     assert plane.title.text.startswith("The stroke at theta0 = 112, delta0 = 14 deg")
+
+
+def test_a_value_the_widgets_do_not_offer_is_refused_on_the_server(shared):
+    """A page can send any value: a choice that is not one of the control's (rtol
+    '1e-300' was computed), a NaN or an out-of-bounds number; each
+    is refused with its reason, escaped, the old value kept, nothing recomputed; the
+    next valid change clears the line."""
+    session = app.Session(shared, Document())
+    settle(session)
+    before = session.generation["all"]
+    choice = next(c for c in session.controls if c.choices)
+    number = next(c for c in session.controls if not c.choices and c.key == "model.M2")
+    cases = [
+        (choice, "1e-300", "is not one of"),
+        (choice, "<img src=x onerror=alert(1)>", "&lt;img src=x onerror=alert(1)&gt;"),
+        (number, float("nan"), "is not a finite number"),  # Bokeh refuses a string itself
+        (number, -1.0, "is outside"),
+    ]
+    for control, value, words in cases:
+        kept = session.widgets[control.key].value
+        session.widgets[control.key].value = value
+        assert session.widgets[control.key].value == kept, (control.key, value)
+        assert words in session.error.text and "<img" not in session.error.text, value
+    assert session.generation["all"] == before  # nothing recomputed
+    session.widgets["model.M2"].value = 0.31
+    assert session.error.text == ""
+
+
+def test_text_from_a_user_is_escaped_in_the_page(shared, monkeypatch):
+    """A saved scenario's name and an error's words go into Divs (HTML) escaped."""
+    session = app.Session(shared, Document())
+    settle(session)
+    session.scenario_name.value = "<script>alert(1)</script>"
+    session._save()
+    assert "<script>" not in session.saved.text and "&lt;script&gt;" in session.saved.text
+    session._show_error("ValueError: <b>bold</b>")
+    assert session.error.text == "ValueError: &lt;b&gt;bold&lt;/b&gt;"

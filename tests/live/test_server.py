@@ -6,6 +6,7 @@ SIGTERM stops the server with one line."""
 import http.client
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -16,6 +17,7 @@ from chromium import CHROMIUM, DRIVER, MISSING, POSITION_JS, chromium, wait_idle
 from conftest import ROOT
 
 from tennis_stroke.io.config_files import load_yaml
+from tennis_stroke.live import server as server_module
 from tennis_stroke.replication import explorer
 from tennis_stroke.solver.stroke import strike_batch
 
@@ -206,6 +208,35 @@ def test_a_bad_option_is_one_line(tmp_path, options, message):
     )
     assert done.returncode == 2 and message in done.stderr
     assert len(done.stderr.strip().splitlines()) <= 2, done.stderr  # usage and the error
+
+
+def test_an_address_it_cannot_listen_at_is_one_line_before_anything_loads(tmp_path):
+    """A port another server listens on, a host that is no address, an address of
+    another machine: one line, exit 2, within seconds (before the compiled code loads)."""
+    folder = project(tmp_path)
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen()
+        port = taken.getsockname()[1]
+        for options, message in [
+            (["--port", str(port)], f"--port {port}: in use on 127.0.0.1"),
+            (["--host", "999.1.1.1"], "--host 999.1.1.1: not a name or an address"),
+            (["--host", "192.0.2.1"], "--host 192.0.2.1: cannot listen there"),
+        ]:
+            started = time.monotonic()
+            done = subprocess.run(
+                [*EXPLORE, *options], cwd=folder, capture_output=True, text=True, timeout=60
+            )
+            assert done.returncode == 2 and message in done.stderr, done.stderr
+            assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+            assert time.monotonic() - started < 10
+
+
+def test_on_every_interface_the_machine_s_own_addresses_may_open_the_websocket():
+    allowed = server_module.origins("0.0.0.0", 5006)
+    assert f"{socket.gethostname()}:5006" in allowed and "127.0.0.1:5006" in allowed
+    assert server_module.origins("127.0.0.1", 5006) == ["127.0.0.1:5006", "localhost:5006"]
+    assert "0.0.0.0:5006" not in allowed  # no browser's page has that origin
 
 
 def test_outside_a_checkout_the_explorer_says_where_to_run_it(tmp_path):

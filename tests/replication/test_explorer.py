@@ -179,6 +179,70 @@ def test_a_refused_scenario_leaves_the_file_as_it_was(paper, tmp_path, name, ove
     assert [p.name for p in tmp_path.iterdir()] == ["scenarios.yaml"]
 
 
+@pytest.mark.parametrize(
+    ("text", "message"),
+    [
+        ("{a: {model: {M2: 0.35}}}\n", "would not read back"),  # a flow-style mapping
+        ("a: {model: {M2: 0.35}}\n...\n", "would not read back"),  # a document end
+    ],
+    ids=["flow-style", "document-end"],
+)
+def test_a_file_an_appended_scenario_would_break_is_kept(paper, tmp_path, text, message):
+    """Saving reported success and left the file unreadable, which disabled every
+    scenario; now the new text is read back before it replaces the old."""
+    path = tmp_path / "scenarios.yaml"
+    path.write_text(text)
+    with pytest.raises(ScenarioError, match=message):
+        save_scenario(path, "b", {"model": {"M2": 0.4}}, paper, SCHEMA)
+    assert path.read_text() == text and load_scenarios(path) == {"a": {"model": {"M2": 0.35}}}
+    assert [p.name for p in tmp_path.iterdir()] == ["scenarios.yaml"]
+
+
+def test_saving_keeps_a_link_a_link_and_the_file_s_mode_and_refuses_a_read_only_one(
+    paper, tmp_path
+):
+    real = tmp_path / "kept" / "scenarios.yaml"
+    real.parent.mkdir()
+    real.write_text("a: {model: {M2: 0.35}}\n")
+    real.chmod(0o640)
+    link = tmp_path / "scenarios.yaml"
+    link.symlink_to(real)
+    save_scenario(link, "b", {"model": {"M2": 0.4}}, paper, SCHEMA)
+    assert link.is_symlink() and set(load_scenarios(real)) == {"a", "b"}
+    assert real.stat().st_mode & 0o777 == 0o640
+    real.chmod(0o444)  # read-only by its mode (root could write it all the same)
+    with pytest.raises(ScenarioError, match="read-only: not saved"):
+        save_scenario(link, "c", {"model": {"M2": 0.45}}, paper, SCHEMA)
+    assert set(load_scenarios(real)) == {"a", "b"} and real.stat().st_mode & 0o777 == 0o444
+
+
+def test_two_savers_of_one_name_at_once_save_it_once(paper, tmp_path):
+    """Two explorer servers saving the same name: one saves, the other is refused (a
+    duplicate key made every later save, and every scenario, fail)."""
+    import threading
+
+    path = tmp_path / "scenarios.yaml"
+    path.write_text("# mine\n")
+    outcomes, start = [], threading.Barrier(4)
+
+    def save(m2):
+        start.wait()
+        try:
+            save_scenario(path, "same", {"model": {"M2": m2}}, paper, SCHEMA)
+            outcomes.append("saved")
+        except ScenarioError as exc:
+            outcomes.append(str(exc))
+
+    threads = [threading.Thread(target=save, args=(0.3 + i / 100,)) for i in range(4)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    assert outcomes.count("saved") == 1, outcomes
+    assert all("already declared" in o for o in outcomes if o != "saved")
+    assert list(load_scenarios(path)) == ["same"] and path.read_text().startswith("# mine\n")
+
+
 def test_the_report_links_each_figure_the_explorer_recomputes():
     from tennis_stroke.replication.registry import FIGURES, LIVE
 

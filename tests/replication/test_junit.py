@@ -1,6 +1,9 @@
 """The claims as JUnit XML (tennis_stroke.replication.junit), read back with junitparser:
 one test case per claim, a suite per section, each status mapped as CI tools read it."""
 
+import os
+import stat
+
 import pandas as pd
 import pytest
 from conftest import record_configuration
@@ -50,11 +53,12 @@ def test_each_status_maps_to_a_junit_result(tmp_path):
     assert cases["d"].classname == "claims.Sec. V"
 
 
-def test_the_claims_command_writes_the_junit_file_also_when_a_claim_fails(tmp_path, capsys):
-    record_configuration(tmp_path)
-    csv = tmp_path / "claims.csv"
-    table().to_csv(csv, index=False)
-    declared = tmp_path / "claims.yaml"
+def claims_files(folder):
+    """A claims table of :data:`ROWS` in ``folder`` whose statuses follow from its values,
+    with the claims it grades: ``(csv, declared claims, the table)``."""
+    record_configuration(folder)
+    csv = folder / "claims.csv"
+    declared = folder / "claims.yaml"
     claims = [
         {
             "id": cid,
@@ -74,6 +78,11 @@ def test_the_claims_command_writes_the_junit_file_also_when_a_claim_fails(tmp_pa
     frame = table()
     frame.loc[frame["id"].isin(["a", "b"]), "reproduced_value"] = "1.05"
     frame.to_csv(csv, index=False)
+    return csv, declared, frame
+
+
+def test_the_claims_command_writes_the_junit_file_also_when_a_claim_fails(tmp_path, capsys):
+    csv, declared, frame = claims_files(tmp_path)
     out = tmp_path / "claims.xml"
     assert main(["claims", str(csv), "--claims", str(declared), "--junit", str(out)]) == 1
     xml = JUnitXml.fromfile(str(out))
@@ -89,3 +98,28 @@ def test_a_scenario_table_is_never_junit(tmp_path, capsys):
     with pytest.raises(SystemExit):
         main(["claims", str(csv), "--junit", str(tmp_path / "x.xml")])
     assert not (tmp_path / "x.xml").exists()
+
+
+def test_a_junit_target_that_cannot_be_written_is_one_line(tmp_path, capsys):
+    """A missing folder, a folder, a pipe (a file that is not a regular one, as a device
+    would be): one line, exit 2, nothing replaced; a symbolic link stays a link."""
+    csv, declared, frame = claims_files(tmp_path)
+    pipe = tmp_path / "pipe"
+    os.mkfifo(pipe)
+    for target, words in [
+        (tmp_path / "missing" / "claims.xml", "does not exist"),
+        (tmp_path, "is a directory"),
+        (pipe, "is not a regular file"),
+    ]:
+        with pytest.raises(SystemExit) as stop:
+            main(["claims", str(csv), "--claims", str(declared), "--junit", str(target)])
+        err = capsys.readouterr().err
+        assert stop.value.code == 2 and err.count("\n") == 1 and words in err, err
+    assert stat.S_ISFIFO(pipe.stat().st_mode)
+    real = tmp_path / "real.xml"
+    real.write_text("old")
+    link = tmp_path / "link.xml"
+    link.symlink_to(real)
+    write_junit(frame, link)
+    assert link.is_symlink() and JUnitXml.fromfile(str(real)).tests == len(frame)
+    assert [p.name for p in tmp_path.iterdir() if p.name.endswith(".tmp")] == []

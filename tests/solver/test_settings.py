@@ -36,6 +36,8 @@ TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
         ({"atol": 100.0}, "'atol' must be <= 0.0001"),
         ({"atol": 1e-3, "method": "DP54"}, "'atol' must be <= 0.0001"),
         ({"rtol": float("inf")}, "'rtol' must be > 0"),
+        ({"rtol": 1e-300, "atol": 1e-300}, "'rtol' must be >= 2.22e-14 (100 machine epsilons"),
+        ({"rtol": 1e-15}, "'rtol' must be >= 2.22e-14"),
         ({"rtol": True}, "'rtol' must be > 0"),
         ({"rtol": "1e-8"}, "'rtol' must be > 0"),
         ({"method": "RK4"}, "solver method must be one of DP54, DOP853"),
@@ -195,3 +197,15 @@ def test_the_batch_estimate_matches_the_memory_a_batch_takes():
         pytest.skip("cannot reset the peak resident memory here")
     per_stroke = grown / theta0.size / delta0.size
     assert 0.85 * BATCH_BYTES_PER_STROKE < per_stroke < 1.15 * BATCH_BYTES_PER_STROKE
+
+
+def test_the_tightest_rtol_runs_even_with_a_tiny_atol():
+    """MIN_RTOL is scipy's floor of 100 machine epsilons; at it, with atol 1e-300, a
+    stroke still succeeds (at rtol = atol = 1e-300 every stroke failed its steps)."""
+    from tennis_stroke import strike
+    from tennis_stroke.solver.settings import MIN_RTOL
+
+    tight = strike(90.0, 45.0, {}, SolverSettings(rtol=MIN_RTOL, atol=1e-300))
+    usual = strike(90.0, 45.0, {}, SolverSettings())
+    assert tight["status_name"] == "ok"
+    assert abs(tight["v_out_kmh"] - usual["v_out_kmh"]) < 1e-4

@@ -85,6 +85,7 @@ BAD = [  # (path, value, fragment of the message)
     (("solver_study", "stability", "cases"), [], "'solver_study.stability.cases': []"),
     # the accuracy bound of SolverSettings, the same as the CLI's and the Python API's
     (("solver", "rtol"), 10.0, "'solver.rtol': solver setting 'rtol' must be <= 0.0001"),
+    (("solver", "rtol"), 1e-300, "'solver.rtol': solver setting 'rtol' must be >= 2.22e-14"),
     (("solver", "atol"), 1e-3, "'solver.atol': solver setting 'atol' must be <= 0.0001"),
     (
         ("solver_study", "compiled_tolerances"),

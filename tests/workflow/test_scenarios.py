@@ -108,6 +108,20 @@ def test_scenarios_come_from_the_file_and_the_command_line(tmp_path):
         load_scenarios(path)
 
 
+def test_one_bad_scenario_stops_only_itself(tmp_path):
+    """A bad name or shape of one scenario is recorded for it by name, the others load;
+    without a place for errors it raises, as before."""
+    path = tmp_path / "scenarios.yaml"
+    path.write_text("ok_one: {model: {M2: 0.35}}\n'a b': {model: {M2: 0.4}}\nc: [1]\n")
+    errors: dict = {}
+    assert load_scenarios(path, None, errors) == {"ok_one": {"model": {"M2": 0.35}}}
+    assert sorted(errors) == ["a b", "c"]
+    assert errors["a b"].startswith("scenario name 'a b': a letter")
+    assert errors["c"].startswith("scenario 'c': overrides must be a mapping")
+    with pytest.raises(ScenarioError, match="scenario name 'a b'"):
+        load_scenarios(path)
+
+
 def test_the_declared_scenarios_are_valid():
     for name, overrides in load_scenarios(ROOT / "config" / "scenarios.yaml").items():
         scenario_config(PAPER, name, overrides, SCHEMA)

@@ -11,8 +11,10 @@ import json
 import os
 import re
 import shutil
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -299,6 +301,13 @@ def test_a_bad_claim_is_refused_before_any_job(tmp_path):
             "report/scenarios/a/index.html",
             "tennis-stroke scenario error: config/scenarios.yaml: must map",
         ),
+        # an alias bomb inside one scenario (minutes and gigabytes of planning before)
+        (
+            "a:\n  model:\n    l0: &l0 [1, 2, 3, 4, 5, 6, 7, 8, 9]\n"
+            + "".join(f"    l{i}: &l{i} [{', '.join([f'*l{i - 1}'] * 9)}]\n" for i in range(1, 9)),
+            "report/scenarios/a/index.html",
+            "tennis-stroke scenario error: config/scenarios.yaml: holds 4.9e+08 values once its",
+        ),
     ],
 )
 def test_a_bad_scenario_is_one_line_before_any_job(tmp_path, scenarios, target, line):
@@ -315,6 +324,18 @@ def test_a_bad_scenario_is_one_line_before_any_job(tmp_path, scenarios, target, 
     assert paper.returncode == 0, paper.stderr[-2000:]
     warnings = [x for x in paper.stderr.splitlines() if x.startswith("tennis-stroke")]
     assert all("scenario warning" in x for x in warnings)
+
+
+def test_a_bad_scenario_does_not_block_a_good_one(tmp_path):
+    """Another scenario's bad name is a warning naming it; the good one's page plans."""
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    (work / "config" / "scenarios.yaml").write_text(
+        "ok_one: {model: {M2: 0.35}}\n'a b': {model: {M2: 0.4}}\n"
+    )
+    done = run_snakemake("report/scenarios/ok_one/index.html", work, "-n")
+    assert done.returncode == 0, done.stderr[-2000:]
+    lines = [x for x in done.stderr.splitlines() if x.startswith("tennis-stroke")]
+    assert len(lines) == 1 and "scenario warning: scenario name 'a b'" in lines[0], lines
 
 
 def test_a_yaml_syntax_error_in_the_config_names_file_and_line(tmp_path):
@@ -522,3 +543,54 @@ def test_a_differing_installed_copy_is_refused_before_any_job(tiny_run, tmp_path
     ]
     dry = subprocess.run([*command, "-n"], capture_output=True, text=True, timeout=600, env=env)
     assert dry.returncode == 0 and "tennis-stroke warning: the jobs would import" in dry.stderr
+
+
+@pytest.mark.signals
+@pytest.mark.parametrize(
+    ("signum", "status", "line"),
+    [
+        (signal.SIGINT, 130, "tennis-stroke: interrupted"),
+        (signal.SIGTERM, 143, "tennis-stroke: terminated"),
+        (signal.SIGHUP, 143, "tennis-stroke: terminated"),
+    ],
+)
+def test_whatif_stopped_by_a_signal_leaves_no_lock(tmp_path, signum, status, line):
+    """Ctrl-C (the terminal's SIGINT to the command's process group), SIGTERM or a closed
+    terminal (SIGHUP) while `tennis-stroke whatif` runs the workflow: Snakemake gets the
+    signal once, stops its jobs and removes its locks, the command ends with one line
+    and the signal's status, and the next run needs no --unlock.  (subprocess.run killed
+    Snakemake 0.25 s after Ctrl-C, and at once on SIGTERM, before it removed its locks.)"""
+    checkout = tmp_path / "checkout"
+    checkout.mkdir()
+    for name in CHECKOUT:
+        (checkout / name).symlink_to(ROOT / name)
+    workdir(checkout, TINY, TINY_READINGS)
+    command = [str(Path(sys.executable).with_name("tennis-stroke")), "whatif", "sig"]
+    run = subprocess.Popen(
+        [*command, "--set", "M2=0.35", "--figure", "fig2", "--cores", "1"],
+        cwd=checkout,
+        start_new_session=True,  # its own process group, as a terminal's foreground job
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    locks = checkout / ".snakemake" / "locks"
+    deadline = time.monotonic() + 120
+    while not (locks.is_dir() and any(locks.iterdir())):
+        assert run.poll() is None, run.communicate()
+        assert time.monotonic() < deadline, "Snakemake took no lock in 120 s"
+        time.sleep(0.05)
+    time.sleep(0.5)  # a job under way
+    os.killpg(run.pid, signum)
+    out, err = run.communicate(timeout=300)
+    assert run.returncode == status, err[-2000:]
+    assert err.strip().splitlines()[-1] == line and "Traceback" not in err, err[-2000:]
+    assert not list(locks.iterdir()), sorted(p.name for p in locks.iterdir())
+    again = subprocess.run(
+        [sys.executable, "-m", "snakemake", "-n", "--cores", "1", "results/claims.csv"],
+        cwd=checkout,
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert again.returncode == 0 and "LockException" not in again.stderr, again.stderr[-2000:]

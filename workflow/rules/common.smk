@@ -95,7 +95,9 @@ except ReadingSpaceError as _exc:
 # any of its files is refused in one line (rule unknown_scenario).
 SCENARIO_ERRORS = {}
 try:
-    SCENARIOS = load_scenarios("config/scenarios.yaml", _ADHOC_SCENARIOS)
+    SCENARIOS = load_scenarios(
+        "config/scenarios.yaml", _ADHOC_SCENARIOS, SCENARIO_ERRORS
+    )
 except ScenarioError as _exc:
     SCENARIOS, SCENARIO_ERRORS[None] = {}, str(_exc)
 SCENARIO_CONFIGS = {}

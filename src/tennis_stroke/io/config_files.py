@@ -60,6 +60,42 @@ class ConfigFileError(ValueError):
     naming the file (and the line of a syntax error)."""
 
 
+#: The most values a YAML file of the project may hold once its aliases are expanded: a
+#: config is a few hundred; an alias bomb (nine levels of nine references) is 9^9.
+MAX_VALUES = 100_000
+
+
+def expanded_size(data: object) -> int:
+    """How many values ``data`` holds once every alias is expanded (each mapping, list and
+    scalar counts one; keys do not), counted without expanding: a node met again adds
+    its count."""
+    sizes: dict[int, int] = {}
+
+    def size(node: object) -> int:
+        if not isinstance(node, dict | list):
+            return 1
+        if id(node) not in sizes:
+            sizes[id(node)] = 1  # a node inside itself (a recursive alias) counts once
+            values = node.values() if isinstance(node, dict) else node
+            sizes[id(node)] = 1 + sum(size(v) for v in values)
+        return sizes[id(node)]
+
+    return size(data)
+
+
+def _bounded(data: object, path: str | Path) -> object:
+    """``data``, or one line (:class:`ConfigFileError`) if it holds more than
+    :data:`MAX_VALUES` values once its aliases are expanded: every reader of the file
+    (a scenario's checks, the schema's, ``sorted_data``) walks it expanded."""
+    count = expanded_size(data)
+    if count > MAX_VALUES:
+        raise ConfigFileError(
+            f"{path}: holds {count:.3g} values once its YAML aliases are expanded, more than "
+            f"{MAX_VALUES:,} (an alias bomb?): write the values out"
+        )
+    return data
+
+
 def load_yaml(path: str | Path) -> object:
     """The contents of the YAML file ``path``.
 
@@ -78,11 +114,11 @@ def load_yaml(path: str | Path) -> object:
     except OSError as exc:
         raise ConfigFileError(f"cannot read {str(path)!r}: {exc.strerror}") from None
     try:
-        return yaml.load(text, Loader=_FastLoader)  # noqa: S506 (a SafeLoader)
+        return _bounded(yaml.load(text, Loader=_FastLoader), path)  # noqa: S506 (SafeLoader)
     except yaml.YAMLError:
         pass  # said below, as the pure-Python parser says it
     try:
-        return yaml.load(text, Loader=_Loader)  # noqa: S506 (a SafeLoader)
+        return _bounded(yaml.load(text, Loader=_Loader), path)  # noqa: S506 (a SafeLoader)
     except yaml.MarkedYAMLError as exc:
         mark = exc.problem_mark or exc.context_mark
         where = f", line {mark.line + 1}, column {mark.column + 1}" if mark else ""

@@ -133,3 +133,48 @@ def stop_with_snakemake() -> Iterator[None]:
         yield
     finally:
         done.set()
+
+
+#: What a command that runs Snakemake for the user passes on of the signals it receives:
+#: Ctrl-C as Ctrl-C, a termination or a closed terminal as SIGTERM.  Snakemake stops on
+#: either, its jobs first, and removes its locks (``.snakemake/locks``).
+FORWARDED = {
+    signal.SIGINT: signal.SIGINT,
+    signal.SIGTERM: signal.SIGTERM,
+    signal.SIGHUP: signal.SIGTERM,
+}
+
+
+def run_forwarding(command: list[str]) -> int:
+    """Run ``command`` (Snakemake) in a process group of its own and wait for it; a
+    SIGINT, SIGTERM or SIGHUP this process receives meanwhile is passed on once
+    (:data:`FORWARDED`) and the command is waited for, so it can stop its jobs and remove
+    its locks; then the signal ends this process as it would have (KeyboardInterrupt,
+    :class:`Terminated`).  Returns the command's exit status otherwise.  (A child left
+    in the terminal's group would get Ctrl-C twice, and ``subprocess.run`` kills it
+    0.25 s after Ctrl-C, before Snakemake removed its locks.)"""
+    import subprocess
+
+    received: list[int] = []
+    proc = subprocess.Popen(command, process_group=0)
+
+    def forward(signum, frame) -> None:
+        if not received and proc.poll() is None:
+            proc.send_signal(FORWARDED[signum])
+        received.append(signum)
+
+    main = threading.current_thread() is threading.main_thread()
+    previous = {s: signal.getsignal(s) for s in FORWARDED} if main else {}
+    previous = {s: h for s, h in previous.items() if h is not signal.SIG_IGN}  # nohup
+    for s in previous:
+        signal.signal(s, forward)
+    try:
+        code = proc.wait()
+    finally:
+        for s, handler in previous.items():
+            signal.signal(s, handler)
+    if received and received[0] == signal.SIGINT:
+        raise KeyboardInterrupt
+    if received:
+        raise Terminated()
+    return code

@@ -13,6 +13,7 @@ stage shows one line in the page; the server keeps serving.
 
 from __future__ import annotations
 
+import html
 import threading
 import time
 from collections.abc import Callable, Mapping
@@ -106,6 +107,25 @@ class Shared:
 def _first_line(exc: BaseException) -> str:
     text = str(exc).strip().splitlines()
     return f"{type(exc).__name__}: {text[0] if text else ''}"
+
+
+def refusal(control: explorer.Control, value) -> str | None:
+    """Why ``value`` cannot be ``control``'s (a one-line reason; "" for no value at all),
+    or None: a choice must be one of the control's, a number finite and within its
+    bounds.  The page's widgets offer no other, but a page can send any value."""
+    if value is None:
+        return ""
+    if control.choices:
+        if not isinstance(value, str) or value not in control.choices:
+            return f"{value!r} is not one of {', '.join(control.choices)}"
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
+        return f"{value!r} is not a finite number"
+    if (control.low is not None and value < control.low) or (
+        control.high is not None and value > control.high
+    ):
+        return f"{value} is outside [{control.low}, {control.high}]"
+    return None
 
 
 class Session:
@@ -303,18 +323,15 @@ class Session:
     def _changed(self, control: explorer.Control, attr, old, new) -> None:
         if str(new) == str(self.values[control.key]):  # a value put back: nothing to do
             return
-        if new is None or (not control.choices and not np.isfinite(float(new))):
+        problem = refusal(control, new)
+        if problem is not None:  # checked here: a page can send any value
+            if problem:
+                self.error.text = html.escape(
+                    f"{control.label}: {problem}; kept {old}", quote=False
+                )
             self.widgets[control.key].value = old
             return
-        if not control.choices and (
-            (control.low is not None and new < control.low)
-            or (control.high is not None and new > control.high)
-        ):
-            self.error.text = (
-                f"{control.label}: {new} is outside [{control.low}, {control.high}]; kept {old}"
-            )
-            self.widgets[control.key].value = old
-            return
+        self.error.text = ""  # a refusal said before no longer holds
         self.values[control.key] = new
         if not self._resetting:
             self.request("all")
@@ -348,8 +365,9 @@ class Session:
                 self.shared.scenarios, name, overrides, self.shared.config, self.shared.schema
             )
         except ScenarioError as exc:
-            self.saved.text = f"not saved: {exc}"
+            self.saved.text = html.escape(f"not saved: {exc}", quote=False)
             return
+        name, path = html.escape(name, quote=False), html.escape(str(path), quote=False)
         self.saved.text = (
             f"saved scenario <code>{name}</code> to <code>{path}</code>; its page: "
             f"<code>snakemake -j2 report/scenarios/{name}/index.html</code>"
@@ -449,7 +467,7 @@ class Session:
         self.status.text += f"; claims in {elapsed:.2f} s"
 
     def _show_error(self, line: str) -> None:
-        self.error.text = line
+        self.error.text = html.escape(line, quote=False)
         self.status.text = "failed: the views show the last setting that computed"
 
 

@@ -5,6 +5,7 @@ printed (the first stroke of the server), not per request."""
 
 from __future__ import annotations
 
+import errno
 import signal
 import socket
 import sys
@@ -32,11 +33,48 @@ def free_port(host: str) -> int:
         return int(s.getsockname()[1])
 
 
+#: The addresses that mean every interface of the machine.
+EVERY_INTERFACE = ("0.0.0.0", "")
+
+
+def check_address(host: str, port: int | None) -> None:
+    """Fail in one line (ValueError) before anything loads when the explorer cannot listen
+    at ``host`` (a name or an address of this machine) and ``port`` (None: any free one):
+    a host that resolves to nothing or to no address of this machine, a port in use."""
+    try:
+        socket.getaddrinfo(host, None, socket.AF_INET, socket.SOCK_STREAM)
+    except (socket.gaierror, UnicodeError) as exc:
+        reason = getattr(exc, "strerror", None) or str(exc)
+        raise ValueError(f"--host {host}: not a name or an address ({reason})") from None
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as s:
+        s.setsockopt(socket.SOL_SOCKET, socket.SO_REUSEADDR, 1)  # as the server's socket
+        try:
+            s.bind((host, port or 0))
+        except OSError as exc:
+            if port and exc.errno == errno.EADDRINUSE:
+                raise ValueError(
+                    f"--port {port}: in use on {host} (another server listens there; "
+                    "give another --port, or none for a free one)"
+                ) from None
+            raise ValueError(f"--host {host}: cannot listen there ({exc.strerror})") from None
+
+
 def origins(host: str, port: int) -> list[str]:
     """The origins whose pages may open the explorer's websocket: the served address
-    (and ``localhost`` for 127.0.0.1)."""
+    (and ``localhost`` for 127.0.0.1); on every interface (0.0.0.0), this machine's
+    name and addresses as a browser elsewhere reaches it, and the loopback ones."""
     names = [host, "localhost"] if host == LOCALHOST else [host]
-    return [f"{name}:{port}" for name in names]
+    if host in EVERY_INTERFACE:
+        names = [socket.gethostname(), *_addresses(), LOCALHOST, "localhost"]
+    return [f"{name}:{port}" for name in dict.fromkeys(n for n in names if n)]
+
+
+def _addresses() -> list[str]:
+    """This machine's IPv4 addresses by its name (none if the name does not resolve)."""
+    try:
+        return socket.gethostbyname_ex(socket.gethostname())[2]
+    except OSError:
+        return []
 
 
 def serve(
@@ -48,7 +86,9 @@ def serve(
     say: Callable[[str], None] = print,
 ) -> int:
     """Serve the explorer of the project at ``root`` (its ``config/`` and the workflow's
-    schema) until SIGINT or SIGTERM; returns the exit status (130 or 143)."""
+    schema) until SIGINT or SIGTERM; returns the exit status (130 or 143).  An address
+    it cannot listen at is one line (ValueError) before anything loads."""
+    check_address(host, port)
     config = load_yaml(root / "config" / "config.yaml")
     shared = app.Shared.load(
         config,
@@ -61,12 +101,15 @@ def serve(
     )
     explorer.map_level(config, figure, "coarse", threads=threads)  # load the compiled code
     port = port or free_port(host)
-    server = Server(
-        Application(FunctionHandler(partial(app.make_document, shared))),
-        address=host,
-        port=port,
-        allow_websocket_origin=origins(host, port),
-    )
+    try:
+        server = Server(
+            Application(FunctionHandler(partial(app.make_document, shared))),
+            address=host,
+            port=port,
+            allow_websocket_origin=origins(host, port),
+        )
+    except OSError as exc:  # taken since check_address looked
+        raise ValueError(f"--port {port}: cannot listen on {host} ({exc.strerror})") from None
     server.start()
     if host != LOCALHOST:
         say(

@@ -18,8 +18,12 @@ runs (:data:`PAPER_ONLY`).
 
 from __future__ import annotations
 
+import contextlib
+import fcntl
+import os
 import re
-from collections.abc import Mapping
+import tempfile
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 import yaml
@@ -96,11 +100,15 @@ def scenario_config(
     return canonical(config, load_schema(schema))
 
 
-def load_scenarios(path: str | Path, extra: Mapping | None = None) -> dict[str, dict]:
+def load_scenarios(
+    path: str | Path, extra: Mapping | None = None, errors: dict | None = None
+) -> dict[str, dict]:
     """The declared scenarios of ``path`` (``config/scenarios.yaml``; an empty or missing
     file: none), and ``extra`` ones (given on the command line) replacing any of the same
     name, by name.  Only their shape is checked here (:func:`scenario_config` checks the
-    values)."""
+    values).  A scenario of a bad name or shape raises :class:`ScenarioError`, or, given
+    ``errors``, is left out with its one-line error there by name: one bad scenario
+    then stops only itself.  A file that is not a mapping always raises."""
     raw = None
     if Path(path).is_file():
         try:
@@ -117,12 +125,16 @@ def load_scenarios(path: str | Path, extra: Mapping | None = None) -> dict[str, 
         raise ScenarioError(
             f"--config scenarios: must map each scenario's name to its overrides, got {extra!r}"
         )
-    out = {**raw, **(extra or {})}
-    for name, overrides in out.items():
-        errors = _shape_errors(name, overrides)
-        if errors:
-            raise ScenarioError(errors[0])
-    return {name: sorted_data(overrides or {}) for name, overrides in out.items()}
+    out = {}
+    for name, overrides in {**raw, **(extra or {})}.items():
+        problems = _shape_errors(name, overrides)
+        if problems and errors is None:
+            raise ScenarioError(problems[0])
+        if problems:
+            errors[name] = problems[0]
+        else:
+            out[name] = sorted_data(overrides or {})
+    return out
 
 
 def override_from(items) -> dict:
@@ -201,18 +213,70 @@ def save_scenario(
 ) -> Path:
     """Declare scenario ``name`` with ``overrides`` at the end of ``path``
     (``config/scenarios.yaml``; its comments kept), after checking it as a declared one
-    is (:func:`scenario_config`); a name already declared is refused.  Returns the path."""
+    is (:func:`scenario_config`); a name already declared is refused.  Returns the path.
+
+    Safe against what a saver meets: the file is read again under a lock (two savers of
+    one name: the second is refused), the new text is read back before it replaces the
+    old (a layout that an appended block would break, a flow-style mapping or a document
+    end ``...``, is refused and the file kept), a read-only file or one that is not a
+    regular file is refused, a symbolic link stays a link to the file it names, and the
+    file keeps its mode.  Every refusal is one line (:class:`ScenarioError`)."""
     path = Path(path)
-    declared = load_scenarios(path)
-    if name in declared:
-        raise ScenarioError(f"scenario {name!r} is already declared in {path}: pick another name")
     scenario_config(base, name, overrides, schema)
-    text = path.read_text() if path.is_file() else ""
+    target = path.resolve() if path.is_symlink() else path
+    if target.exists() and not target.is_file():
+        raise ScenarioError(f"{path}: not a regular file: not saved")
+    if target.exists() and not (os.access(target, os.W_OK) and target.stat().st_mode & 0o200):
+        raise ScenarioError(f"{path}: read-only: not saved (make it writable to save)")
     block = yaml.safe_dump(
         {name: sorted_data(dict(overrides))}, default_flow_style=None, sort_keys=True
     )
-    separator = "" if not text or text.endswith("\n") else "\n"
-    temporary = path.with_name(f".{path.name}.saving")
-    temporary.write_text(f"{text}{separator}{block}")
-    temporary.replace(path)  # whole or not at all
+    with _locked(target):  # one saver at a time; the next reads its result
+        declared = load_scenarios(target)
+        if name in declared:
+            raise ScenarioError(
+                f"scenario {name!r} is already declared in {path}: pick another name"
+            )
+        text = target.read_text() if target.is_file() else ""
+        separator = "" if not text or text.endswith("\n") else "\n"
+        mode = target.stat().st_mode & 0o7777 if target.exists() else 0o666 & ~_umask()
+        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".saving", dir=target.parent)
+        temporary = Path(tmp)
+        try:
+            with os.fdopen(fd, "w") as out:
+                out.write(f"{text}{separator}{block}")
+            os.chmod(temporary, mode)
+            try:
+                again = load_scenarios(temporary)
+            except ScenarioError:
+                again = None
+            if again != {**declared, name: sorted_data(dict(overrides))}:
+                raise ScenarioError(
+                    f"{path}: a scenario appended to it would not read back (a flow-style "
+                    "mapping, a document end '...'?): not saved; add it by hand"
+                )
+            os.replace(temporary, target)  # whole or not at all
+        finally:
+            temporary.unlink(missing_ok=True)
     return path
+
+
+@contextlib.contextmanager
+def _locked(path: Path) -> Iterator[None]:
+    """Hold an exclusive lock on the file ``path`` (made empty if missing) as it is now:
+    a saver that waited on a file another saver has since replaced locks the new one."""
+    while True:
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666 & ~_umask())
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX)
+            if os.fstat(fd).st_ino == os.stat(path).st_ino:
+                yield
+                return
+        finally:
+            os.close(fd)
+
+
+def _umask() -> int:
+    mask = os.umask(0o022)  # the only portable way to read it: set and restore at once
+    os.umask(mask)
+    return mask

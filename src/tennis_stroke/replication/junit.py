@@ -11,7 +11,6 @@ junitparser, read back with it in the tests.
 from __future__ import annotations
 
 import os
-import tempfile
 from pathlib import Path
 
 import pandas as pd
@@ -24,6 +23,9 @@ from junitparser import (
     TestCase,
     TestSuite,
 )
+
+from ..io.errors import OutputError
+from ..io.netcdf import check_writable, temporary_beside
 
 #: The name of the whole run's test suites.
 NAME = "Youn 2015 replication claims"
@@ -81,17 +83,17 @@ def claims_xml(table: pd.DataFrame) -> JUnitXml:
 
 
 def write_junit(table: pd.DataFrame, path: str | Path) -> None:
-    """Write the claims as JUnit XML to ``path`` (a temporary file renamed into place)."""
-    path = Path(path)
-    text = claims_xml(table).tostring()
-    fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=f".{path.name}.", suffix=".tmp")
+    """Write the claims as JUnit XML to ``path`` (a temporary file beside it renamed into
+    place; a symbolic link stays a link to the file it names).  A missing folder, a
+    folder, a device or a pipe as ``path``, or a write that fails, is one line
+    (:class:`~tennis_stroke.io.errors.OutputError`) and leaves the target as it was."""
+    target = check_writable(path)
+    text = b'<?xml version="1.0" encoding="utf-8"?>\n' + claims_xml(table).tostring()
+    tmp = temporary_beside(target)
     try:
-        with os.fdopen(fd, "wb") as out:
-            out.write(b'<?xml version="1.0" encoding="utf-8"?>\n' + text)
-        mask = os.umask(0)
-        os.umask(mask)
-        os.chmod(tmp, 0o666 & ~mask)
-        os.replace(tmp, path)
-    except BaseException:
-        Path(tmp).unlink(missing_ok=True)
-        raise
+        tmp.write_bytes(text)
+        os.replace(tmp, target)
+    except OSError as exc:
+        raise OutputError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
+    finally:
+        tmp.unlink(missing_ok=True)

@@ -26,6 +26,11 @@ ORDERS = {"DP54": 5, "DOP853": 8}
 #: 1e-3 stays within 0.012 km/h, 1e-2 is 1.9 degree off.
 MAX_RTOL = 1e-4
 MAX_ATOL = 1e-4
+#: Tightest relative tolerance: 100 machine epsilons, the floor scipy's ``solve_ivp``
+#: raises a smaller ``rtol`` to (a step's error cannot be held below the rounding of its
+#: arithmetic: ``rtol = atol = 1e-300`` ended every stroke in ``step_failure``).  A tiny
+#: ``atol`` is fine beside it (rtol 1e-12, atol 1e-300: the same stroke within 3e-12 km/h).
+MIN_RTOL = 100 * float(np.finfo(float).eps)
 #: Why the bounds are what they are, for the one-line message.
 ACCURACY_REASON = (
     "the loosest tolerance at which the paper's maps stay well within the claims' "
@@ -55,7 +60,8 @@ class SolverSettings:
         Embedded Runge-Kutta pair.
     rtol, atol : float
         Relative and absolute tolerance of the local error (scaled RMS norm), at most
-        :data:`MAX_RTOL` and :data:`MAX_ATOL` (the accuracy bound).  The defaults keep
+        :data:`MAX_RTOL` and :data:`MAX_ATOL` (the accuracy bound); ``rtol`` at least
+        :data:`MIN_RTOL`.  The defaults keep
         every stroke of the benchmark grid within 1e-5 km/h of an rtol 1e-12 solution
         (``benchmarks/bench_sweep.py``).
     t_max : float
@@ -107,6 +113,12 @@ class SolverSettings:
                 raise SolverSettingError(
                     name, f"solver setting {name!r} must be > 0, got {value!r}"
                 )
+        if self.rtol < MIN_RTOL:
+            raise SolverSettingError(
+                "rtol",
+                f"solver setting 'rtol' must be >= {MIN_RTOL:.3g} (100 machine epsilons: no "
+                f"step's error can be held below the rounding), got {self.rtol!r}",
+            )
         if self.accuracy_bound:
             for name, bound in (("rtol", MAX_RTOL), ("atol", MAX_ATOL)):
                 if getattr(self, name) > bound:
