@@ -43,16 +43,17 @@ report: $(STAMP)
 	$(BIN)/tennis-stroke claims results/claims.csv --junit results/claims.xml
 	$(BIN)/python tools/readme_results.py --check
 
-## The test suite on every core (pytest-xdist; tests that share a workflow run or a
-## server stay on one worker), the 25 slowest named at the end: every test, including a
-## tiny end-to-end workflow run, the browser, compile and SLURM tests (docs/testing.md).
+## The test suite on every core (pytest-xdist; the tiny workflow run and the SLURM runs
+## are built once for all workers), the 25 slowest named at the end: every test,
+## including a tiny end-to-end workflow run, the browser, compile and SLURM tests
+## (docs/testing.md).
 test: $(STAMP)
-	$(BIN)/python -m pytest -n $(JOBS) --dist loadgroup --durations=25
+	$(BIN)/python -m pytest -n $(JOBS) --durations=25
 
 ## The fast tier while editing: every test that needs no workflow run, no browser, no
 ## SLURM and no cold compile (pytest -m "not slow"), on every core.
 check: $(STAMP)
-	$(BIN)/python -m pytest -n $(JOBS) --dist loadgroup --durations=10 -m "not slow"
+	$(BIN)/python -m pytest -n $(JOBS) --durations=10 -m "not slow"
 
 lint: $(STAMP)
 	$(BIN)/check-jsonschema --builtin-schema vendor.github-workflows .github/workflows/replication.yml

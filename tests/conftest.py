@@ -39,9 +39,11 @@ WORKFLOW_FIXTURES = ("tiny_run", "moved", "report_plan")
 #: The kinds of test that ``make check`` leaves out, by their markers (pyproject.toml), in
 #: the order a test's kind is named by (docs/testing.md, "Where the time goes").
 SLOW_KINDS = ("slurm", "browser", "compile", "workflow")
+#: The order the kinds run in: the longest first (the first workflow test builds the
+#: shared tiny run at once; the browser tests read it, so they come later).
+RUN_ORDER = ("workflow", "slurm", "compile", "browser", "signals", "unit")
 
 
-@pytest.hookimpl(tryfirst=True)  # before xdist reads the groups (--dist loadgroup)
 def pytest_collection_modifyitems(items):
     """A test's kind: a test on a workflow fixture is a workflow test; every test of a
     kind of :data:`SLOW_KINDS` is also ``slow``, so ``pytest -m "not slow"`` (``make
@@ -51,14 +53,17 @@ def pytest_collection_modifyitems(items):
         fixtures = set(getattr(item, "fixturenames", ()))
         if set(WORKFLOW_FIXTURES) & fixtures:
             item.add_marker(pytest.mark.workflow)
-        if "moved" in fixtures:  # one moved checkout, on one worker (make test: loadgroup)
-            item.add_marker(pytest.mark.xdist_group("moved"))
         kinds = [k for k in SLOW_KINDS if item.get_closest_marker(k)]
         if kinds:
             item.add_marker(pytest.mark.slow)
         elif item.get_closest_marker("signals"):
             kinds = ["signals"]
         item.user_properties.append(("kind", kinds[0] if kinds else "unit"))
+    # the long kinds first (a stable sort: each kind in its files' order), so the longest
+    # tests start early on their worker and the short ones fill in at the end, instead of
+    # a workflow run starting last beside an idle worker
+    rank = {kind: n for n, kind in enumerate(RUN_ORDER)}
+    items.sort(key=lambda item: rank[dict(item.user_properties)["kind"]])
 
 
 @pytest.fixture(autouse=True)

@@ -18,10 +18,6 @@ ROOT = Path(__file__).resolve().parents[2]
 CLAIMS = load_claims(ROOT / "config" / "claims.yaml")
 
 
-#: One worker runs the module: its tests share one evaluation of the ladder.
-pytestmark = pytest.mark.xdist_group("tiny_ladder")
-
-
 @pytest.fixture(scope="module")
 def tiny_ladder():
     config = copy.deepcopy(TINY)

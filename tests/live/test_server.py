@@ -23,8 +23,6 @@ from tennis_stroke.solver.stroke import strike_batch
 
 EXPLORE = [sys.executable, "-m", "tennis_stroke.cli", "explore"]
 browser_needed = pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason=MISSING)
-#: One worker runs the module: one explorer server and one browser for its tests.
-pytestmark = pytest.mark.xdist_group("explorer_server")
 
 #: The maps the page received since it opened (generation, level, time).
 MAPS_JS = "return window.__explore_maps || []"

@@ -70,10 +70,6 @@ def lagrangian_accelerations():
     return [-sol[i].subs(back) for i in range(2)], (w1, w2)
 
 
-#: One worker runs the module: its tests share one symbolic derivation.
-pytestmark = pytest.mark.xdist_group("lagrangian")
-
-
 @pytest.fixture(scope="module")
 def lagrangian():
     (dw1, dw2), (w1, w2) = lagrangian_accelerations()

@@ -17,7 +17,6 @@ from tennis_stroke.replication import views
 
 pytestmark = [
     pytest.mark.browser,
-    pytest.mark.xdist_group("report_browser"),  # one browser for the module
     pytest.mark.skipif(CHROMIUM is None or DRIVER is None, reason=MISSING),
 ]
 

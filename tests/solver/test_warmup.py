@@ -36,8 +36,6 @@ def _run(cache, **env):
 
 #: Tests that compile the solver (make check leaves them out).
 compiles = pytest.mark.compile
-#: One worker runs the module: its tests share one cold compile (cold_cache).
-pytestmark = pytest.mark.xdist_group("cold_cache")
 
 
 @pytest.fixture(scope="module")

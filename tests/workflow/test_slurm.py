@@ -5,17 +5,25 @@ Needs Debian's slurm-wlm and munge (``tools/slurm/localhost_slurm.sh install``, 
 skips with the reason where they cannot be installed or started.
 """
 
+import json
 import os
 import subprocess
 import time
 from pathlib import Path
 
 import pytest
-from conftest import ROOT, assert_same_results, result_files, run_snakemake, workdir
+from conftest import (
+    ROOT,
+    assert_same_results,
+    built_once,
+    result_files,
+    run_snakemake,
+    shared_folder,
+    workdir,
+)
 from tiny import TINY
 
-#: One worker runs the module (its two tests share the SLURM run of the module fixture).
-pytestmark = [pytest.mark.slurm, pytest.mark.xdist_group("slurm")]
+pytestmark = pytest.mark.slurm
 
 SCRIPT = ROOT / "tools" / "slurm" / "localhost_slurm.sh"
 #: The cluster's run directory, as in localhost_slurm.sh.
@@ -35,27 +43,6 @@ def cluster(command: str) -> subprocess.CompletedProcess:
     )
 
 
-@pytest.fixture(scope="module")
-def slurm_cluster():
-    """The localhost cluster, started here (and stopped afterwards) unless it already ran;
-    yields with SLURM_CONF and PATH set for the clients (see localhost_slurm.sh env)."""
-    already_running = cluster("status").returncode == 0
-    started = cluster("start")
-    if started.returncode != 0:
-        lines = started.stderr.strip().splitlines() or [f"exit status {started.returncode}"]
-        reason = lines[-1].removeprefix("localhost_slurm.sh: ")
-        pytest.skip(f"no localhost SLURM cluster: {reason}")
-    try:
-        with pytest.MonkeyPatch.context() as env:
-            env.setenv("SLURM_CONF", str(RUN_DIR / "etc" / "slurm.conf"))
-            env.setenv("PATH", f"{RUN_DIR / 'bin'}{os.pathsep}{os.environ['PATH']}")
-            yield
-    finally:
-        if not already_running:
-            stopped = cluster("stop")
-            assert stopped.returncode == 0, stopped.stderr
-
-
 def timed_run(work: Path, *options: str) -> float:
     """Run the targets in ``work``; returns the wall time (s).  A run still going after
     TIMEOUT_S is killed (SIGKILL: a run waiting for job states ignores SIGTERM)."""
@@ -71,24 +58,52 @@ def timed_run(work: Path, *options: str) -> float:
     return time.perf_counter() - start
 
 
-@pytest.fixture(scope="module")
-def runs(slurm_cluster, tmp_path_factory):
-    """The same targets run locally and through SLURM, in two working directories."""
-    local = workdir(tmp_path_factory.mktemp("local"), CONFIG)
-    slurm = workdir(tmp_path_factory.mktemp("slurm"), CONFIG)
-    # Local first: it also compiles the solver if the numba cache is cold, so that the
-    # SLURM jobs (same user, same environment, hence the same cache) find it compiled.
-    local_s = timed_run(local, "--cores", "2")
-    slurm_s = timed_run(
-        slurm,
-        "--profile",
-        str(ROOT / "profiles" / "slurm"),
-        "--workflow-profile",
-        str(ROOT / "profiles" / "slurm-localhost"),
-    )
+@pytest.fixture(scope="session")
+def runs(tmp_path_factory):
+    """The same targets run locally and through SLURM, in two working directories, once
+    for the whole test run (every xdist worker reads the same two runs, built_once): the
+    localhost cluster is started for them (unless it already ran) and stopped right after,
+    so no worker stops it while another's run needs it.  No cluster: the tests skip."""
+    folder = shared_folder(tmp_path_factory, "slurm_runs")
+
+    def build(root):
+        root.mkdir(parents=True)
+        already_running = cluster("status").returncode == 0
+        started = cluster("start")
+        if started.returncode != 0:
+            lines = started.stderr.strip().splitlines() or [f"exit {started.returncode}"]
+            (root / "skip").write_text(lines[-1].removeprefix("localhost_slurm.sh: "))
+            return
+        try:
+            with pytest.MonkeyPatch.context() as env:
+                env.setenv("SLURM_CONF", str(RUN_DIR / "etc" / "slurm.conf"))
+                env.setenv("PATH", f"{RUN_DIR / 'bin'}{os.pathsep}{os.environ['PATH']}")
+                # Local first: it also compiles the solver if the numba cache is cold, so
+                # that the SLURM jobs (same user, same environment, hence the same cache)
+                # find it compiled.
+                local_s = timed_run(workdir(root / "local", CONFIG), "--cores", "2")
+                slurm_s = timed_run(
+                    workdir(root / "slurm", CONFIG),
+                    "--profile",
+                    str(ROOT / "profiles" / "slurm"),
+                    "--workflow-profile",
+                    str(ROOT / "profiles" / "slurm-localhost"),
+                )
+        finally:
+            if not already_running:
+                stopped = cluster("stop")
+                assert stopped.returncode == 0, stopped.stderr
+        (root / "times.json").write_text(json.dumps({"local_s": local_s, "slurm_s": slurm_s}))
+
+    built_once(folder, build)
+    if (folder / "skip").exists():
+        pytest.skip(f"no localhost SLURM cluster: {(folder / 'skip').read_text()}")
+    times = json.loads((folder / "times.json").read_text())
     # Shown with pytest -s (the SLURM run's cost is mostly the plugin's polling).
-    print(f"\nwall time: local (--cores 2) {local_s:.1f} s, SLURM {slurm_s:.1f} s")
-    return {"local": local, "slurm": slurm, "local_s": local_s, "slurm_s": slurm_s}
+    print(
+        f"\nwall time: local (--cores 2) {times['local_s']:.1f} s, SLURM {times['slurm_s']:.1f} s"
+    )
+    return {"local": folder / "local", "slurm": folder / "slurm", **times}
 
 
 def test_jobs_ran_through_slurm(runs):
