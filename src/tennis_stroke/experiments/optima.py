@@ -12,7 +12,7 @@ import xarray as xr
 from ..solver.settings import SolverSettings
 from .grids import axis, select_rows
 from .maps import optimum_dataset
-from .search import StrokeObjective, maximize, stacked
+from .search import lockstep_objective, maximize
 
 
 def mass_length_optimum(
@@ -61,13 +61,13 @@ def mass_length_optima(
     meshes = [np.meshgrid(m2, np.asarray(x, float), indexing="ij") for x in l1]
     counts = [mm.size for mm, _ in meshes]
     n = sum(counts)
-    shared, per_problem = stacked(models, counts)
     fixed = {
         "M2": np.concatenate([mm.ravel() for mm, _ in meshes]),
         "L1": np.concatenate([ll.ravel() for _, ll in meshes]),
-        **per_problem,
     }
-    objective = StrokeObjective(("theta0", "delta0"), n, fixed, shared, settings, threads)
+    objective = lockstep_objective(
+        ("theta0", "delta0"), n, fixed, models, counts, settings, threads
+    )
     lower, upper = (theta0_range[0], delta0_range[0]), (theta0_range[1], delta0_range[1])
     best = maximize(objective, n, lower, upper, (coarse_step, coarse_step), (tolerance, tolerance))
     at = objective.strike(best.x[:, None, :], np.arange(n))

@@ -242,6 +242,17 @@ def stacked(
     return shared, per_problem
 
 
+def lockstep_objective(
+    axes, problems: int, fixed, models, counts, settings, threads=None
+) -> StrokeObjective:
+    """The :class:`StrokeObjective` of a search of several parameter sets in lockstep:
+    set ``r`` of ``models`` owns the next ``counts[r]`` problems (:func:`stacked`); the
+    search's per-problem values ``fixed`` replace the sets' own, as they replace one
+    set's overrides."""
+    shared, per_problem = stacked(models, counts)
+    return StrokeObjective(axes, problems, {**per_problem, **fixed}, shared, settings, threads)
+
+
 class StrokeObjective:
     """The rebound speed v_out (km/h; NaN where the stroke fails) as a batch objective
     (:data:`Objective`) over ``axes`` (``theta0``, ``delta0`` in degrees, or model

@@ -273,6 +273,17 @@ def experiment_config(
     return cfg, model
 
 
+def experiment_configs(
+    config: Mapping, space: ReadingSpace, readings: xr.Dataset, index: Sequence[int]
+) -> tuple[list[dict], list[dict], list[dict]]:
+    """The kept readings ``index`` of ``readings`` (:func:`reading_of`) with their workflow
+    configs and model overrides (:func:`experiment_config`): three lists, one entry per
+    reading, as the searches in lockstep take them."""
+    chosen = [reading_of(readings, int(i)) for i in index]
+    pairs = [experiment_config(config, space, r) for r in chosen]
+    return chosen, [c for c, _ in pairs], [m for _, m in pairs]
+
+
 def paper_results(
     config: Mapping,
     model: Mapping[str, object],

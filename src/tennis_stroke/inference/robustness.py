@@ -20,7 +20,7 @@ from ..solver.settings import SolverSettings
 from .claims import measure, within
 from .identification import quoted_variable
 from .labels import claim_facts, variable
-from .multiverse import experiment_config, reading_of
+from .multiverse import experiment_configs
 from .reading_space import CLAIM_LEVEL, CURVE_FILES, ReadingSpace
 from .targeted import targeted_files_of
 
@@ -157,9 +157,7 @@ def evaluate_readings(
     index = select_rows(np.arange(readings.sizes["reading"]), rows)
     cases = variants(space)
     values = np.full((index.size, len(cases), len(claims)), np.nan)
-    chosen = [reading_of(readings, int(i)) for i in index]
-    pairs = [experiment_config(config, space, r) for r in chosen]
-    configs, models = [c for c, _ in pairs], [m for _, m in pairs]
+    chosen, configs, models = experiment_configs(config, space, readings, index)
     found = targeted_files_of(
         configs,
         models,

@@ -37,13 +37,7 @@ import xarray as xr
 
 from ..experiments.grids import axis
 from ..experiments.optima import mass_length_optima
-from ..experiments.search import (
-    StrokeObjective,
-    coarse_axis,
-    first_crossing,
-    maximize,
-    stacked,
-)
+from ..experiments.search import coarse_axis, first_crossing, lockstep_objective, maximize
 from ..experiments.specs import EXPERIMENTS
 from ..experiments.strokes import table1_cases
 from ..solver.results import FILE_NAMES
@@ -63,14 +57,6 @@ def _dataset(variables: Mapping, coords: Mapping, **attrs) -> xr.Dataset:
     return ds
 
 
-def _objective(axes, problems, fixed, models, counts, settings, threads) -> StrokeObjective:
-    """The objective of a search of several parameter sets in lockstep: set ``r`` of
-    ``models`` owns the next ``counts[r]`` problems; the search's per-problem values
-    ``fixed`` replace the sets' own, as they replace one set's overrides."""
-    shared, per_problem = stacked(models, counts)
-    return StrokeObjective(axes, problems, {**per_problem, **fixed}, shared, settings, threads)
-
-
 def _split(values: np.ndarray, sets: int) -> np.ndarray:
     """Per-problem values of ``sets`` parameter sets with as many problems each, by set."""
     return np.asarray(values).reshape(sets, -1, *np.shape(values)[1:])
@@ -84,7 +70,7 @@ def angle_rows(
     theta0 = axis(args["theta0"])
     d0, sets = args["delta0"], len(models)
     n = theta0.size * sets
-    objective = _objective(
+    objective = lockstep_objective(
         ("delta0",),
         n,
         {"theta0": np.tile(theta0, sets)},
@@ -150,7 +136,7 @@ def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, t
     ``bases[owner[i]]`` (``owner`` ascending: each set's rows together)."""
     counts = np.bincount(owner, minlength=len(bases))
     used = np.flatnonzero(counts)
-    objective = _objective(
+    objective = lockstep_objective(
         ("tau",),
         c2.size,
         {"C2": c2},
@@ -241,7 +227,9 @@ def delay_optimum(
     d0, tau = args["delta0"], _ends(args["tau"])
     sets = len(models)
     bases = [_sec5_base(args, m) for m in models]
-    objective = _objective(("delta0", "tau"), sets, {}, bases, [1] * sets, settings, threads)
+    objective = lockstep_objective(
+        ("delta0", "tau"), sets, {}, bases, [1] * sets, settings, threads
+    )
     best = maximize(
         objective,
         sets,
@@ -275,7 +263,7 @@ def delay_line(
     bases = [{**_sec5_base(args, m), "delta0": args["delta0"]} for m in models]
     c2 = np.full(sets, float(args["C2"]))
     best = _best_tau(c2, np.arange(sets), tau, bases, search, settings, threads)
-    objective = _objective(("tau",), sets, {}, bases, [1] * sets, settings, threads)
+    objective = lockstep_objective(("tau",), sets, {}, bases, [1] * sets, settings, threads)
     v0 = objective(np.full((sets, 1, 1), tau[0]), np.arange(sets))[:, 0]
     out = []
     for r in range(sets):
@@ -317,7 +305,9 @@ def elbow_extremes(
         }
         for m in models
     ]
-    objective = _objective(("psi_F_deg", "t_F"), sets, {}, bases, [1] * sets, settings, threads)
+    objective = lockstep_objective(
+        ("psi_F_deg", "t_F"), sets, {}, bases, [1] * sets, settings, threads
+    )
     turn = 360.0 if np.isclose(psi[-1] - psi[0], 360.0) else None  # a full turn wraps
     found = [
         maximize(

@@ -32,7 +32,7 @@ from .claims import (
     measure,
 )
 from .labels import variable
-from .multiverse import experiment_config, paper_results, reading_of
+from .multiverse import experiment_configs, paper_results
 from .reading_space import ReadingSpace
 from .search_plan import SEARCHED
 from .targeted import searched_files_of
@@ -103,9 +103,7 @@ def validate(
     checked = searched_claims(claims, keys)
     values = {k: np.full((index.size, len(checked)), np.nan) for k in ("targeted", "map")}
     half = np.zeros((index.size, len(checked)))
-    chosen = [reading_of(readings, int(i)) for i in index]
-    pairs = [experiment_config(config, space, r) for r in chosen]
-    configs, models = [c for c, _ in pairs], [m for _, m in pairs]
+    chosen, configs, models = experiment_configs(config, space, readings, index)
     l1_maxes = [r.get("fig6_L1_max") for r in chosen]
     targeted = searched_files_of(configs, models, settings, l1_maxes, threads, keys)
     for n, (cfg, model, l1_max) in enumerate(zip(configs, models, l1_maxes, strict=True)):

@@ -112,7 +112,7 @@ JIT_FAST_INNER = {**JIT_FAST, "no_cpython_wrapper": True}
 
 def _is_choice(value: object) -> bool:
     """A reading's choice: a string, or an array of strings (one per stroke)."""
-    return isinstance(value, str) or np.asarray(value).dtype.kind in "UO"
+    return isinstance(value, str) or (isinstance(value, np.ndarray) and value.dtype.kind in "UO")
 
 
 def _number_of(table: Mapping[str, float], choice) -> float | np.ndarray:

@@ -22,7 +22,6 @@ import contextlib
 import fcntl
 import os
 import re
-import tempfile
 from collections.abc import Iterator, Mapping
 from pathlib import Path
 
@@ -30,6 +29,7 @@ import yaml
 
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, shown, sorted_data
 from ..io.config_files import ConfigFileError, load_yaml
+from ..io.netcdf import temporary_beside
 from ..model.params import PARAMETERS, READINGS
 from .config_check import canonical, config_errors, load_schema, numbers_from_strings
 from .params import changed_results, reads
@@ -239,13 +239,10 @@ def save_scenario(
             )
         text = target.read_text() if target.is_file() else ""
         separator = "" if not text or text.endswith("\n") else "\n"
-        mode = target.stat().st_mode & 0o7777 if target.exists() else 0o666 & ~_umask()
-        fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".saving", dir=target.parent)
-        temporary = Path(tmp)
+        temporary = temporary_beside(target)  # the file exists now (_locked made it)
         try:
-            with os.fdopen(fd, "w") as out:
-                out.write(f"{text}{separator}{block}")
-            os.chmod(temporary, mode)
+            temporary.write_text(f"{text}{separator}{block}")
+            os.chmod(temporary, target.stat().st_mode & 0o7777)
             try:
                 again = load_scenarios(temporary)
             except ScenarioError:
@@ -266,7 +263,7 @@ def _locked(path: Path) -> Iterator[None]:
     """Hold an exclusive lock on the file ``path`` (made empty if missing) as it is now:
     a saver that waited on a file another saver has since replaced locks the new one."""
     while True:
-        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666 & ~_umask())
+        fd = os.open(path, os.O_RDWR | os.O_CREAT, 0o666)  # the umask applies
         try:
             fcntl.flock(fd, fcntl.LOCK_EX)
             if os.fstat(fd).st_ino == os.stat(path).st_ino:
@@ -274,9 +271,3 @@ def _locked(path: Path) -> Iterator[None]:
                 return
         finally:
             os.close(fd)
-
-
-def _umask() -> int:
-    mask = os.umask(0o022)  # the only portable way to read it: set and restore at once
-    os.umask(mask)
-    return mask
