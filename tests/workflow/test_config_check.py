@@ -11,8 +11,10 @@ from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,
     load_schema,
+    memory_errors,
     numbers_from_strings,
 )
+from tennis_stroke.pipeline.memory import BATCH_BYTES_PER_STROKE, format_size
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -156,6 +158,33 @@ BAD = [  # (path, value, fragment of the message)
         {"start": 0.0, "stop": 0.3, "step": 1e-12},
         "'torque_delay.fig9': a Fig. 9 map job (1 x 300000000001 strokes) needs",
     ),
+    # the sampled curves (the job tried to allocate 14.9 GiB) and the claims' searches
+    (
+        ("fig4", "samples"),
+        2_000_000_000,
+        "'fig4.samples': the curves of the Fig. 4 strokes (4000000000 stroke-samples) needs",
+    ),
+    (
+        ("torque_delay", "strokes", "samples"),
+        100_000_000,
+        "'torque_delay.strokes.samples': the curves of the Figs. 10-12 strokes (200000000",
+    ),
+    (
+        ("search", "angle_step"),
+        1e-4,
+        "'search.angle_step': the search of the Figs. 2-3 map's claims (search.angle_step",
+    ),
+    (
+        ("search", "tau_step"),
+        1e-9,
+        "'search': the search of the Fig. 7 map's claims (search.C2_step = 0.5, "
+        "search.tau_step = 1e-09: 6300000021 strokes at once) needs",
+    ),
+    (
+        ("search", "psi_F_step"),
+        1e-6,
+        "'search': the search of the Fig. 13 map's claims (search.psi_F_step = 1e-06",
+    ),
 ]
 
 
@@ -215,6 +244,19 @@ def test_chunks_make_a_large_map_fit():
     assert "'angle_maps': a Figs. 2-3 map job (241 x 401" in config_errors(config, SCHEMA)[0]
     config["chunks"]["angle_map"] = 4
     assert config_errors(config, SCHEMA) == []
+
+
+def test_readings_searched_in_lockstep_multiply_a_search_s_memory():
+    """The robustness job searches its readings together: a bracket that fits one reading
+    can exceed the limit for all of them, and the plan says so before any job."""
+    config = copy.deepcopy(GOOD)
+    config["max_memory"] = "12G"
+    config["search"]["angle_step"] = 1e-3  # 241 x 100001 strokes: about 9.7 GiB
+    assert list(memory_errors(config, 1)) == []
+    (error,) = memory_errors(config, 32)
+    assert error.startswith("config key 'search.angle_step': the search of the Figs. 2-3 ")
+    needed = format_size(32 * 24100241 * BATCH_BYTES_PER_STROKE)
+    assert f"24100241 strokes at once for each of 32 readings) needs about {needed}" in error
 
 
 def test_the_shipped_config_declares_max_memory_with_a_default():

@@ -32,6 +32,7 @@ from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,
     load_schema,
+    memory_errors,
     numbers_from_strings,
 )
 from tennis_stroke.io.interrupts import PARENT_ENV, process_identity
@@ -87,6 +88,18 @@ try:
     )
 except ReadingSpaceError as _exc:
     sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
+    sys.exit(1)
+# The claims' searches of the largest robustness job (its readings in lockstep) against
+# the memory limit, as the config check does for one reading.
+_multiverse = READING_SPACE.raw["multiverse"]
+_errors = list(
+    memory_errors(
+        config,
+        -(-_multiverse["readings"] // chunk_count(_multiverse["chunks"], _multiverse["readings"])),
+    )
+)
+if _errors:
+    sys.stderr.write(f"tennis-stroke config error: {_errors[0]}\n")
     sys.exit(1)
 
 # The what-if scenarios (config/scenarios.yaml and --config scenarios=...), each checked

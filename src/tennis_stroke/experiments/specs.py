@@ -84,8 +84,9 @@ class Experiment:
     config key of the chunk count (None: one job), ``rows`` the argument whose axis is
     split; ``strokes``: the strokes of the unchunked job's batches run at once, from its
     arguments (None: no estimate); ``gathered``: the gathered map holds one result per
-    stroke of the first batch (its memory is estimated); ``variables``: the file's data
-    variables; ``label``: what a message calls it, ``section`` the config key it names;
+    stroke of the first batch (its memory is estimated); ``samples``: the (stroke, time)
+    points of its sampled curves, from its arguments (None: no curves); ``variables``: the
+    file's data variables; ``label``: what a message calls it, ``section`` the config key it names;
     ``rule``: the name of its workflow rule (default: the key); ``bounds``: argument
     (``force.F0`` inside a mapping argument) -> the model parameter
     (:data:`tennis_stroke.model.params.PARAMETERS`) whose unit and bounds its values
@@ -107,6 +108,7 @@ class Experiment:
     rows: str | None = None
     strokes: Callable[[Mapping], tuple[int, ...]] | None = None
     gathered: bool = False
+    samples: Callable[[Mapping], int] | None = None
     section: str = ""
     rule: str = ""
     bounds: Mapping[str, str] = field(default_factory=dict)
@@ -316,6 +318,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             (*STROKE_VARIABLES, *CURVE_VARIABLES),
             "Fig. 4 strokes",
             section="fig4",
+            samples=lambda a: len(a["strokes"]) * int(a["samples"]),
         ),
         Experiment(
             "k_sensitivity",
@@ -376,6 +379,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             section="torque_delay.strokes",
             bounds=SEC5_BOUNDS,
             rule="delay_strokes",
+            samples=lambda a: 2 * int(a["stroke"]["samples"]),  # tau_L and tau_H
         ),
         Experiment(
             "elbow_map",
@@ -417,6 +421,8 @@ EXPERIMENTS: dict[str, Experiment] = {
             section="elbow_force",
             bounds={**SEC5_BOUNDS, "force.F0": "F0", "force.t_d": "t_d"},
             rule="elbow_force_strokes",
+            # each direction of Table I and the stroke without the force
+            samples=lambda a: (len(a["force"]["table1_psi"]) + 1) * int(a["stroke"]["samples"]),
         ),
         Experiment(
             "work_precision",

@@ -27,11 +27,20 @@ import numpy as np
 from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
 from ..experiments.specs import EXPERIMENTS
 from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
+from ..inference.search_plan import BRACKET_KEYS, SEARCHED, search_strokes
 from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
 from ..model.params import ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
 from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case
-from .memory import WORD, MemoryLimitError, batch_bytes, check_memory, memory_limit, result_bytes
+from .memory import (
+    WORD,
+    MemoryLimitError,
+    batch_bytes,
+    check_memory,
+    curve_bytes,
+    memory_limit,
+    result_bytes,
+)
 
 
 def _walk(node, parts=()) -> Iterator[tuple[tuple, object]]:
@@ -159,17 +168,28 @@ def _requested_chunks(config: Mapping, key: str) -> int:
         return 1
 
 
-def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
-    """``(config key, what, peak bytes)`` of the workflow's largest jobs, from the grid
-    sizes alone (nothing is allocated): the largest chunk job of every row of the table
-    of experiments that runs a batch of strokes, the gathering of each chunked map (the
-    chunks and the whole map in memory at once), and the solver studies' searches."""
+def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int]]:
+    """``(config key, what, peak bytes)`` of the workflow's largest jobs, from the sizes
+    alone (nothing is allocated): the largest chunk job of every row of the table of
+    experiments that runs a batch of strokes, the gathering of each chunked map (the
+    chunks and the whole map in memory at once), the sampled curves of the rows that
+    draw them, the first batch of every claim's search (``readings`` of them searched in
+    lockstep, the largest robustness job's), and the solver studies' searches."""
     threads = os.cpu_count() or 1
     history = SolverSettings().history
     for e in EXPERIMENTS.values():
-        if e.strokes is None:
+        if e.samples is None and e.strokes is None:
             continue
         args = e.arguments(config)
+        if e.samples is not None:
+            points = e.samples(args)
+            yield (
+                e.key_of("samples" if "samples" in e.args else "stroke.samples"),
+                f"the curves of the {e.label} ({_n(points)} stroke-samples)",
+                curve_bytes(points),
+            )
+        if e.strokes is None:
+            continue
         batches = e.strokes(args)
         rows = e.row_count(args)
         per_job = _rows_per_job(rows, _requested_chunks(config, e.chunks)) if e.chunks else rows
@@ -183,6 +203,17 @@ def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
         if e.gathered:
             n = batches[0]
             yield e.section, f"gathering the {e.label} ({_n(n)} strokes)", 2 * result_bytes(n)
+    together = max(1, int(readings))
+    for key in SEARCHED:
+        e, steps = EXPERIMENTS[key], BRACKET_KEYS[key]
+        n = search_strokes(key, e.arguments(config), config["search"])
+        shown = ", ".join(f"{k} = {value_at(config, k):g}" for k in steps)
+        yield (
+            steps[0] if len(steps) == 1 else steps[0].partition(".")[0],
+            f"the search of the {e.label}'s claims ({shown}: {_n(n)} strokes at once"
+            + (f" for each of {together} readings)" if together > 1 else ")"),
+            batch_bytes(n * together, threads, history),
+        )
 
     def job(n_strokes: int) -> int:
         return batch_bytes(n_strokes, threads, history)
@@ -217,13 +248,15 @@ def map_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
     )
 
 
-def _memory_errors(config: Mapping) -> Iterator[str]:
+def memory_errors(config: Mapping, readings: int = 1) -> Iterator[str]:
+    """The first job of :func:`map_jobs` above the memory limit, as a one-line message
+    (``readings``: searched in lockstep by the largest robustness job)."""
     try:
         limit = memory_limit(config.get("max_memory"), "config key 'max_memory'")
     except ValueError as exc:
         yield f"{exc} (rule: memory size)"
         return
-    for key, what, needed in map_jobs(config):
+    for key, what, needed in map_jobs(config, readings):
         try:
             check_memory(needed, what, limit)
         except MemoryLimitError as exc:
@@ -350,4 +383,4 @@ def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:
     """Every problem of ``config`` as one-line messages (empty: the config is good)."""
     schema = load_schema(schema_path)
     errors = schema_errors(config, schema, "config")
-    return errors or list(_semantic_errors(config)) or list(_memory_errors(config))
+    return errors or list(_semantic_errors(config)) or list(memory_errors(config))

@@ -30,12 +30,15 @@ from pathlib import Path
 
 import numpy as np
 
+from ..experiments.specs import CURVE_VARIABLES
 from ..model.dynamics import N_CF
 from ..solver.integrate import HISTORY_COLS
 from ..solver.results import COUNT_FIELDS, DEGREE_FIELDS, N_OUT, RESULT_FIELDS
 
 #: Bytes of one float64 or int64 value.
 WORD = np.dtype(np.float64).itemsize
+#: Variables of the sampled curves of a single stroke.
+N_CURVES = len(CURVE_VARIABLES)
 #: Result fields that :func:`tennis_stroke.solver.results.results_from_output` copies
 #: out of the compiled output: the counts (to int64) and the angles (to degrees); the
 #: others are views of it.
@@ -47,6 +50,13 @@ _COPIED_FIELDS = len(COUNT_FIELDS) + len(DEGREE_FIELDS)
 #: resident memory over the call, 2e6 strokes): 415 bytes per stroke for a grid given as
 #: broadcast axes, 440 for flat angle arrays (which the caller holds as well).
 BATCH_BYTES_PER_STROKE = WORD * (2 + N_CF + N_OUT + _COPIED_FIELDS)
+#: Peak bytes per (stroke, time) point of the sampled curves of single strokes
+#: (:func:`tennis_stroke.experiments.strokes.trajectories`): each curve variable held
+#: twice (the per-stroke lists, then the stacked arrays of the dataset) and the elbow's
+#: path (two values, and its list while it is built): 8 x (2 x 13 + 4) = 240 bytes.
+#: Measured (peak resident memory over Fig. 4's two strokes at 400,000 samples each,
+#: written to netCDF): 237 bytes, for the free swing and the stroke with the ball alike.
+CURVE_BYTES_PER_SAMPLE = WORD * (2 * N_CURVES + 4)
 #: Bytes per stroke of the result fields (every field one int64 or float64).
 RESULT_BYTES_PER_STROKE = WORD * len(RESULT_FIELDS)
 #: Share of the usable memory a computation may take by default: the rest is left to
@@ -68,6 +78,11 @@ def batch_bytes(n_strokes: int, threads: int = 1, history: int = 512) -> int:
     threads (each keeps a swing history of ``history`` rows)."""
     per_thread = (int(history) + 1) * HISTORY_COLS * WORD
     return int(n_strokes) * BATCH_BYTES_PER_STROKE + max(1, int(threads)) * per_thread
+
+
+def curve_bytes(points: int) -> int:
+    """Peak bytes of the sampled curves of ``points`` (stroke, time) points."""
+    return int(points) * CURVE_BYTES_PER_SAMPLE
 
 
 def result_bytes(n_strokes: int) -> int:
