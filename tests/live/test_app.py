@@ -18,13 +18,28 @@ from tennis_stroke.solver.stroke import strike_batch
 
 class Document:
     """What a session uses of a Bokeh document; the next-tick callbacks run at once, in
-    the order they are added, like the server's loop runs them."""
+    the order they are added, like the server's loop runs them.  Its page connects at
+    once (``document_ready``), unless ``connects=False`` (a page load whose websocket
+    never opens); :meth:`destroy` ends the session as Bokeh does."""
 
-    def __init__(self):
+    def __init__(self, connects=True):
         self.roots, self.title, self.lock = [], "", threading.Lock()
+        self.connects, self.destroyed = connects, []
 
     def add_root(self, model):
         self.roots.append(model)
+
+    def on_event(self, name, callback):
+        assert name == "document_ready"
+        if self.connects:
+            callback(None)
+
+    def on_session_destroyed(self, callback):
+        self.destroyed.append(callback)
+
+    def destroy(self):
+        for callback in self.destroyed:
+            callback(None)
 
     def add_next_tick_callback(self, callback):
         with self.lock:
@@ -79,6 +94,46 @@ def test_a_change_shows_the_strokes_at_the_new_setting(shared):
     np.testing.assert_array_equal(data["image"][0], expected["v_out_kmh"].T.astype(np.float32))
     assert session.claims_source.data["status"][0] in ("pass", "fail", "used_for_fit")
     assert "full map (9 x 9)" in session.status.text and session.error.text == ""
+
+
+def test_a_page_load_computes_nothing_until_its_page_connects(shared, monkeypatch):
+    """100 page loads without a websocket took 47.7 s and 316 MB: each computed a coarse
+    map on the server's loop and queued a full one.  Now a session starts from the
+    paper's views, computed once per server, and asks for work only once connected."""
+    shared.paper_views()
+    computed = []
+    for name in ("map_level", "fig9_curve", "claims_table"):
+        monkeypatch.setattr(
+            explorer, name, lambda *a, _name=name, **k: computed.append((_name, *a[2:3]))
+        )
+    sessions = [app.Session(shared, Document(connects=False)) for _ in range(3)]
+    settle(sessions[-1])
+    assert computed == []
+    for session in sessions:
+        assert session.generation["all"] == 0 and not any(session._queued.values())
+        assert session.map_source.data["level"] == ["coarse"]
+    coarse = shared.paper_views()[0]
+    expected = app.Session._map_data(coarse, 0)["image"][0]
+    np.testing.assert_array_equal(sessions[0].map_source.data["image"][0], expected)
+    sessions[0]._connected(None)  # the page connects: its full map follows (the stub
+    settle(sessions[0])  # returns nothing, so the stages stop there)
+    assert computed == [("map_level", "full")]  # the coarse map and Fig. 9 are shown
+
+
+def test_sessions_are_bounded_and_a_page_beyond_them_says_so(shared, monkeypatch):
+    monkeypatch.setattr(shared, "max_sessions", 2)
+    monkeypatch.setattr(shared, "sessions", 0)
+    docs = [Document(connects=False) for _ in range(3)]
+    for doc in docs:
+        app.make_document(shared, doc)
+    assert shared.sessions == 2
+    (busy,) = docs[2].roots
+    assert busy.name == "explore-busy" and "serves 2 sessions at once" in busy.text
+    docs[0].destroy()  # Bokeh drops a closed (or never connected) page's session
+    assert shared.sessions == 1
+    fourth = Document(connects=False)
+    app.make_document(shared, fourth)
+    assert shared.sessions == 2 and fourth.roots[0].name != "explore-busy"
 
 
 def test_a_value_out_of_bounds_is_refused_and_the_old_kept(shared):

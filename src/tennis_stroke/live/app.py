@@ -9,6 +9,14 @@ session's request waits for it, and work for a setting that a newer one replaced
 dropped between two stages or two row blocks of a map, so rapid changes pile up
 nothing (at most one running and one waiting request per session and kind).  A failed
 stage shows one line in the page; the server keeps serving.
+
+A page load computes nothing: a new session shows the paper's setting at the coarse
+level and Fig. 9's curve, computed once per server (:meth:`Shared.paper_views`), and
+asks for its full map and claims only when its page has connected (Bokeh's
+``document_ready`` event): a page whose websocket never opens costs the building of its
+document, and Bokeh drops it after :data:`UNUSED_SESSION_SECONDS`.  At most
+:attr:`Shared.max_sessions` sessions live at once; a page beyond them gets one line
+saying so, and no session.
 """
 
 from __future__ import annotations
@@ -56,6 +64,10 @@ from ..replication.views import (
 
 #: The one worker of every session (see the module's docstring).
 _WORKER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tennis-stroke-explore")
+#: Sessions one server keeps at once (each holds its maps and views, a few MB).
+MAX_SESSIONS = 8
+#: Seconds after which Bokeh drops a session whose page is gone or never connected.
+UNUSED_SESSION_SECONDS = 10
 
 
 def _registry_figure(live: str):
@@ -86,10 +98,50 @@ class Shared:
     scenarios: Path
     schema: Path
     threads: int | None = None
+    max_sessions: int = MAX_SESSIONS
     stopping: threading.Event = field(default_factory=threading.Event)
+    sessions: int = 0
+    _paper: tuple | None = None
+    _lock: threading.Lock = field(default_factory=threading.Lock)
+
+    def paper_views(self) -> tuple:
+        """The coarse map and Fig. 9's curve at the paper's setting (the default reading),
+        computed by the first caller, then shared by every session of the server."""
+        with self._lock:
+            if self._paper is None:
+                paper = {c.key: c.paper for c in explorer.controls(self.config, self.figure)}
+                overrides = explorer.overrides(self.config, paper)  # as a session's first
+                config = scenario_config(self.config, "explore", overrides, self.schema)
+                self._paper = (
+                    explorer.map_level(config, self.figure, "coarse", threads=self.threads),
+                    explorer.fig9_curve(config, self.threads),
+                )
+            return self._paper
+
+    def open_session(self) -> bool:
+        """Count a new session in, if fewer than :attr:`max_sessions` live."""
+        with self._lock:
+            if self.sessions >= self.max_sessions:
+                return False
+            self.sessions += 1
+            return True
+
+    def close_session(self) -> None:
+        with self._lock:
+            self.sessions = max(0, self.sessions - 1)
 
     @classmethod
-    def load(cls, config, claims_path, readings_path, scenarios, schema, figure, threads=None):
+    def load(
+        cls,
+        config,
+        claims_path,
+        readings_path,
+        scenarios,
+        schema,
+        figure,
+        threads=None,
+        max_sessions=MAX_SESSIONS,
+    ):
         claims, space = claims_and_readings(claims_path, readings_path)
         declared = {c["id"]: c for c in claims}
         return cls(
@@ -101,6 +153,7 @@ class Shared:
             Path(scenarios),
             Path(schema),
             threads,
+            max_sessions,
         )
 
 
@@ -142,13 +195,14 @@ class Session:
         self.picked: tuple[float, float] | None = None
         self.stroke = None  # the picked stroke's view, once a point is picked
         self.fig = explorer.FIGURES[shared.figure][0]
-        config = self._config()
-        started = time.perf_counter()
-        ds = explorer.map_level(config, shared.figure, "coarse", threads=shared.threads)
-        curve = explorer.fig9_curve(config, shared.threads)
-        self._build(ds, curve)
-        self.status.text = f"coarse map in {time.perf_counter() - started:.2f} s"
-        self.request("all", skip=("coarse", "fig9"))
+        self._build(*shared.paper_views())
+        self.status.text = "the paper's setting, coarse map; the full map once connected"
+        doc.on_event("document_ready", self._connected)
+
+    def _connected(self, event) -> None:
+        """The page is connected: compute its full map and claims (once)."""
+        if self.generation["all"] == 0:
+            self.request("all", skip=("coarse", "fig9"))
 
     # -- the page ---------------------------------------------------------------------
 
@@ -472,5 +526,24 @@ class Session:
 
 
 def make_document(shared: Shared, doc) -> None:
-    """A new browser session's document (Bokeh's application function)."""
-    Session(shared, doc)
+    """A new browser session's document (Bokeh's application function): a session, or
+    one line when :attr:`Shared.max_sessions` are open."""
+    if not shared.open_session():
+        doc.add_root(
+            Div(
+                text=(
+                    f"The explorer serves {shared.max_sessions} sessions at once and all "
+                    "are open. Reload this page in a minute: a session ends "
+                    f"{UNUSED_SESSION_SECONDS} s after its page is closed."
+                ),
+                name="explore-busy",
+            )
+        )
+        doc.title = "tennis-stroke explore (busy)"
+        return
+    doc.on_session_destroyed(lambda context: shared.close_session())
+    try:
+        Session(shared, doc)
+    except BaseException:
+        shared.close_session()
+        raise

@@ -18,7 +18,6 @@ from bokeh.application.handlers.function import FunctionHandler
 from bokeh.server.server import Server
 
 from ..io.config_files import load_yaml
-from ..replication import explorer
 from . import app
 
 #: Exit statuses after SIGINT and SIGTERM (128 + the signal, as a shell reports them).
@@ -99,14 +98,18 @@ def serve(
         figure,
         threads,
     )
-    explorer.map_level(config, figure, "coarse", threads=threads)  # load the compiled code
+    shared.paper_views()  # loads the compiled code; every session's first views
     port = port or free_port(host)
+    unused = app.UNUSED_SESSION_SECONDS * 1000
     try:
         server = Server(
             Application(FunctionHandler(partial(app.make_document, shared))),
             address=host,
             port=port,
             allow_websocket_origin=origins(host, port),
+            # a session whose page is gone, or never connected, is dropped this soon
+            unused_session_lifetime_milliseconds=unused,
+            check_unused_sessions_milliseconds=unused // 2,
         )
     except OSError as exc:  # taken since check_address looked
         raise ValueError(f"--port {port}: cannot listen on {host} ({exc.strerror})") from None
