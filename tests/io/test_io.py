@@ -82,6 +82,20 @@ def test_check_writable_rejects_directories(tmp_path):
         check_writable(tmp_path)
 
 
+def test_a_replaced_result_keeps_its_mode_and_a_read_only_one_is_refused(tmp_path):
+    path = tmp_path / "map.nc"
+    write_netcdf(_map(np.ones(3)), path)
+    path.chmod(0o640)
+    write_netcdf(_map(np.full(3, 2.0)), path)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o640
+    np.testing.assert_array_equal(load_result(path)["v_out"].values, 2.0)
+    path.chmod(0o444)
+    with pytest.raises(OutputError, match="is read-only"):
+        write_netcdf(_map(np.full(3, 3.0)), path)
+    np.testing.assert_array_equal(load_result(path)["v_out"].values, 2.0)
+    assert [p.name for p in tmp_path.iterdir()] == ["map.nc"]
+
+
 def _map(values):
     return xr.Dataset(
         {"v_out": (("theta0",), values, {"units": "km/h", "long_name": "rebound speed"})},

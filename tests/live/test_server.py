@@ -230,6 +230,27 @@ def test_an_address_it_cannot_listen_at_is_one_line_before_anything_loads(tmp_pa
             assert time.monotonic() - started < 10
 
 
+@pytest.mark.parametrize(
+    ("old", "new", "message"),
+    [
+        ("  rtol: 5.0e-8 ", "  rtol: -1.0 ", "config key 'solver.rtol': -1.0 is less than"),
+        ("model: {}", "model: {M2: [", "YAML syntax error"),
+        ("  samples: 641", "  samples: 2000000000", "config key 'fig4.samples': the curves"),
+    ],
+)
+def test_a_bad_config_stops_the_explorer_in_one_line_naming_the_key(tmp_path, old, new, message):
+    """A config the workflow would refuse: refused by the explorer as the workflow does,
+    before anything loads (a bad value was one line without its key)."""
+    folder = project(tmp_path)
+    config = folder / "config" / "config.yaml"
+    text = config.read_text()
+    assert old in text
+    config.write_text(text.replace(old, new, 1))
+    done = subprocess.run(EXPLORE, cwd=folder, capture_output=True, text=True, timeout=60)
+    assert done.returncode == 2 and message in done.stderr, done.stderr
+    assert len(done.stderr.strip().splitlines()) == 1, done.stderr
+
+
 def test_on_every_interface_the_machine_s_own_addresses_may_open_the_websocket():
     allowed = server_module.origins("0.0.0.0", 5006)
     assert f"{socket.gethostname()}:5006" in allowed and "127.0.0.1:5006" in allowed

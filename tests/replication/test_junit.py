@@ -123,3 +123,24 @@ def test_a_junit_target_that_cannot_be_written_is_one_line(tmp_path, capsys):
     write_junit(frame, link)
     assert link.is_symlink() and JUnitXml.fromfile(str(real)).tests == len(frame)
     assert [p.name for p in tmp_path.iterdir() if p.name.endswith(".tmp")] == []
+
+
+def test_a_junit_report_keeps_its_mode_and_a_read_only_one_is_refused(tmp_path, capsys):
+    """Every writer of a user's file: a replaced file keeps its mode (a private 0600 report
+    stayed private only by luck: the umask's 0644 replaced it), a read-only one is refused
+    in one line and kept (it was replaced, even as root)."""
+    csv, declared, frame = claims_files(tmp_path)
+    private = tmp_path / "private.xml"
+    private.write_text("old")
+    private.chmod(0o600)
+    write_junit(frame, private)
+    assert stat.S_IMODE(private.stat().st_mode) == 0o600
+    assert JUnitXml.fromfile(str(private)).tests == len(frame)
+    kept = tmp_path / "kept.xml"
+    kept.write_text("old")
+    kept.chmod(0o444)
+    with pytest.raises(SystemExit) as stop:
+        main(["claims", str(csv), "--claims", str(declared), "--junit", str(kept)])
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and err.count("\n") == 1 and "is read-only" in err, err
+    assert kept.read_text() == "old" and stat.S_IMODE(kept.stat().st_mode) == 0o444

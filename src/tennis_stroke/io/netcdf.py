@@ -197,13 +197,21 @@ def _umask() -> int:
     return mask
 
 
+def read_only(path: Path) -> bool:
+    """Whether the existing file ``path`` is one its owner or this process may not write
+    (its owner's write bit is off: refused even to root, who may write anything)."""
+    return not (os.access(path, os.W_OK) and path.stat().st_mode & 0o200)
+
+
 def temporary_beside(path: Path) -> Path:
-    """An empty new file in ``path``'s folder, to be renamed to ``path``, with the
-    permissions any new file gets under the umask (``mkstemp`` would give 0600)."""
+    """An empty new file in ``path``'s folder, to be renamed to ``path``: with the mode of
+    ``path`` where it is a file (a replaced file keeps its mode), else the permissions any
+    new file gets under the umask (``mkstemp`` would give 0600)."""
     # a short prefix: the temporary name is never longer than a name the folder takes
+    mode = path.stat().st_mode & 0o7777 if path.is_file() else 0o666 & ~_umask()
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:64]}.", suffix=".tmp", dir=path.parent)
     try:
-        os.fchmod(fd, 0o666 & ~_umask())
+        os.fchmod(fd, mode)
     finally:
         os.close(fd)
     return Path(tmp)
@@ -212,7 +220,8 @@ def temporary_beside(path: Path) -> Path:
 def check_writable(path: str | os.PathLike) -> Path:
     """Fail early (:class:`OutputError`) if ``path`` cannot be created; return the path to
     write (a symbolic link's target: the link stays a link).  A path that exists must be a
-    regular file, never a device or a pipe.
+    regular file, never a device or a pipe, and writable (a read-only file is the user's
+    way to keep it).
 
     Creates and removes a temporary file beside ``path``: the only reliable test.
     """
@@ -224,6 +233,8 @@ def check_writable(path: str | os.PathLike) -> Path:
         raise OutputError(f"output path {str(path)!r} is a directory")
     if path.exists() and not path.is_file():
         raise OutputError(f"output path {str(path)!r} is not a regular file (a device, a pipe)")
+    if path.is_file() and read_only(path):
+        raise OutputError(f"output path {str(path)!r} is read-only (make it writable to write it)")
     file = next((p for p in (parent, *parent.parents) if p.exists() and not p.is_dir()), None)
     if file is not None:
         raise OutputError(f"output directory {str(file)!r} is a file, not a directory")

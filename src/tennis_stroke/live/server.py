@@ -18,6 +18,7 @@ from bokeh.application.handlers.function import FunctionHandler
 from bokeh.server.server import Server
 
 from ..io.config_files import load_yaml
+from ..pipeline.config_check import config_errors
 from . import app
 
 #: Exit statuses after SIGINT and SIGTERM (128 + the signal, as a shell reports them).
@@ -89,12 +90,16 @@ def serve(
     it cannot listen at is one line (ValueError) before anything loads."""
     check_address(host, port)
     config = load_yaml(root / "config" / "config.yaml")
+    schema = root / "workflow" / "schemas" / "config.schema.yaml"
+    errors = config_errors(config, schema)  # as the workflow checks it: naming the key
+    if errors:
+        raise ValueError(f"{root / 'config' / 'config.yaml'}: {errors[0]}")
     shared = app.Shared.load(
         config,
         root / "config" / "claims.yaml",
         root / "config" / "readings.yaml",
         root / "config" / "scenarios.yaml",
-        root / "workflow" / "schemas" / "config.schema.yaml",
+        schema,
         figure,
         threads,
     )

@@ -29,7 +29,7 @@ import yaml
 
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, shown, sorted_data
 from ..io.config_files import ConfigFileError, load_yaml
-from ..io.netcdf import temporary_beside
+from ..io.netcdf import read_only, temporary_beside
 from ..model.params import PARAMETERS, READINGS
 from .config_check import canonical, config_errors, load_schema, numbers_from_strings
 from .params import changed_results, reads
@@ -226,7 +226,7 @@ def save_scenario(
     target = path.resolve() if path.is_symlink() else path
     if target.exists() and not target.is_file():
         raise ScenarioError(f"{path}: not a regular file: not saved")
-    if target.exists() and not (os.access(target, os.W_OK) and target.stat().st_mode & 0o200):
+    if target.exists() and read_only(target):
         raise ScenarioError(f"{path}: read-only: not saved (make it writable to save)")
     block = yaml.safe_dump(
         {name: sorted_data(dict(overrides))}, default_flow_style=None, sort_keys=True
@@ -239,10 +239,9 @@ def save_scenario(
             )
         text = target.read_text() if target.is_file() else ""
         separator = "" if not text or text.endswith("\n") else "\n"
-        temporary = temporary_beside(target)  # the file exists now (_locked made it)
+        temporary = temporary_beside(target)  # its mode (_locked made it if new)
         try:
             temporary.write_text(f"{text}{separator}{block}")
-            os.chmod(temporary, target.stat().st_mode & 0o7777)
             try:
                 again = load_scenarios(temporary)
             except ScenarioError:
