@@ -743,7 +743,13 @@ def _whatif(args: argparse.Namespace) -> int:
     import yaml
 
     from .io.interrupts import run_forwarding
-    from .pipeline.scenarios import ScenarioError, folder, load_scenarios, override_from
+    from .pipeline.scenarios import (
+        ScenarioError,
+        folder,
+        load_scenarios,
+        override_from,
+        scenario_reach,
+    )
     from .replication.registry import paper_figure
 
     if not Path("Snakefile").is_file():
@@ -762,6 +768,12 @@ def _whatif(args: argparse.Namespace) -> int:
             )
         load_scenarios("config/scenarios.yaml", {args.name: overrides or {}})  # its name
         figures = [paper_figure(f) for f in args.figure]
+        # checked as the workflow will check it: a bad value is one line here, not
+        # Snakemake's log; an override that reaches nothing asked for is refused
+        for line in scenario_reach(
+            args.name, declared.get(args.name) if overrides is None else overrides, figures
+        ):
+            print(f"tennis-stroke whatif: {line}", flush=True)
     except (ScenarioError, KeyError) as exc:
         raise ValueError(str(exc).strip("'\"")) from None
     where = folder(args.name)
@@ -769,12 +781,13 @@ def _whatif(args: argparse.Namespace) -> int:
         f"{folder(args.name, 'report')}/index.html"
     ]
     command = [sys.executable, "-m", "snakemake", "--cores", str(args.cores), *targets]
+    command += ["--quiet", "rules"]  # the log of make report: one line per job
     if overrides is not None:
         flow = yaml.safe_dump({args.name: overrides}, default_flow_style=True, width=10**6)
         command += ["--config", f"scenarios={flow.strip()}"]
     if args.dry_run:
         command.append("-n")
-    print("$ " + shlex.join(["snakemake", *command[3:]]), flush=True)
+    print("$ " + shlex.join(["snakemake", *command[3:]]), flush=True)  # what reruns it
     code = run_forwarding(command)  # Ctrl-C: Snakemake removes its locks, then we stop
     if code == 0 and not args.dry_run:
         print("\n".join(targets))

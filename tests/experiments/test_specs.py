@@ -93,9 +93,27 @@ def test_memory_batches_follow_the_grids():
     assert ml.strokes(ml.arguments(CONFIG)) == (13 * 13 * 7 * 11,)
 
 
+#: A value of each parameter a row may set, other than the paper's and the tiny config's.
+OTHER_VALUE = {
+    "L1": 0.55,
+    "M2": 0.45,
+    "C2": 3.3,
+    "tau": 0.05,
+    "k_contact": 5000.0,
+    "F0": 7.0,
+    "t_d": 0.03,
+    "psi_F_deg": 33.0,
+    "t_F": 0.12,
+}
+
+
 @pytest.mark.parametrize(
     ("key", "override"),
-    [("fig2", {"L1": 0.55}), ("ml", {"M2": 0.45, "L1": 0.55})],
+    [
+        (key, {name: OTHER_VALUE[name] for name in e.sets})
+        for key, e in EXPERIMENTS.items()
+        if e.sets
+    ],
 )
 def test_a_row_that_sets_a_parameter_itself_ignores_its_override(key, override):
     """A row's ``sets`` (the model parameters its function sets at every stroke) may be
@@ -111,7 +129,9 @@ def test_a_row_that_sets_a_parameter_itself_ignores_its_override(key, override):
 
     experiment = EXPERIMENTS[key]
     assert set(override) <= set(experiment.sets)
-    args = experiment.arguments(TINY)
+    for name in experiment.sets:  # the key it reads instead is one of its own
+        assert experiment.reads_instead(name) in experiment.keys()
+    args = experiment.arguments({"figure_curves": "free_swing", **TINY})
     plain_run = compute(experiment, args, {}, SolverSettings(), None, 1)
     overridden = compute(experiment, args, override, SolverSettings(), None, 1)
     assert plain_run.data_vars.keys() == overridden.data_vars.keys()

@@ -272,6 +272,41 @@ def test_each_key_names_what_it_drives():
         explain("torque_delay.base_stroke.c2", PAPER, CLAIMS)
 
 
+#: A valid value of every model parameter and reading other than its default.
+def _other(name):
+    from tennis_stroke.model.params import PARAMETERS, READINGS
+
+    if name in READINGS:
+        return next(c for c in READINGS[name].choices if c != READINGS[name].default)
+    spec = PARAMETERS[name]
+    value = spec.default * 1.1 if spec.default else 0.01
+    return min(value, spec.upper) if spec.upper is not None else value
+
+
+def test_explain_agrees_with_what_a_scenario_reruns_for_every_model_key():
+    """`config explain model.P` names exactly the paper's files a scenario overriding P
+    recomputes (and a figure's title names P only if so): for every model parameter and
+    reading.  Fig. 9 sets C2 itself: model.C2 reran it and labelled it."""
+    from tennis_stroke.model.params import PARAMETERS, READINGS
+    from tennis_stroke.pipeline.scenarios import changes_read
+
+    for name in (*PARAMETERS, *READINGS):
+        config = scenario_config(BASE, "s", {"model": {name: _other(name)}}, SCHEMA)
+        planned = changed_results(BASE, config)
+        explained = [k for k in rows_reading(f"model.{name}") if k in PAPER_RESULTS]
+        assert planned == explained, name
+        for key in PAPER_RESULTS:
+            assert bool(changes_read([key], BASE, config)) == (key in planned), (name, key)
+    c2 = scenario_config(BASE, "s", {"model": {"C2": 3.0}}, SCHEMA)
+    assert "fig9" not in changed_results(BASE, c2) and "fig2" in changed_results(BASE, c2)
+    assert "Fig. 9 map (reads torque_delay.base_stroke.C2)" in explain("C2", PAPER, CLAIMS).instead
+
+
+def test_a_mistyped_key_gets_the_nearest_full_keys():
+    with pytest.raises(KeyError, match=r"did you mean model\.ball_mass"):
+        explain("model.ballmass", PAPER, CLAIMS)
+
+
 def test_the_config_keys_page_is_current():
     """docs/config_keys.md holds `tennis-stroke config explain --all` of config.yaml."""
     text = (ROOT / "docs" / "config_keys.md").read_text()
@@ -296,6 +331,21 @@ def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
         (["whatif", "x", "--set", "M2=0.4", "--figure", "fig99"], "no figure 'fig99'"),
         (["whatif", "x", "--set", "M2"], "--set 'M2': expected KEY=VALUE"),
         (["whatif", "1x", "--set", "M2=0.4"], "scenario name '1x'"),
+        # a bad value: one line, not Snakemake's log and exit 1
+        (
+            ["whatif", "x", "--set", "M2=-1", "-n"],
+            "scenario 'x': config key 'model': parameter 'M2' must be > 0 kg, got -1",
+        ),
+        # a figure that sets the parameter itself: nothing of it changes
+        (
+            ["whatif", "x", "--set", "C2=3.0", "--figure", "fig9"],
+            "scenario 'x' does not change fig09_v_tau: model.C2 does not reach the Fig. 9 "
+            "map (it reads torque_delay.base_stroke.C2)",
+        ),
+        (
+            ["whatif", "x", "--set", "L1=0.5", "--figure", "fig2"],
+            "model.L1 does not reach the Figs. 2-3 map (it reads angle_maps.L1.0)",
+        ),
     ]
     for where, runs in ((tmp_path, cases), (ROOT, cases_root)):
         monkeypatch.chdir(where)

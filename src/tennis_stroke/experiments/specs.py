@@ -62,6 +62,8 @@ SEC5_STROKE = {
 
 #: The model parameters of the Sec. V-VI base stroke's values (checked before any job).
 SEC5_BOUNDS = {"stroke.L1": "L1", "stroke.C2": "C2", "stroke.tau_L": "tau", "stroke.tau_H": "tau"}
+#: The model parameters the rows of the Sec. V-VI stroke set themselves, and whence.
+SEC5_SETS = {"L1": "stroke.L1", "C2": "stroke.C2", "tau": "stroke.tau_L"}
 
 
 def _points(value) -> int:
@@ -91,8 +93,9 @@ class Experiment:
     (``force.F0`` inside a mapping argument) -> the model parameter
     (:data:`tennis_stroke.model.params.PARAMETERS`) whose unit and bounds its values
     have, checked before any job; ``sets``: the model parameters the row's function sets
-    itself at every stroke (an axis or argument of its own), so a model override of them
-    reaches nothing of it and is not passed to its job.
+    itself at every stroke, each with the argument it takes it from (an axis or a value
+    of its own), so a model override of them reaches nothing of it and is not passed to
+    its job (:meth:`reads_instead` names the config key it reads).
     """
 
     key: str
@@ -112,7 +115,7 @@ class Experiment:
     section: str = ""
     rule: str = ""
     bounds: Mapping[str, str] = field(default_factory=dict)
-    sets: tuple[str, ...] = ()
+    sets: Mapping[str, str] = field(default_factory=dict)
 
     @property
     def stem(self) -> str:
@@ -128,6 +131,11 @@ class Experiment:
         name, _, inner = argument.partition(".")
         key = self.args[name]
         return key[inner] if inner else key
+
+    def reads_instead(self, parameter: str) -> str | None:
+        """The config key the row takes model ``parameter`` from (None: the model's)."""
+        argument = self.sets.get(parameter)
+        return None if argument is None else self.key_of(argument)
 
     def keys(self) -> list[str]:
         """Every config key the row reads (its arguments'), in order."""
@@ -259,7 +267,7 @@ def _angle_map(fig: str, index: int) -> Experiment:
         "Figs. 2-3 map",
         section="angle_maps",
         bounds={"L1": "L1"},
-        sets=("L1",),
+        sets={"L1": "L1"},
         threaded=True,
         chunks="chunks.angle_map",
         rows="theta0",
@@ -288,6 +296,7 @@ def _delay_map(fig: str, first: str, other: str, section: str = "") -> Experimen
         f"Fig. {fig[3:]} map",
         section=f"torque_delay.{fig}",
         bounds={"L1": "L1", "C2": "C2", "tau": "tau"},
+        sets={"L1": "L1", "C2": "C2", "tau": "tau"},
         threaded=True,
         chunks="chunks.delay_map",
         rows=first,
@@ -333,6 +342,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             "k sensitivity",
             section="k_sensitivity",
             bounds={"k_range": "k_contact"},
+            sets={"k_contact": "k_range"},
             threaded=True,
             strokes=lambda a: (len(a["strokes"]) * int(a["points"]),),
         ),
@@ -359,7 +369,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             "Figs. 5-6",
             section="mass_length",
             bounds={"M2": "M2", "L1": "L1"},
-            sets=("M2", "L1"),
+            sets={"M2": "M2", "L1": "L1"},
             rule="mass_length",
             threaded=True,
             chunks="chunks.mass_length",
@@ -378,6 +388,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             "Figs. 10-12 strokes",
             section="torque_delay.strokes",
             bounds=SEC5_BOUNDS,
+            sets=SEC5_SETS,
             rule="delay_strokes",
             samples=lambda a: 2 * int(a["stroke"]["samples"]),  # tau_L and tau_H
         ),
@@ -395,6 +406,14 @@ EXPERIMENTS: dict[str, Experiment] = {
             "Fig. 13 map",
             section="elbow_force",
             bounds={**SEC5_BOUNDS, "force.F0": "F0", "force.t_d": "t_d"},
+            sets={
+                **SEC5_SETS,
+                "tau": "stroke.tau_H",
+                "F0": "force.F0",
+                "t_d": "force.t_d",
+                "psi_F_deg": "psi_f",
+                "t_F": "tau_f",
+            },
             rule="elbow_force_map",
             threaded=True,
             chunks="chunks.elbow_force_map",
@@ -420,6 +439,14 @@ EXPERIMENTS: dict[str, Experiment] = {
             "Table I and Fig. 14 strokes",
             section="elbow_force",
             bounds={**SEC5_BOUNDS, "force.F0": "F0", "force.t_d": "t_d"},
+            sets={
+                **SEC5_SETS,
+                "tau": "stroke.tau_H",
+                "F0": "force.F0",
+                "t_d": "force.t_d",
+                "psi_F_deg": "force.table1_psi",
+                "t_F": "force.table1_tau_F",
+            },
             rule="elbow_force_strokes",
             # each direction of Table I and the stroke without the force
             samples=lambda a: (len(a["force"]["table1_psi"]) + 1) * int(a["stroke"]["samples"]),

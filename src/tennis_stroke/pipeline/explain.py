@@ -59,6 +59,7 @@ class KeyEffect:
     claims: tuple[str, ...]
     inference: tuple[str, ...]
     note: str = ""
+    instead: tuple[str, ...] = ()
 
 
 def rows_reading(key: str) -> list[str]:
@@ -95,6 +96,12 @@ def effect(key: str, claims: Sequence[Mapping]) -> KeyEffect:
         for c in claims
         if set(claim_files(c)) & set(moving) or (searched and set(claim_files(c)) & _searched())
     ]
+    section, _, name = key.partition(".")
+    instead = tuple(
+        f"{e.label} (reads {e.reads_instead(name)})"
+        for e in EXPERIMENTS.values()
+        if section == "model" and name in e.sets
+    )
     return KeyEffect(
         key,
         tuple(rows),
@@ -103,6 +110,7 @@ def effect(key: str, claims: Sequence[Mapping]) -> KeyEffect:
         tuple(moved_claims),
         tuple(inference),
         note,
+        instead,
     )
 
 
@@ -127,12 +135,13 @@ def explain(key: str, config: Mapping, claims: Sequence[Mapping]) -> KeyEffect:
         key = f"model.{key}"
     known = list(leaves(config))
     section, _, name = key.partition(".")
+    every = [*known, *(f"model.{p}" for p in (*PARAMETERS, *READINGS))]
     if section == "model" and (name in PARAMETERS or name in READINGS):
         return effect(key, claims)
     if key not in known and not any(k.startswith(f"{key}.") for k in known):
         import difflib
 
-        close = difflib.get_close_matches(key, known, n=3, cutoff=0.5)
+        close = difflib.get_close_matches(key, every, n=3, cutoff=0.6)
         hint = f" (did you mean {', '.join(close)}?)" if close else ""
         raise UnknownKeyError(f"config key {key!r} is not in the configuration{hint}")
     return effect(key, claims)
@@ -153,7 +162,9 @@ def text(e: KeyEffect) -> str:
     lines.append(f"  files        {_names(e.files)}")
     lines.append(f"  figures      {_names(e.figures)}")
     lines.append(f"  claims       {len(e.claims)}: {_names(e.claims)}")
-    lines.append(f"  also reruns  {_names(e.inference)}")
+    if e.instead:
+        lines.append(f"  not read by  {_names(e.instead)}: each sets it itself")
+    lines.append(f"  in the paper's run, also reruns  {_names(e.inference)}")
     return "\n".join(lines)
 
 

@@ -189,6 +189,56 @@ def changes_read(files, base: Mapping, config: Mapping) -> list[tuple[str, objec
     return [c for c in changes(base, config) if any(reads(EXPERIMENTS[key], c[0]) for key in files)]
 
 
+def unreached(base: Mapping, config: Mapping, files=None) -> list[str]:
+    """One line per model override of ``config`` against ``base`` that rows of the paper
+    (of ``files``, keys of the paper's results; default all) set themselves
+    (``Experiment.sets``): what it does not reach and the key each reads instead
+    (``model.C2 does not reach the Fig. 9 map (it reads torque_delay.base_stroke.C2)``)."""
+    files = PAPER_RESULTS if files is None else files
+    out = []
+    for key, _, _ in changes(base, config):
+        section, _, name = key.partition(".")
+        if section != "model":
+            continue
+        rows = [e for k, e in EXPERIMENTS.items() if k in files and name in e.sets]
+        if rows:
+            shown = ", ".join(f"the {e.label} (it reads {e.reads_instead(name)})" for e in rows)
+            out.append(f"{key} does not reach {shown}")
+    return out
+
+
+#: The workflow config and its schema, relative to a project's folder.
+CONFIG_FILE, SCHEMA_FILE = "config/config.yaml", "workflow/schemas/config.schema.yaml"
+
+
+def scenario_reach(
+    name: str, overrides: Mapping | None, figures=(), root: str | Path = "."
+) -> list[str]:
+    """Check scenario ``name`` (``overrides`` of the project at ``root``) as the workflow
+    will, and what it reaches: raises :class:`ScenarioError` (one line) for a value the
+    workflow refuses, or for a figure of
+    ``figures`` (registry names) that nothing of them reaches; returns the lines to say
+    at planning (:func:`unreached`; of ``figures``' files where given)."""
+    from ..replication.registry import FIGURES
+
+    root = Path(root)
+    schema = root / SCHEMA_FILE
+    try:
+        base = canonical(load_yaml(root / CONFIG_FILE), load_schema(schema))
+    except ConfigFileError as exc:
+        raise ScenarioError(str(exc)) from None
+    config = scenario_config(base, name, overrides, schema)
+    moved = set(changed_results(base, config))
+    for figure in figures:
+        if not moved & set(FIGURES[figure].files):
+            why = "; ".join(unreached(base, config, FIGURES[figure].files))
+            why = why or "no job of its files reads what it changes"
+            raise ScenarioError(f"scenario {name!r} does not change {figure}: {why}")
+    if figures:  # what matters to the figures asked for
+        return unreached(base, config, {k for f in figures for k in FIGURES[f].files})
+    return unreached(base, config)
+
+
 def describe(key: str, old, new) -> str:
     """One override for a title or a banner: ``key = new (paper: old)``; a model
     parameter or reading the paper's configuration leaves at its default is shown with
