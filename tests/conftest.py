@@ -32,6 +32,23 @@ def pytest_configure(config):
     Ctrl-C need Python's default handling, which a user's terminal gives."""
     if signal.getsignal(signal.SIGINT) is signal.SIG_IGN:
         signal.signal(signal.SIGINT, signal.default_int_handler)
+    require_browser()
+
+
+#: Set (to anything but empty) where the browser tests must run: a CI that installed
+#: Chromium sets it, so that a missing browser fails the run instead of skipping them.
+REQUIRE_BROWSER = "TENNIS_STROKE_REQUIRE_BROWSER"
+
+
+def require_browser() -> None:
+    """Stop the run in one line if :data:`REQUIRE_BROWSER` is set and Debian's Chromium
+    or chromedriver is missing (the browser tests would skip silently)."""
+    from chromium import CHROMIUM, DRIVER, MISSING
+
+    if os.environ.get(REQUIRE_BROWSER) and (CHROMIUM is None or DRIVER is None):
+        raise pytest.UsageError(
+            f"{REQUIRE_BROWSER} is set and the browser tests cannot run: {MISSING}"
+        )
 
 
 #: Fixtures that run the workflow (or plan it): a test using one is a workflow test.

@@ -136,3 +136,32 @@ def test_a_missing_or_foreign_result_is_refused_naming_it(tmp_path):
     (tmp_path / "text.nc").write_text("not a result")
     with pytest.raises(ResultError, match=r"text\.nc.*no HDF5 signature"):
         load_result(tmp_path / "text.nc")
+
+
+def test_only_a_change_of_what_the_jobs_read_marks_a_commit_dirty(tmp_path):
+    """Editing config/scenarios.yaml (a what-if), a doc or a test stamped every later
+    paper file `-dirty`; a change of the code or the paper's config still does."""
+    import subprocess
+
+    from tennis_stroke.io.netcdf import commit_of
+
+    def git(*args):
+        subprocess.run(["git", *args], cwd=tmp_path, check=True, capture_output=True)
+
+    (tmp_path / "src").mkdir()
+    (tmp_path / "config").mkdir()
+    files = ["src/code.py", "config/config.yaml", "config/scenarios.yaml", "README.md"]
+    for name in files:
+        (tmp_path / name).write_text("x\n")
+    git("init", "-q")
+    git("add", ".")
+    git("-c", "user.name=t", "-c", "user.email=t@t", "commit", "-q", "-m", "c")
+    clean = commit_of(tmp_path / "src")
+    assert len(clean) == 40
+    for name in ("config/scenarios.yaml", "README.md"):
+        (tmp_path / name).write_text("y\n")
+    assert commit_of(tmp_path / "src") == clean
+    for name in ("src/code.py", "config/config.yaml"):
+        (tmp_path / name).write_text("y\n")
+        assert commit_of(tmp_path / "src") == f"{clean}-dirty", name
+        git("checkout", "--", name)

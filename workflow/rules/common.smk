@@ -95,7 +95,10 @@ _multiverse = READING_SPACE.raw["multiverse"]
 _errors = list(
     memory_errors(
         config,
-        -(-_multiverse["readings"] // chunk_count(_multiverse["chunks"], _multiverse["readings"])),
+        -(
+            -_multiverse["readings"]
+            // chunk_count(_multiverse["chunks"], _multiverse["readings"])
+        ),
     )
 )
 if _errors:

@@ -54,22 +54,46 @@ def installed_version(package: str) -> str:
     return version(package)
 
 
+#: The files of a checkout the paper's jobs read (their code, configuration, workflow and
+#: environment): uncommitted changes to them, and only to them, mark a commit ``-dirty``
+#: (a scenario declared in ``config/scenarios.yaml``, a doc or a test changes no job).
+JOB_INPUTS = (
+    "src",
+    "workflow",
+    "Snakefile",
+    "config/config.yaml",
+    "config/claims.yaml",
+    "config/readings.yaml",
+    "pyproject.toml",
+    "requirements.lock",
+)
+
+
 @cache
 def git_commit() -> str:
     """Commit of the source tree this package runs from, or ``"unknown"`` (read once per
-    process: a job's files all carry the commit it started from)."""
+    process: a job's files all carry the commit it started from), with ``-dirty`` if a
+    file of :data:`JOB_INPUTS` has uncommitted changes."""
+    return commit_of(Path(__file__).parent)
+
+
+def commit_of(folder: Path) -> str:
+    """:func:`git_commit` of the checkout holding ``folder``."""
     try:
         out = subprocess.run(
             ["git", "rev-parse", "HEAD"],
-            cwd=Path(__file__).parent,
+            cwd=folder,
             capture_output=True,
             text=True,
             timeout=5,
             check=True,
         )
         dirty = subprocess.run(
-            ["git", "status", "--porcelain", "--untracked-files=no"],
-            cwd=Path(__file__).parent,
+            [
+                *["git", "status", "--porcelain", "--untracked-files=no", "--"],
+                *(f":(top){path}" for path in JOB_INPUTS),
+            ],
+            cwd=folder,
             capture_output=True,
             text=True,
             timeout=5,
