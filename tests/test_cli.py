@@ -13,7 +13,8 @@ import time
 import numpy as np
 import pytest
 import xarray as xr
-from conftest import record_configuration
+import yaml
+from conftest import ROOT, record_configuration
 
 from tennis_stroke import strike, strike_batch
 from tennis_stroke.cli import main
@@ -705,7 +706,33 @@ def test_params_lists_every_parameter_with_unit_default_and_bounds(capsys):
         assert low[0] == ("(" if spec.strict or spec.lower is None else "["), name
         assert float(low[1:]) == (-np.inf if spec.lower is None else spec.lower), name
         assert float(high[:-1]) == (np.inf if spec.upper is None else spec.upper), name
-        assert ("derived" in row["meaning"]) == spec.derived, name
+        assert (row["source"] == "derived") == spec.derived, name
+    # fitted: what config/readings.yaml's fit sets fit, and nothing else
+    fitted = {n for n, row in rows.items() if row["source"] == "fitted"}
+    assert fitted == {"ball_mass", "k_contact", "elbow_force_mass"}
+
+
+def test_the_explorer_and_params_mark_each_default_from_one_declaration(capsys):
+    """The explorer called fitted defaults "paper" (k_contact, ball_mass, the readings'
+    defaults): every control now says what `tennis-stroke params` says of its default."""
+    from tennis_stroke.inference.reading_space import load_reading_space
+    from tennis_stroke.model.listing import origin
+    from tennis_stroke.replication import explorer
+
+    config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+    fitted = load_reading_space(ROOT / "config" / "readings.yaml").fitted()
+    controls = {c.key: c for c in explorer.controls(config, "fig2", fitted)}
+    for key, control in controls.items():
+        section, _, name = key.partition(".")
+        if section == "model":
+            assert control.origin == origin(name, fitted), key
+    assert controls["model.k_contact"].origin == "fitted"
+    assert controls["model.ball_mass"].origin == "fitted"
+    assert controls["model.contact_lead_rule"].origin == "fitted"
+    assert controls["model.M2"].origin == "paper"
+    assert controls["solver.method"].origin == "ours"
+    code, out, _ = _run(capsys, "params")
+    assert "quarter_period [default, fitted]" in out and "half_period [paper]" in out
 
 
 def test_params_lists_every_reading_and_model_option_with_its_choices(capsys):

@@ -319,3 +319,21 @@ def test_a_departing_configuration_opens_the_page(tiny_run, tmp_path):
         ROOT / "config/claims.yaml",
     )
     assert "departs from the paper" not in paper
+
+
+def test_the_ledger_marks_a_fitted_default_as_the_fits_chose_it(tmp_path):
+    """One vocabulary: a reading's default is "fitted" where a fit set chose it (the fits
+    file's ``default_*``), as `tennis-stroke params` and the explorer say."""
+    import xarray as xr
+
+    from tennis_stroke.io.netcdf import write_netcdf
+    from tennis_stroke.replication.report import _fitted
+
+    path = tmp_path / "model_fits.nc"
+    attrs = {
+        "default_inertia": "uniform_rod",
+        "default_k_contact": 7800.0,
+        "default_fig4_theta": "phi0",
+    }
+    write_netcdf(xr.Dataset(attrs=attrs), path)
+    assert _fitted({"model_fits": str(path), "model_loo": "unused"}) == {"inertia", "k_contact"}

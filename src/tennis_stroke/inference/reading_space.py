@@ -101,6 +101,13 @@ class ReadingSpace:
     continuous: dict[str, Unknown]
     fits: dict[str, FitSet]
 
+    def fitted(self) -> frozenset[str]:
+        """The model parameters and readings whose default is fitted (a fit set's
+        unknowns and discrete readings that are model readings): the one declaration
+        ``tennis-stroke params``, the report and the explorer mark as fitted."""
+        names = {n for f in self.fits.values() for n in (*f.unknowns, *f.discrete)}
+        return frozenset(n for n in names if n in PARAMETERS or n in READINGS)
+
     def fit_of_claim(self) -> dict[str, str]:
         """Claim id -> the name of the fit set that uses it."""
         return {c: f.name for f in self.fits.values() for c in f.claims}

@@ -94,6 +94,7 @@ class Shared:
     claims: list
     declared: dict
     fit_of_claim: dict
+    fitted: frozenset
     figure: str
     scenarios: Path
     schema: Path
@@ -109,7 +110,7 @@ class Shared:
         computed by the first caller, then shared by every session of the server."""
         with self._lock:
             if self._paper is None:
-                paper = {c.key: c.paper for c in explorer.controls(self.config, self.figure)}
+                paper = {c.key: c.paper for c in self.controls()}
                 overrides = explorer.overrides(self.config, paper)  # as a session's first
                 config = scenario_config(self.config, "explore", overrides, self.schema)
                 self._paper = (
@@ -117,6 +118,10 @@ class Shared:
                     explorer.fig9_curve(config, self.threads),
                 )
             return self._paper
+
+    def controls(self) -> list:
+        """The page's controls, each marked with where its default comes from."""
+        return explorer.controls(self.config, self.figure, self.fitted)
 
     def open_session(self) -> bool:
         """Count a new session in, if fewer than :attr:`max_sessions` live."""
@@ -149,6 +154,7 @@ class Shared:
             explorer.view_claims(claims),
             declared,
             dict(space.fit_of_claim()),
+            space.fitted(),
             figure,
             Path(scenarios),
             Path(schema),
@@ -186,7 +192,7 @@ class Session:
 
     def __init__(self, shared: Shared, doc):
         self.shared, self.doc = shared, doc
-        self.controls = explorer.controls(shared.config, shared.figure)
+        self.controls = shared.controls()
         self.values = {c.key: c.paper for c in self.controls}
         self.generation = {"all": 0, "stroke": 0}
         self._queued = {"all": False, "stroke": False}
@@ -289,7 +295,7 @@ class Session:
     def _widget(self, control: explorer.Control):
         paper = control.paper
         unit = f" ({control.unit})" if control.unit not in ("", "1") else ""
-        title = f"{control.label}{unit} · paper {paper}"
+        title = f"{control.label}{unit} · {control.origin} {paper}"
         if control.choices:
             widget = Select(
                 title=title,

@@ -20,7 +20,7 @@ workflow's own functions on the configuration with those overrides:
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Collection, Mapping, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,6 +33,7 @@ from ..experiments.strokes import trajectories
 from ..inference.claims import claim_files
 from ..inference.targeted import searched_files
 from ..io.config_files import value_at
+from ..model.listing import origin
 from ..model.params import CHOICES, PARAMETERS
 from ..solver.settings import METHOD_IDS, SolverSettings
 from .claims import evaluate
@@ -59,9 +60,11 @@ class ExplorerError(ValueError):
 
 @dataclass(frozen=True)
 class Control:
-    """One control: the dotted config ``key`` it sets, its label and unit, the paper's
-    value, its bounds (None: unbounded; a number control refuses what is outside) and
-    step, or its ``choices``."""
+    """One control: the dotted config ``key`` it sets, its label and unit, its value in
+    the paper's configuration (``paper``) and where that value comes from (``origin``,
+    :data:`tennis_stroke.model.listing.ORIGINS`: the paper, fitted, derived, ours), its
+    bounds (None: unbounded; a number control refuses what is outside) and step, or its
+    ``choices``."""
 
     key: str
     label: str
@@ -72,6 +75,7 @@ class Control:
     step: float | None = None
     choices: tuple[str, ...] = ()
     note: str = ""
+    origin: str = "paper"
 
 
 def _control_step(value: float) -> float:
@@ -93,11 +97,12 @@ def _bounds(spec) -> tuple[float | None, float | None]:
 _SET_BY_VIEWS = ("L1",)
 
 
-def controls(config: Mapping, figure: str) -> list[Control]:
+def controls(config: Mapping, figure: str, fitted: Collection[str] = ()) -> list[Control]:
     """Every control, in the order the page shows them: the model's parameters (less
     the derived ones and ``L1``, which each figure sets), the readings and model
     options, the solver, then the figures' own values (the map's ``L1``; Fig. 9's arm,
-    initial angles and wrist torque)."""
+    initial angles and wrist torque).  ``fitted``: the names whose default is fitted
+    (their ``origin``)."""
     out = []
     for name, spec in PARAMETERS.items():
         if spec.derived or name in _SET_BY_VIEWS:
@@ -114,6 +119,7 @@ def controls(config: Mapping, figure: str) -> list[Control]:
                 high,
                 _control_step(spec.default),
                 note=note or spec.description,
+                origin=origin(name, fitted),
             )
         )
     for name, reading in CHOICES.items():
@@ -124,11 +130,16 @@ def controls(config: Mapping, figure: str) -> list[Control]:
                 "",
                 reading.default,
                 choices=reading.choices,
-                note=reading.description,
+                note=f"{reading.description} (the paper's words: {reading.literal})",
+                origin=origin(name, fitted),
             )
         )
     solver = SolverSettings(**config["solver"])
-    out.append(Control("solver.method", "method", "", solver.method, choices=tuple(METHOD_IDS)))
+    out.append(
+        Control(
+            "solver.method", "method", "", solver.method, choices=tuple(METHOD_IDS), origin="ours"
+        )
+    )
     out.append(
         Control(
             "solver.rtol",
@@ -136,6 +147,7 @@ def controls(config: Mapping, figure: str) -> list[Control]:
             "1",
             f"{solver.rtol:g}",
             choices=tuple(f"{t:g}" for t in TOLERANCES),
+            origin="ours",
         )
     )
     fig, index = FIGURES[figure]
@@ -151,7 +163,7 @@ def controls(config: Mapping, figure: str) -> list[Control]:
             note=l1.description,
         )
     )
-    for key, label, unit, low, high, step in (
+    for key, label, unit, low, high, step in (  # values the paper states (Sec. V)
         ("torque_delay.L1", "L1 of Fig. 9", "m", *_bounds(l1), 0.01),
         ("torque_delay.theta0", "theta0 of Fig. 9", "degree", 0.0, 180.0, 0.5),
         ("torque_delay.base_stroke.delta0", "delta0 of Fig. 9", "degree", -90.0, 180.0, 0.5),

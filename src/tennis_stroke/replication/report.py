@@ -39,7 +39,8 @@ from ..io.config_files import load_yaml
 from ..io.environment import environment_table
 from ..io.failures import failure_counts
 from ..io.netcdf import git_commit, load_result
-from ..model.params import READINGS
+from ..model.listing import origin
+from ..model.params import PARAMETERS, READINGS
 from .claims import STATUS_WORDS, ClaimsTableError, consistency_errors, read_table
 from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
 from .marks import mark_values
@@ -730,12 +731,27 @@ def build_report(
         study_figures=_figures_of(entries, "study"),
         study_tables=study_tables,
         ladder=ladder_summary(ladder_error, claims),
-        readings=list(READINGS.values()),
+        readings=[
+            {**vars(r), "source": origin(r.name, _fitted(inference))} for r in READINGS.values()
+        ],
         ledger=markdown_html(Path(assumptions_md).read_text()) if assumptions_md else "",
         **_run(config, results, benchmarks_dir),
     )
     Path(output).parent.mkdir(parents=True, exist_ok=True)
     Path(output).write_text(html)
+
+
+def _fitted(inference: Mapping[str, str]) -> set[str]:
+    """The model parameters and readings whose default the fits chose (their files'
+    ``default_*`` attributes: the fit sets of ``config/readings.yaml``)."""
+    names = {
+        k.removeprefix("default_")
+        for key in inference
+        if key.endswith("_fits")
+        for k in load_result(inference[key]).attrs
+        if k.startswith("default_")
+    }
+    return {n for n in names if n in PARAMETERS or n in READINGS}
 
 
 def _file_environments(results: Sequence[str]) -> str:
