@@ -25,6 +25,7 @@ ABSENT = {
     "simulate.py": (*SOLVER, *DRAWING, *VIEWS, *SCIPY),  # the solver loads on its first stroke
     "gather_map.py": (*SOLVER, *DRAWING, *VIEWS, *SCIPY),  # reads chunks, writes a file
     "figure.py": (*SOLVER, *VIEWS, *SCIPY),  # draws from files
+    "compare.py": (*SOLVER, *VIEWS, *SCIPY),  # draws from files, as figure.py
     "report.py": (*SOLVER, *DRAWING, *SCIPY),  # embeds the drawn figures, views on demand
     "scenario_report.py": (*SOLVER, *DRAWING, *SCIPY),
     "claims.py": (*DRAWING, *VIEWS, *SAMPLING),  # searches: the solver and scipy.optimize

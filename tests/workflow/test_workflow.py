@@ -283,6 +283,12 @@ def test_a_scenario_runs_beside_the_paper_and_touches_none_of_its_files(tiny_sce
     assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-2000:]
     html = (tiny_run / page).read_text()
     assert "torque_delay.base_stroke.C2 = 8 (paper: 5)" in html
+    # each changed figure against the paper's: one scale, and the difference
+    compared = sorted(p.name for p in (tiny_run / "results/scenarios/strong/compare").iterdir())
+    assert "fig09_v_tau.png" in compared and "fig02_angle_map.png" not in compared
+    for name in compared:
+        alt = f'alt="{name[:-4]}: the paper&#39;s configuration, scenario strong and their'
+        assert alt in html or alt.replace("&#39;", "'") in html, name
     words = re.sub(  # what a reader reads: not the images, styles and scripts (BokehJS)
         r"data:image/png;base64,[A-Za-z0-9+/=]+|<style>.*?</style>|<script.*?</script>",
         "",

@@ -395,6 +395,21 @@ def figure_code(wildcards):
     return drawing_code(FIGURES[wildcards.name].draw)
 
 
+def paper_figure_inputs(wildcards):
+    """The paper's result files a figure is drawn from (a scenario's comparison)."""
+    return [PAPER_RESULTS[key] for key in FIGURES[wildcards.name].files]
+
+
+def comparison_code(wildcards):
+    """The code inputs of a scenario's comparison of figure ``name``: the comparison
+    script's imports and the figure's drawing module, less the registry."""
+    return code_inputs(
+        "compare.py",
+        f"replication.drawing.{FIGURES[wildcards.name].draw}",
+        leave_out=[REGISTRY],
+    )
+
+
 def figure_entry(wildcards):
     """A figure's registry entry as plain data (a param: editing one entry reruns its
     figure only)."""
@@ -456,10 +471,12 @@ def scenario_changed_figures(name):
 
 
 def scenario_report_figures(wildcards):
-    """A scenario's page's figure inputs: its own of the figures it changes."""
-    return [
-        f"{scenario_folder(wildcards.scenario)}/figures/{f}.png"
-        for f in scenario_changed_figures(wildcards.scenario)
+    """A scenario's page's figure inputs: its own of the figures it changes, and each
+    against the paper's (shared scales, the difference)."""
+    folder = scenario_folder(wildcards.scenario)
+    changed = scenario_changed_figures(wildcards.scenario)
+    return [f"{folder}/figures/{f}.png" for f in changed] + [
+        f"{folder}/compare/{f}.png" for f in changed
     ]
 
 
@@ -477,6 +494,9 @@ def scenario_figure_table(wildcards):
                 "paper": f"results/figures/{f}.png",
                 "scenario": (
                     f"{scenario_folder(name)}/figures/{f}.png" if f in changed else None
+                ),
+                "compare": (
+                    f"{scenario_folder(name)}/compare/{f}.png" if f in changed else None
                 ),
                 "changes": [describe(*c) for c in read],
                 "files": [
@@ -520,6 +540,7 @@ SCENARIO_PATHS = "|".join(
             if e.family == "paper"
         ),
         rf"figures/({PAPER_FIGURE_NAMES})\.png",
+        rf"compare/({PAPER_FIGURE_NAMES})\.png",
         r"claims\.csv",
         r"configuration\.yaml",
         r"index\.html",

@@ -47,3 +47,27 @@ rule scenario_figure:
         note=scenario_figure_note,
     script:
         "../scripts/figure.py"
+
+
+# A scenario's figure read against the paper's: the figure from the paper's files and
+# from the scenario's on shared scales, and their difference (scenario minus paper), in
+# one image for the scenario's page.
+rule scenario_comparison:
+    input:
+        paper=paper_figure_inputs,
+        scenario=scenario_figure_inputs,
+        code=comparison_code,
+    output:
+        "results/scenarios/{scenario}/compare/{name}.png",
+    log:
+        "logs/scenarios/{scenario}/compare_{name}.log",
+    benchmark:
+        scenario_folder("{scenario}", "benchmarks/workflow") + "/compare_{name}.tsv"
+    wildcard_constraints:
+        name=PAPER_FIGURE_NAMES,
+    params:
+        figure=figure_entry,
+        marks=figure_marks,
+        note=scenario_figure_note,
+    script:
+        "../scripts/compare.py"

@@ -180,7 +180,10 @@ def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int
     for e in EXPERIMENTS.values():
         if e.samples is None and e.strokes is None:
             continue
-        args = e.arguments(config)
+        try:
+            args = e.arguments(config)
+        except ConfigKeyError:  # a key the schema gives a default: checked once it has it
+            continue
         if e.samples is not None:
             points = e.samples(args)
             yield (
@@ -204,9 +207,12 @@ def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int
             n = batches[0]
             yield e.section, f"gathering the {e.label} ({_n(n)} strokes)", 2 * result_bytes(n)
     together = max(1, int(readings))
-    for key in SEARCHED:
+    for key in SEARCHED if "search" in config else ():  # else: checked once defaulted
         e, steps = EXPERIMENTS[key], BRACKET_KEYS[key]
-        n = search_strokes(key, e.arguments(config), config["search"])
+        try:
+            n = search_strokes(key, e.arguments(config), config["search"])
+        except ConfigKeyError:
+            continue
         shown = ", ".join(f"{k} = {value_at(config, k):g}" for k in steps)
         yield (
             steps[0] if len(steps) == 1 else steps[0].partition(".")[0],

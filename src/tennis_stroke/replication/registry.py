@@ -48,7 +48,9 @@ class Figure:
     template filled from the first file's attributes (``{L1}`` is ``param_L1``), so a
     title never states a value the file does not hold.  ``marks``: the claims drawn on it;
     ``axes``: the coordinates along its x and y axes (a map's or a curve's, where marks
-    and the page's view place values); ``dpi`` of the PNG."""
+    and the page's view place values); ``dpi`` of the PNG; ``compare``: the variables of
+    its first file a scenario's difference panel shows (scenario minus paper,
+    :mod:`tennis_stroke.replication.compare`)."""
 
     name: str
     section: str
@@ -59,6 +61,7 @@ class Figure:
     marks: tuple[Mark, ...] = ()
     axes: tuple[str, ...] = ()
     dpi: int = 110
+    compare: tuple[str, ...] = ("v_out",)
 
     def __post_init__(self):
         # a job's param gives the entry as plain data (dataclasses.asdict)
@@ -67,6 +70,7 @@ class Figure:
         object.__setattr__(self, "files", tuple(self.files))
         object.__setattr__(self, "args", tuple(self.args))
         object.__setattr__(self, "axes", tuple(self.axes))
+        object.__setattr__(self, "compare", tuple(self.compare))
 
     def filled_title(self, attrs: Mapping) -> str:
         """The title filled from a result file's attributes: the resolved parameters
@@ -118,6 +122,7 @@ FIGURES: dict[str, Figure] = {
             "omegas",
             "Fig. 4: angular velocities of two strokes",
             axes=("t", "omega"),
+            compare=("omega1", "omega2"),
             marks=(
                 Mark("fig4_omega2_a", "omega", other="fig4_t_a"),
                 Mark("fig4_omega2_b", "omega", other="fig4_t_b"),
@@ -133,6 +138,7 @@ FIGURES: dict[str, Figure] = {
             "Fig. 5: fastest v_out over (M2, L1)",
             ("v_out_best",),
             axes=("M2", "L1"),
+            compare=("v_out_best",),
         ),
         Figure(
             "fig06_mass_length_theta_c",
@@ -142,6 +148,7 @@ FIGURES: dict[str, Figure] = {
             "Fig. 6: theta_c of the fastest stroke",
             ("theta_c",),
             axes=("M2", "L1"),
+            compare=("theta_c",),
         ),
         Figure(
             "fig07_torque_delay",
@@ -177,6 +184,7 @@ FIGURES: dict[str, Figure] = {
             "omegas",
             "Fig. 10: angular velocities for tau_L and tau_H",
             axes=("t", "omega"),
+            compare=("omega1", "omega2"),
         ),
         Figure(
             "fig11_strobe_tau_H",
@@ -185,6 +193,7 @@ FIGURES: dict[str, Figure] = {
             "strobe",
             "Fig. 11: stroke with tau_H",
             ("tau_H",),
+            compare=("theta", "phi"),
         ),
         Figure(
             "fig12_strobe_tau_L",
@@ -193,6 +202,7 @@ FIGURES: dict[str, Figure] = {
             "strobe",
             "Fig. 12: stroke with tau_L",
             ("tau_L",),
+            compare=("theta", "phi"),
         ),
         Figure(
             "fig13_elbow_force",
@@ -209,6 +219,7 @@ FIGURES: dict[str, Figure] = {
             ("elbow",),
             "elbow_paths",
             "Fig. 14: elbow paths until the contact",
+            compare=("x_elbow", "y_elbow"),
         ),
         Figure(
             "inference01_score_profiles",

@@ -159,6 +159,11 @@ def build_scenario_report(
                 "changes": f["changes"],
                 "scenario": _figure_entry(f["scenario"]),
                 "paper": _figure_entry(f["paper"]) if Path(f["paper"]).is_file() else None,
+                "compare": (
+                    _figure_entry(f["compare"])
+                    if f.get("compare") and Path(f["compare"]).is_file()
+                    else None
+                ),
             }
         )
     views_head, views = _scenario_views(shown, declared, table)
