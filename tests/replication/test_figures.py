@@ -65,6 +65,7 @@ def _check_labels_and_data(fig, figure, datasets) -> None:
         assert _drawn(ax)[0] > 0, f"a blank panel: {ax.get_xlabel()}"
     for ax in fig.axes:
         for label in (ax.get_xlabel(), ax.get_ylabel()):
+            label = label.replace("\n", " ")  # a long label is set on two lines
             assert label not in units, f"{label!r} has no units"
             name, _, unit = label.rpartition(" (")
             if name in units:
@@ -76,7 +77,7 @@ def _check_labels_and_data(fig, figure, datasets) -> None:
     ):
         if name not in first.variables:  # not a variable of the file (omega1 and omega2)
             continue
-        assert label == _file_label(first, name), ("xy"[i], label)
+        assert label.replace("\n", " ") == _file_label(first, name), ("xy"[i], label)
         if name in first.dims:  # a coordinate: the data cover its values
             low, high = float(first[name].min()), float(first[name].max())
             along = points[:, i]
@@ -101,16 +102,64 @@ def _check_marks(ax, figure, marks) -> None:
             assert line.get_xydata().tolist() == [pytest.approx([x, y])]
 
 
+def _drawn_texts(fig):
+    """Every text the figure draws: titles, labels, the ticks' labels it shows, legends,
+    annotations and contour labels."""
+    texts = [*fig.texts]
+    if fig._suptitle is not None:
+        texts.append(fig._suptitle)
+    for ax in fig.axes:
+        texts += [ax.title, ax._left_title, ax._right_title, ax.xaxis.label, ax.yaxis.label]
+        texts += [*ax.texts, *(ax.get_legend().get_texts() if ax.get_legend() else [])]
+        for axis in (ax.xaxis, ax.yaxis):
+            for tick in axis._update_ticks():  # the ticks inside the view, as drawn
+                texts += [tick.label1, tick.label2]
+    return [t for t in texts if t.get_visible() and t.get_text().strip()]
+
+
+def _check_texts_inside_and_legends_clear(fig):
+    """No text leaves the canvas (Fig. 2's y label and a scenario's title did), and no
+    legend covers a marked point (Fig. 13's star, a paper's ring)."""
+    fig.canvas.draw()
+    renderer = fig.canvas.get_renderer()
+    canvas = fig.bbox
+    for text in _drawn_texts(fig):
+        box = text.get_window_extent(renderer)
+        inside = box.x0 >= -1 and box.y0 >= -1 and box.x1 <= canvas.x1 + 1
+        assert inside and box.y1 <= canvas.y1 + 1, (text.get_text(), box.extents, canvas.extents)
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None:
+            continue
+        box = legend.get_window_extent(renderer)
+        for line in ax.lines:
+            x, y = line.get_xdata(), line.get_ydata()
+            if len(x) != 1 or line.get_marker() in (None, "None", ""):
+                continue
+            px, py = ax.transData.transform((x[0], y[0]))
+            assert not box.contains(px, py), (line.get_label(), ax.get_title())
+
+
+#: A scenario's note as long as a title gets (it wrapped inside a value: "(paper:\n0.4)").
+NOTE = (
+    "scenario long_name: torque_delay.L1 = 0.5 m (paper: 0.4 m); "
+    "model.M2 = 0.35 kg (paper: 0.3 kg); model.k_contact = 20000 N/m (paper: 7800 N/m)"
+)
+
+
 @pytest.mark.parametrize("name", sorted(FIGURES))
 def test_every_figure_is_drawn_labelled_and_marked(tiny_run, name):
     figure = FIGURES[name]
     marks = mark_values(figure, CLAIMS)
     inputs = [tiny_run / RESULT_FILES[k] for k in figure.files]
-    fig = drawn(figure, inputs, marks=marks)
-    try:
-        title = fig.axes[0].get_title() or fig.get_suptitle()
-        assert title and "{" not in title
-        _check_labels_and_data(fig, figure, [load_result(p) for p in inputs])
-        _check_marks(fig.axes[0], figure, marks)
-    finally:
-        plt.close(fig)
+    for note in ("", NOTE):
+        fig = drawn(figure, inputs, note, marks=marks)
+        try:
+            title = fig.axes[0].get_title() or fig.get_suptitle()
+            assert title and "{" not in title
+            assert "(paper:\n" not in title and "\n0.4 m)" not in title
+            _check_labels_and_data(fig, figure, [load_result(p) for p in inputs])
+            _check_marks(fig.axes[0], figure, marks)
+            _check_texts_inside_and_legends_clear(fig)
+        finally:
+            plt.close(fig)

@@ -281,7 +281,7 @@ def test_a_scenario_page_in_a_real_browser(tiny_scenario, tmp_path):
     seen = _in_browser(page, 500)
     assert len(seen["images"]) >= 6 and all(loaded for _, loaded in seen["images"])
     assert not [c for c in CLAIM_IDS if c not in seen["text"]]
-    assert "torque_delay.base_stroke.C2 = 8 (paper: 5)" in seen["text"]
+    assert "torque_delay.base_stroke.C2 = 8 N m (paper: 5 N m)" in seen["text"]
     assert not seen["overflowing"], seen["overflowing"]
     assert seen["pageWidth"] <= seen["viewport"], (seen["pageWidth"], seen["viewport"])
 
@@ -337,3 +337,28 @@ def test_the_ledger_marks_a_fitted_default_as_the_fits_chose_it(tmp_path):
     }
     write_netcdf(xr.Dataset(attrs=attrs), path)
     assert _fitted({"model_fits": str(path), "model_loo": "unused"}) == {"inertia", "k_contact"}
+
+
+def test_a_count_a_file_does_not_record_is_a_dash_never_na(tmp_path):
+    """The failed strokes table showed <NA> in every status column of Figs. 5-6's row (it
+    counts failed strokes per point only)."""
+    import numpy as np
+    import xarray as xr
+
+    from tennis_stroke.io.netcdf import write_netcdf
+    from tennis_stroke.replication.report import _failures, _table
+
+    points = xr.Dataset(
+        {
+            "failed_strokes": ("M2", np.array([0, 2])),
+            "evaluated_strokes": ("M2", np.array([10, 10])),
+        }
+    )
+    strokes = xr.Dataset({"status": ("stroke", np.array([0, 1, 0]))})
+    write_netcdf(points, tmp_path / "ml.nc")
+    write_netcdf(strokes, tmp_path / "map.nc")
+    frame = _failures([str(tmp_path / "ml.nc"), str(tmp_path / "map.nc")])
+    assert frame.loc[0, "total"] == 20 and frame.loc[0, "failed"] == 2
+    assert frame.loc[0, "no_phi_zero"] == "-" and frame.loc[1, "failed"] == 1
+    html = str(_table(frame, index=False))
+    assert "NA" not in html and "NaN" not in html

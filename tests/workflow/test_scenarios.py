@@ -157,8 +157,10 @@ def test_an_override_is_described_with_the_papers_value_and_unit():
         "model.inertia = paper_text (paper: uniform_rod)"
     )
     assert describe("torque_delay.base_stroke.C2", 5.0, 8.0) == (
-        "torque_delay.base_stroke.C2 = 8 (paper: 5)"
+        "torque_delay.base_stroke.C2 = 8 N m (paper: 5 N m)"
     )
+    # a value a row puts into the model has its parameter's unit (torque_delay.L1 had none)
+    assert describe("torque_delay.L1", 0.4, 0.5) == "torque_delay.L1 = 0.5 m (paper: 0.4 m)"
 
 
 def test_the_paper_configuration_is_the_declared_inputs():

@@ -282,7 +282,7 @@ def test_a_scenario_runs_beside_the_paper_and_touches_none_of_its_files(tiny_sce
     again = run_snakemake("report", tiny_run, "-n")
     assert "Nothing to be done" in again.stdout + again.stderr, again.stdout[-2000:]
     html = (tiny_run / page).read_text()
-    assert "torque_delay.base_stroke.C2 = 8 (paper: 5)" in html
+    assert "torque_delay.base_stroke.C2 = 8 N m (paper: 5 N m)" in html
     # each changed figure against the paper's: one scale, and the difference
     compared = sorted(p.name for p in (tiny_run / "results/scenarios/strong/compare").iterdir())
     assert "fig09_v_tau.png" in compared and "fig02_angle_map.png" not in compared

@@ -239,6 +239,15 @@ def scenario_reach(
     return unreached(base, config)
 
 
+#: The config keys whose values rows of the table put into the model, and the model
+#: parameter each is (``Experiment.bounds``: ``torque_delay.L1`` is an ``L1``, in m).
+KEY_PARAMETERS = {
+    e.key_of(argument): parameter
+    for e in EXPERIMENTS.values()
+    for argument, parameter in e.bounds.items()
+}
+
+
 def describe(key: str, old, new) -> str:
     """One override for a title or a banner: ``key = new (paper: old)``; a model
     parameter or reading the paper's configuration leaves at its default is shown with
@@ -251,6 +260,9 @@ def describe(key: str, old, new) -> str:
         unit = "" if spec.unit == "1" else f" {spec.unit}"
     elif section == "model" and name in READINGS and old is None:
         old = READINGS[name].default
+    elif key in KEY_PARAMETERS:  # a value a row puts into the model: its parameter's unit
+        spec = PARAMETERS[KEY_PARAMETERS[key]]
+        unit = "" if spec.unit == "1" else f" {spec.unit}"
     return f"{key} = {_shown(new)}{unit} (paper: {_shown(old)}{unit})"
 
 

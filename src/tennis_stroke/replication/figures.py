@@ -68,11 +68,28 @@ def drawn(
     datasets = [load_result(p) for p in inputs]
     fig = drawer(figure.draw)(datasets, figure.filled_title(datasets[0].attrs), *figure.args)
     paper_marks(fig.axes[0], marks, figure.axes)
-    if note:  # below the drawing's own title, wrapped to the figure's width
-        ax = fig.axes[0]
-        ax.set_title(ax.get_title() + "\n" + "\n".join(textwrap.wrap(note, 48)))
+    if note:  # below the figure's title (a panel's, or the whole figure's above panels)
+        top = fig.get_suptitle()
+        if top:
+            width = int(fig.get_figwidth() * 11)  # characters of 10 pt across the figure
+            fig.suptitle(top + "\n" + wrapped(note, width), fontsize=10)
+        else:
+            ax = fig.axes[0]
+            ax.set_title(ax.get_title() + "\n" + wrapped(note, 48))
     fig.tight_layout()
     return fig
+
+
+def wrapped(note: str, width: int) -> str:
+    """``note`` (changes ``key = value (paper: value)`` joined by ``"; "``) on lines of at
+    most ``width`` characters, broken between changes or before ``(paper: ...)`` only,
+    never inside a value and its unit."""
+    items = []
+    for item in note.split("; "):
+        head, sep, paper = item.partition(" (paper: ")
+        keep = head.replace(" ", "\u00a0")
+        items.append(keep + (" (paper:\u00a0" + paper.replace(" ", "\u00a0") if sep else ""))
+    return "\n".join(textwrap.wrap("; ".join(items), width, break_long_words=False))
 
 
 def draw(

@@ -418,13 +418,15 @@ def _timings(directory: Path) -> pd.DataFrame:
 
 
 def _failures(results: Sequence[str]) -> pd.DataFrame:
-    """Strokes, failed strokes and the failing statuses of every result file."""
+    """Strokes, failed strokes and the failing statuses of every result file; "-" where a
+    file records no count of a status (Figs. 5-6 count failed strokes per point only)."""
     rows = []
     for path in results:
         counts = failure_counts(load_result(path))
         if counts:
             rows.append({"file": str(path), **counts})
-    return pd.DataFrame(rows).convert_dtypes()
+    # integers stay integers; a count the file does not record is "-", never <NA>
+    return pd.DataFrame(rows).convert_dtypes().astype(object).fillna("-")
 
 
 def ladder_summary(error: float | None, claims: pd.DataFrame) -> dict:

@@ -20,6 +20,6 @@ def elbow_force(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     colour_map(ax, v, "psi_F", "tau_F")
     i = np.unravel_index(int(np.nanargmax(v.values)), v.shape)
     ax.plot(float(d["psi_F"][i[0]]), float(d["tau_F"][i[1]]), "r*", ms=14, label="maximum")
-    ax.legend(loc="upper right")
+    ax.legend(loc="best")
     ax.set_title(title)
     return fig
