@@ -292,3 +292,67 @@ def test_a_value_out_of_bounds_cannot_be_typed(server, browser):
     value = "return Bokeh.documents[0].get_model_by_name('model.restitution').value"
     assert browser.execute_script(value) == 1  # the spinner's upper bound
     assert not any(m["generation"] >= 2 for m in browser.execute_script(MAPS_JS))
+
+
+#: Every widget of the page and the plots and table: kind, name, its box, and whether its
+#: label's text is cut (wider than the label) or a table header's is.
+LAYOUT_JS = """
+const out = [];
+const stack = [...Bokeh.index.roots];
+while (stack.length) {
+  const v = stack.pop();
+  const type = v.model.type;
+  const r = v.el.getBoundingClientRect();
+  const box = [r.left, r.top, r.right, r.bottom];
+  const root = v.shadow_el ?? v.el.shadowRoot ?? v.el;
+  if (["Spinner", "Select", "TextInput", "Button"].includes(type)) {
+    const label = root.querySelector("label");
+    const cut = label ? label.scrollWidth > label.clientWidth + 1 : false;
+    out.push({type, name: v.model.name, box, cut, text: label ? label.innerText : ""});
+  } else if (type === "Figure" || type === "Plot") {
+    out.push({type: "plot", name: v.model.name, box, cut: false, text: ""});
+  } else if (type === "DataTable") {
+    const cut = [...root.querySelectorAll(".slick-header-column")].filter(
+      (c) => c.querySelector(".slick-column-name").scrollWidth > c.clientWidth + 1
+    ).map((c) => c.innerText);
+    out.push({type, name: v.model.name, box, cut: cut.length > 0, text: cut.join(", ")});
+  }
+  stack.push(...(v.child_views ?? []));
+}
+return {items: out, width: window.innerWidth, height: window.innerHeight};
+"""
+
+
+def _overlap(a, b) -> bool:
+    return a[0] < b[2] - 1 and b[0] < a[2] - 1 and a[1] < b[3] - 1 and b[1] < a[3] - 1
+
+
+@pytest.mark.browser
+@browser_needed
+@pytest.mark.parametrize("width", [1280, 1920])
+def test_the_page_is_laid_out_for_a_person(server, width):
+    """At 1400 px the labels of neighbouring controls overlapped, contact_lead_rule's was
+    cut, Fig. 9's toolbar left the window, claim names were cut and Save was below the
+    fold: at 1280 and 1920 px no widget overlaps another, no label or header is cut,
+    the plots are inside the window and Save is in view without scrolling."""
+    _, port = server
+    driver = chromium(width, 900, loopback=True)
+    try:
+        open_page(driver, port)
+        layout = driver.execute_script(LAYOUT_JS)
+    finally:
+        driver.quit()
+    items = layout["items"]
+    widgets = [i for i in items if i["type"] in ("Spinner", "Select", "TextInput", "Button")]
+    assert len(widgets) > 20
+    visible = [w for w in widgets if w["box"][3] > w["box"][1]]
+    for i, a in enumerate(visible):
+        assert not a["cut"], (a["name"], a["text"])
+        for b in visible[i + 1 :]:
+            assert not _overlap(a["box"], b["box"]), (a["name"], b["name"])
+    for plot in (i for i in items if i["type"] == "plot"):
+        assert plot["box"][2] <= layout["width"], plot["name"]
+    (table,) = [i for i in items if i["type"] == "DataTable"]
+    assert not table["cut"], table["text"]
+    (save,) = [w for w in widgets if w["name"] == "explore-save"]
+    assert 0 <= save["box"][1] and save["box"][3] <= layout["height"]

@@ -55,6 +55,7 @@ from ..replication.registry import LIVE
 from ..replication.views import (
     curve_data,
     curve_view,
+    fit_columns,
     map_data,
     map_view,
     stroke_view,
@@ -64,6 +65,11 @@ from ..replication.views import (
 
 #: The one worker of every session (see the module's docstring).
 _WORKER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tennis-stroke-explore")
+#: The page's layout (px): the controls' panel, each control, the map and Fig. 9's curve;
+#: they fit side by side in a 1280 px window (tests/live/test_server.py checks 1280 and
+#: 1920 px: nothing overlaps, no text is cut).
+PANEL_WIDTH, CONTROL_WIDTH, CONTROLS_HEIGHT = 370, 330, 760
+MAP_WIDTH, CURVE_WIDTH = 480, 370
 #: Sessions one server keeps at once (each holds its maps and views, a few MB).
 MAX_SESSIONS = 8
 #: Seconds after which Bokeh drops a session whose page is gone or never connected.
@@ -227,7 +233,7 @@ class Session:
             "data", CustomJS(args={"source": self.map_source}, code=_PROBE_JS)
         )
         self.map.on_event(Tap, self._tap)
-        self.map.width = 560
+        self.map.width = MAP_WIDTH
         fig9 = _registry_figure("fig9")
         self.curve = curve_view(
             curve,
@@ -238,20 +244,21 @@ class Session:
             mark_values(fig9, self.shared.declared),
         )
         self.curve_source = self.curve.select_one({"name": "explore-fig9-map"})
-        self.curve.width = 460
-        self.status = Div(text="", name="explore-status", width=900)
+        self.curve.width = CURVE_WIDTH
+        views_width = MAP_WIDTH + CURVE_WIDTH
+        self.status = Div(text="", name="explore-status", width=views_width)
         self.error = Div(
             text="",
             name="explore-error",
-            width=900,
+            width=views_width,
             styles={"color": "#b00020", "font-weight": "bold"},
         )
         self.claims_source = ColumnDataSource(self._claims_data(None), name="explore-claims")
         self.claims_table = DataTable(
             source=self.claims_source,
             columns=[
-                TableColumn(field="id", title="claim", width=200),
-                TableColumn(field="quantity", title="quantity", width=260),
+                TableColumn(field="id", title="claim"),
+                TableColumn(field="quantity", title="quantity"),
                 TableColumn(
                     field="paper_value", title="paper", formatter=NumberFormatter(format="0.0[000]")
                 ),
@@ -268,10 +275,15 @@ class Session:
                 TableColumn(field="unit", title="unit"),
                 TableColumn(field="status", title="verdict"),
             ],
-            width=900,
-            height=28 * (len(self.shared.claims) + 1),
+            width=views_width,
+            autosize_mode="none",  # each column as wide as its text; a wide table scrolls
+            height=28 * (len(self.shared.claims) + 2),
             index_position=None,
             name="explore-claims-table",
+        )
+        data = self.claims_source.data  # the verdicts to come, as wide as the widest
+        fit_columns(
+            {**data, "status": ["known_deviation", "used_for_fit"]}, self.claims_table.columns
         )
         self.claims_source.js_on_change(
             "data", CustomJS(args={"table": self.claims_table}, code="table.view.change.emit()")
@@ -301,7 +313,7 @@ class Session:
                 title=title,
                 value=str(paper),
                 options=list(control.choices),
-                width=170,
+                width=CONTROL_WIDTH,
                 name=control.key,
             )
         else:
@@ -311,7 +323,7 @@ class Session:
                 low=control.low,
                 high=control.high,
                 step=control.step or 0.01,
-                width=170,
+                width=CONTROL_WIDTH,
                 name=control.key,
                 format="0[.]00000",
             )
@@ -329,25 +341,32 @@ class Session:
             }.get(section, "The figures' own values")
             groups.setdefault(group, []).append(self._widget(control))
         self.widgets = {w.name: w for ws in groups.values() for w in ws}
-        reset = Button(label="Reset to the default reading", name="explore-reset", width=170)
+        reset = Button(
+            label="Reset to the default reading", name="explore-reset", width=CONTROL_WIDTH
+        )
         reset.on_click(self._reset)
         self.scenario_name = TextInput(
             title="Save these settings as scenario",
-            width=170,
+            width=CONTROL_WIDTH - 130,
             placeholder="a name",
             name="explore-scenario-name",
         )
-        save = Button(label="Save as scenario", name="explore-save", width=170)
+        save = Button(label="Save as scenario", name="explore-save", width=120, align="end")
         save.on_click(self._save)
-        self.saved = Div(text="", width=380, name="explore-saved")
-        parts = [reset]
+        self.saved = Div(text="", width=CONTROL_WIDTH, name="explore-saved")
+        parts = []
         for group, widgets in groups.items():
             parts.append(Div(text=f"<b>{group}</b>"))
-            parts += [row(*widgets[i : i + 2]) for i in range(0, len(widgets), 2)]
-        parts += [self.scenario_name, save, self.saved]
-        return column(
-            *parts, width=400, height=1100, styles={"overflow-y": "auto", "overflow-x": "hidden"}
+            parts += widgets
+        # reset and save stay in view above the controls, which scroll on their own
+        top = column(reset, row(self.scenario_name, save), self.saved, width=PANEL_WIDTH)
+        controls = column(
+            *parts,
+            width=PANEL_WIDTH,
+            height=CONTROLS_HEIGHT,
+            styles={"overflow-y": "auto", "overflow-x": "hidden"},
         )
+        return column(top, controls, width=PANEL_WIDTH)
 
     # -- data of the views ------------------------------------------------------------
 
