@@ -135,3 +135,29 @@ rule unknown_scenario_file:
         top="results|report",
         declared=DECLARED_SCENARIO,
         path=UNKNOWN_SCENARIO_PATH,
+
+
+# The replication as an article (ReScience C style) and its metadata, written from the
+# results: every number read from the claims table, the figures and the files.
+rule article:
+    input:
+        figures=expand("results/figures/{name}.png", name=PAPER_FIGURES),
+        claims="results/claims.csv",
+        statements="config/claims.yaml",
+        results=list(PAPER_RESULTS.values()),
+        code=code_inputs("article.py"),
+        template=checkout_path(
+            PACKAGE_DIR / "replication" / "templates" / "article.typ"
+        ),
+        lock=checkout_path(Path(workflow.basedir) / "requirements.lock"),
+    output:
+        pdf="report/article.pdf",
+        metadata="report/metadata.yaml",
+    log:
+        "logs/article.log",
+    benchmark:
+        "benchmarks/workflow/article.tsv"
+    params:
+        benchmarks="benchmarks/workflow",
+    script:
+        "../scripts/article.py"

@@ -23,12 +23,14 @@ from ..replication.registry import FIGURES
 
 #: The claims table and the report page (written by the claims and report rules).
 TABLES = ("results/claims.csv", "report/index.html")
+#: The replication's article and its ReScience metadata (rule article).
+ARTICLE = ("report/article.pdf", "report/metadata.yaml")
 
 
 def targets() -> list[str]:
-    """The report, the claims table, every result file and every figure."""
+    """The report, the claims table, the article, every result file and every figure."""
     figures = [f"results/figures/{name}.png" for name in sorted(FIGURES)]
-    return [*TABLES, *RESULT_FILES.values(), *figures]
+    return [*TABLES, *ARTICLE, *RESULT_FILES.values(), *figures]
 
 
 def damaged_results(results: str | Path = "results") -> list[tuple[str, str]]:

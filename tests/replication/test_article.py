@@ -1,0 +1,72 @@
+"""The replication's article (tennis_stroke.replication.article): written from the
+results, every claim's value in its text, rebuilt when a result changes, the figures the
+results' PNGs, a missing input one line."""
+
+import shutil
+
+import pandas as pd
+import pypdf
+import pytest
+import yaml
+from conftest import ROOT
+
+from tennis_stroke.replication.article import _number, build_article
+from tennis_stroke.replication.registry import FIGURES
+from tennis_stroke.replication.report import ReportInputError
+
+STATEMENTS = str(ROOT / "config" / "claims.yaml")
+
+
+def _inputs(run):
+    figures = sorted(str(p) for p in (run / "results" / "figures").glob("fig*.png"))
+    results = [str(run / "results" / "angle_maps" / "fig2.nc")]
+    return figures, results
+
+
+def _text(pdf) -> str:
+    reader = pypdf.PdfReader(pdf)
+    return " ".join(page.extract_text() for page in reader.pages)
+
+
+@pytest.mark.workflow
+def test_the_article_holds_the_counts_and_every_claim_s_value(tiny_run):
+    """`make report` writes it; its text states the claims table's counts and each
+    claim's id and value, and its metadata is ReScience C's with the lock's software."""
+    pdf = tiny_run / "report" / "article.pdf"
+    text = " ".join(_text(pdf).split())
+    table = pd.read_csv(tiny_run / "results" / "claims.csv")
+    status = table["status"].value_counts()
+    reproduce = f"{status.get('pass', 0)} claims reproduce"
+    assert f"{len(table)} quantitative and qualitative claims" in text and reproduce in text
+    assert f"{status.get('known_deviation', 0)} deviate" in text
+    for claim in table.to_dict("records"):
+        assert claim["id"].replace("_", "") in text.replace("_", "").replace(" ", ""), claim["id"]
+        assert _number(float(claim["reproduced_value"])) in text, claim["id"]
+    meta = yaml.safe_load((tiny_run / "report" / "metadata.yaml").read_text())
+    assert meta["title"].startswith("[Re] Double pendulum model")
+    assert meta["replication"]["url"] == "https://arxiv.org/abs/1505.01916"
+    assert any(s.startswith("typst==") for s in meta["software"])
+
+
+@pytest.mark.workflow
+def test_a_changed_result_changes_the_article_and_its_figures_are_the_pngs(tiny_run, tmp_path):
+    figures, results = _inputs(tiny_run)
+    csv = tmp_path / "claims.csv"
+    table = pd.read_csv(tiny_run / "results" / "claims.csv")
+    table.loc[0, "reproduced_value"] = 12345.678
+    table.to_csv(csv, index=False)
+    out = tmp_path / "article.pdf"
+    build_article(str(csv), STATEMENTS, figures, results, str(out), str(tmp_path / "m.yaml"))
+    assert "1.235e+04" in _text(out)
+    images = [i for page in pypdf.PdfReader(out).pages for i in page.images]
+    shown = [f for f in figures if FIGURES[f.split("/")[-1][:-4]].of_paper]
+    assert len(images) == len(shown)
+
+
+def test_a_missing_input_is_one_line(tmp_path):
+    missing = tmp_path / "results" / "claims.csv"
+    with pytest.raises(ReportInputError) as info:
+        build_article(str(missing), STATEMENTS, [], [], str(tmp_path / "a.pdf"), "m.yaml")
+    assert str(info.value) == f"the article needs {missing}, which does not exist"
+    assert not (tmp_path / "a.pdf").exists()
+    shutil.rmtree(tmp_path / "results", ignore_errors=True)
