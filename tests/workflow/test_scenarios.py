@@ -356,3 +356,22 @@ def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
                 main(argv)
             err = capsys.readouterr().err
             assert info.value.code == 2 and message in err and err.count("\n") == 1, err
+
+
+def test_whatif_reads_the_config_as_the_workflow_does_with_its_defaults(tmp_path):
+    """A config that leaves keys to the schema's defaults (the solver section here):
+    whatif's own check stopped with "tennis-stroke: error: solver"."""
+    import shutil
+
+    import yaml
+
+    from tennis_stroke.pipeline.scenarios import scenario_reach
+
+    (tmp_path / "config").mkdir()
+    (tmp_path / "workflow" / "schemas").mkdir(parents=True)
+    shutil.copy(SCHEMA, tmp_path / "workflow" / "schemas")
+    config = {k: v for k, v in PAPER.items() if k not in ("solver", "chunks", "model")}
+    (tmp_path / "config" / "config.yaml").write_text(yaml.safe_dump(config))
+    assert scenario_reach("s", {"model": {"M2": 0.35}}, ["fig02_angle_map"], tmp_path) == []
+    with pytest.raises(ScenarioError, match="does not change fig09_v_tau"):
+        scenario_reach("s", {"model": {"C2": 3.0}}, ["fig09_v_tau"], tmp_path)

@@ -372,6 +372,24 @@ def canonical(node, schema: Mapping, root: Mapping | None = None, path: tuple = 
     return node
 
 
+def with_defaults(node, schema: Mapping, root: Mapping | None = None):
+    """``node`` with every key the schema gives a ``default`` filled in where missing, at
+    every level (what the workflow's ``validate(..., set_default=True)`` does): a config
+    file may leave them out."""
+    root = schema if root is None else root
+    schema = _resolved(schema, root)
+    if not isinstance(node, Mapping):
+        return node
+    out = dict(node)
+    for key, spec in schema.get("properties", {}).items():
+        spec = _resolved(spec, root)
+        if key not in out and "default" in spec:
+            out[key] = copy.deepcopy(spec["default"])
+        if key in out:
+            out[key] = with_defaults(out[key], spec, root)
+    return out
+
+
 def load_schema(schema_path: str | Path) -> dict:
     """The config schema (``workflow/schemas/config.schema.yaml``) as data (read once per
     process while the file is unchanged: the live explorer checks every setting)."""

@@ -31,7 +31,13 @@ from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, shown, sorte
 from ..io.config_files import ConfigFileError, load_yaml
 from ..io.netcdf import read_only, temporary_beside
 from ..model.params import PARAMETERS, READINGS
-from .config_check import canonical, config_errors, load_schema, numbers_from_strings
+from .config_check import (
+    canonical,
+    config_errors,
+    load_schema,
+    numbers_from_strings,
+    with_defaults,
+)
 from .params import changed_results, reads
 
 #: A scenario's name: a folder name on every system, and a Snakemake wildcard value.
@@ -224,7 +230,8 @@ def scenario_reach(
     root = Path(root)
     schema = root / SCHEMA_FILE
     try:
-        base = canonical(load_yaml(root / CONFIG_FILE), load_schema(schema))
+        loaded = load_schema(schema)  # the config as the workflow reads it: with defaults
+        base = canonical(with_defaults(load_yaml(root / CONFIG_FILE), loaded), loaded)
     except ConfigFileError as exc:
         raise ScenarioError(str(exc)) from None
     config = scenario_config(base, name, overrides, schema)
