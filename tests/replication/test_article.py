@@ -70,3 +70,33 @@ def test_a_missing_input_is_one_line(tmp_path):
     assert str(info.value) == f"the article needs {missing}, which does not exist"
     assert not (tmp_path / "a.pdf").exists()
     shutil.rmtree(tmp_path / "results", ignore_errors=True)
+
+
+@pytest.mark.workflow
+def test_a_scenario_s_article_is_an_exploration_never_a_replication(tiny_scenario, tmp_path):
+    """Its changes, the figures it changes against the paper's, and every claim under
+    both configurations with the signed change; no verdict, no replication's counts."""
+    from tennis_stroke.replication.article import build_scenario_article
+
+    run, _ = tiny_scenario
+    folder = run / "results" / "scenarios" / "strong"
+    comparisons = sorted(str(p) for p in (folder / "compare").glob("*.png"))
+    out = tmp_path / "article.pdf"
+    scenario = {"name": "strong", "changes": [{"text": "torque_delay.base_stroke.C2 = 8 N m"}]}
+    build_scenario_article(
+        scenario,
+        comparisons,
+        str(folder / "claims.csv"),
+        STATEMENTS,
+        str(out),
+        str(run / "results" / "claims.csv"),
+    )
+    text = " ".join(_text(out).split())
+    assert "An exploration beside the paper, not a replication" in text
+    assert "torque_delay.base_stroke.C2 = 8 N m" in text
+    assert "claims reproduce" not in text and "verdict" not in text
+    table = pd.read_csv(folder / "claims.csv")
+    for claim in table.to_dict("records"):
+        assert claim["id"].replace("_", "") in text.replace("_", "").replace(" ", ""), claim["id"]
+    images = [i for page in pypdf.PdfReader(out).pages for i in page.images]
+    assert len(images) == len(comparisons) > 0

@@ -28,6 +28,7 @@ ABSENT = {
     "compare.py": (*SOLVER, *VIEWS, *SCIPY),  # draws from files, as figure.py
     "report.py": (*SOLVER, *DRAWING, *SCIPY),  # embeds the drawn figures, views on demand
     "article.py": (*SOLVER, *DRAWING, *SCIPY),  # typesets the results, draws nothing
+    "scenario_article.py": (*SOLVER, *DRAWING, *SCIPY),  # typesets the results
     "scenario_report.py": (*SOLVER, *DRAWING, *SCIPY),
     "claims.py": (*DRAWING, *VIEWS, *SAMPLING),  # searches: the solver and scipy.optimize
     "claims_validation.py": (*DRAWING, *VIEWS, *SAMPLING),

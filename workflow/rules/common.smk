@@ -480,6 +480,15 @@ def scenario_report_figures(wildcards):
     ]
 
 
+def scenario_comparisons(wildcards):
+    """The comparison images of the figures a scenario changes (its article)."""
+    folder = scenario_folder(wildcards.scenario)
+    return [
+        f"{folder}/compare/{f}.png"
+        for f in scenario_changed_figures(wildcards.scenario)
+    ]
+
+
 def scenario_figure_table(wildcards):
     """Each paper figure on a scenario's page: the paper's file, the scenario's (None
     where it changes nothing the figure shows) and what it changes of its inputs."""
@@ -544,6 +553,7 @@ SCENARIO_PATHS = "|".join(
         r"claims\.csv",
         r"configuration\.yaml",
         r"index\.html",
+        r"article\.pdf",
     ]
 )
 #: Any other path (rule unknown_scenario_file refuses it in one line).

@@ -161,3 +161,26 @@ rule article:
         benchmarks="benchmarks/workflow",
     script:
         "../scripts/article.py"
+
+
+# A scenario's article: an exploration beside the paper, never a replication (its
+# changes, the figures it changes against the paper's, every claim under both).
+rule scenario_article:
+    input:
+        comparisons=scenario_comparisons,
+        claims="results/scenarios/{scenario}/claims.csv",
+        statements="config/claims.yaml",
+        code=code_inputs("scenario_article.py"),
+        template=checkout_path(
+            PACKAGE_DIR / "replication" / "templates" / "scenario_article.typ"
+        ),
+    output:
+        "report/scenarios/{scenario}/article.pdf",
+    log:
+        "logs/scenarios/{scenario}/article.log",
+    benchmark:
+        scenario_folder("{scenario}", "benchmarks/workflow") + "/article.tsv"
+    params:
+        scenario=scenario_record,
+    script:
+        "../scripts/scenario_article.py"

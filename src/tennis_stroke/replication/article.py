@@ -33,8 +33,9 @@ from .claims import ClaimsTableError, read_table
 from .registry import FIGURES
 from .report import ReportInputError
 
-#: The article's template (Typst), beside the report's templates.
+#: The article's template (Typst), beside the report's templates, and a scenario's.
 TEMPLATE = Path(__file__).parent / "templates" / "article.typ"
+SCENARIO_TEMPLATE = Path(__file__).parent / "templates" / "scenario_article.typ"
 #: The replicated article.
 ORIGINAL = {
     "authors": "Sun-Hyun Youn",
@@ -223,6 +224,61 @@ def metadata(data: Mapping, repository: str = "", software: Sequence[str] = ()) 
     }
 
 
+def _typeset(template: Path, data: Mapping, images: Sequence[str], output_pdf: str) -> None:
+    """Typeset ``template`` with ``data`` (as ``data.json``) and ``images`` beside it."""
+    import typst  # the workflow's extra: only the article jobs load it
+
+    with tempfile.TemporaryDirectory() as folder:
+        work = Path(folder)
+        shutil.copy(template, work / template.name)
+        for path in images:
+            shutil.copy(path, work / Path(path).name)
+        (work / "data.json").write_text(json.dumps(data))
+        pdf = typst.compile(str(work / template.name), root=str(work))
+    Path(output_pdf).parent.mkdir(parents=True, exist_ok=True)
+    Path(output_pdf).write_bytes(pdf)
+
+
+def build_scenario_article(
+    scenario: Mapping,
+    comparisons: Sequence[str],
+    claims_csv: str,
+    claims_yaml: str,
+    output_pdf: str,
+    paper_claims_csv: str = "results/claims.csv",
+) -> None:
+    """Write scenario ``scenario``'s article (``{name, changes}``; ``comparisons``: the
+    PNGs of the figures it changes against the paper's): an exploration beside the
+    paper, never a replication: its changes, the figures and every claim under both
+    configurations, the change signed."""
+    from .scenario_report import _paper_table, claim_rows
+
+    missing = [p for p in (claims_csv, claims_yaml, *comparisons) if not Path(p).is_file()]
+    if missing:
+        raise ReportInputError(f"the article needs {missing[0]}, which does not exist")
+    ids = [c["id"] for c in load_claims(claims_yaml)]
+    try:
+        table = read_table(claims_csv, ids)
+    except ClaimsTableError as exc:
+        raise ReportInputError(str(exc)) from None
+    paper, note = _paper_table(paper_claims_csv, ids)
+    rows = claim_rows(table, paper)
+    name = str(scenario["name"])
+    data = {
+        "title": f"What if {name}: an exploration beside the replication",
+        "original": ORIGINAL,
+        "scenario": {"name": name, "changes": [c["text"] for c in scenario["changes"]]},
+        "figures": [
+            {"file": Path(p).name, "title": FIGURES[Path(p).stem].title.split(":")[0]}
+            for p in comparisons
+        ],
+        "rows": [{k: str(v) for k, v in r.items()} for r in rows],
+        "moved": sum(r["moved"] for r in rows),
+        "paper_note": note,
+    }
+    _typeset(SCENARIO_TEMPLATE, data, comparisons, output_pdf)
+
+
 def build_article(
     claims_csv: str,
     claims_yaml: str,
@@ -236,22 +292,12 @@ def build_article(
 ) -> None:
     """Write the article (``output_pdf``) and its ``metadata.yaml`` from the results
     (``lock``: ``requirements.lock``, the software it lists)."""
-    import typst  # the workflow's extra: only the article job loads it
-
     missing = [p for p in (claims_csv, claims_yaml, *figures, *results) if not Path(p).is_file()]
     if missing:
         raise ReportInputError(f"the article needs {missing[0]}, which does not exist")
     shown = {Path(p).stem: p for p in figures if Path(p).stem in FIGURES}
     data = article_data(claims_csv, claims_yaml, shown, results, job_seconds)
-    with tempfile.TemporaryDirectory() as folder:
-        work = Path(folder)
-        shutil.copy(TEMPLATE, work / "article.typ")
-        for path in shown.values():
-            shutil.copy(path, work / Path(path).name)
-        (work / "data.json").write_text(json.dumps(data))
-        pdf = typst.compile(str(work / "article.typ"), root=str(work))
-    Path(output_pdf).parent.mkdir(parents=True, exist_ok=True)
-    Path(output_pdf).write_bytes(pdf)
+    _typeset(TEMPLATE, data, list(shown.values()), output_pdf)
     Path(output_metadata).write_text(
         yaml.safe_dump(
             metadata(data, repository, locked_software(lock)), sort_keys=False, allow_unicode=True
