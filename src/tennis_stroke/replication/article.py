@@ -21,7 +21,6 @@ import tempfile
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
-import numpy as np
 import pandas as pd
 import yaml
 
@@ -31,7 +30,7 @@ from ..io.netcdf import load_result
 from ..model.params import READINGS
 from .claims import ClaimsTableError, read_table
 from .registry import FIGURES
-from .report import ReportInputError
+from .report import ReportInputError, _number, _timings
 
 #: The article's template (Typst), beside the report's templates, and a scenario's.
 TEMPLATE = Path(__file__).parent / "templates" / "article.typ"
@@ -54,11 +53,6 @@ VERDICTS = {
 }
 _FIGURE = re.compile(r"Fig\. (\d+)")
 _SECTION = re.compile(r"Sec\. ([IVX]+)")
-
-
-def _number(value: float) -> str:
-    """A value as the claims table gives it, to four significant digits."""
-    return "-" if not np.isfinite(value) else f"{value:.4g}"
 
 
 def _claim(c: Mapping) -> dict:
@@ -182,13 +176,13 @@ def article_data(
 
 
 def job_seconds(benchmarks: Path) -> float | None:
-    """The wall time of the paper's run's jobs summed (their Snakemake benchmark files,
-    the scenarios' left out; the latest row of each), or None without any."""
-    paths = [p for p in benchmarks.rglob("*.tsv") if "scenarios" not in p.parts]
-    paths = [p for p in paths if p.stem != "article"]
-    if not paths:
+    """The wall time of the paper's run's jobs summed (the report's table of timings,
+    :func:`~tennis_stroke.replication.report._timings`, less this job), or None without
+    any."""
+    timings = _timings(benchmarks) if benchmarks.is_dir() else pd.DataFrame()
+    if timings.empty:
         return None
-    return float(sum(pd.read_csv(p, sep="\t")["s"].iloc[-1] for p in paths))
+    return float(timings.loc[timings["job"] != "article", "wall time (s)"].sum())
 
 
 def locked_software(lock: str | Path | None) -> list[str]:
@@ -224,6 +218,13 @@ def metadata(data: Mapping, repository: str = "", software: Sequence[str] = ()) 
     }
 
 
+def _require(*paths) -> None:
+    """One line naming the first input of an article that does not exist."""
+    missing = [p for p in paths if not Path(p).is_file()]
+    if missing:
+        raise ReportInputError(f"the article needs {missing[0]}, which does not exist")
+
+
 def _typeset(template: Path, data: Mapping, images: Sequence[str], output_pdf: str) -> None:
     """Typeset ``template`` with ``data`` (as ``data.json``) and ``images`` beside it."""
     import typst  # the workflow's extra: only the article jobs load it
@@ -253,9 +254,7 @@ def build_scenario_article(
     configurations, the change signed."""
     from .scenario_report import _paper_table, claim_rows
 
-    missing = [p for p in (claims_csv, claims_yaml, *comparisons) if not Path(p).is_file()]
-    if missing:
-        raise ReportInputError(f"the article needs {missing[0]}, which does not exist")
+    _require(claims_csv, claims_yaml, *comparisons)
     ids = [c["id"] for c in load_claims(claims_yaml)]
     try:
         table = read_table(claims_csv, ids)
@@ -292,9 +291,7 @@ def build_article(
 ) -> None:
     """Write the article (``output_pdf``) and its ``metadata.yaml`` from the results
     (``lock``: ``requirements.lock``, the software it lists)."""
-    missing = [p for p in (claims_csv, claims_yaml, *figures, *results) if not Path(p).is_file()]
-    if missing:
-        raise ReportInputError(f"the article needs {missing[0]}, which does not exist")
+    _require(claims_csv, claims_yaml, *figures, *results)
     shown = {Path(p).stem: p for p in figures if Path(p).stem in FIGURES}
     data = article_data(claims_csv, claims_yaml, shown, results, job_seconds)
     _typeset(TEMPLATE, data, list(shown.values()), output_pdf)

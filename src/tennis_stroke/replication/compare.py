@@ -164,8 +164,7 @@ def comparison(
     paper = drawn(figure, paper_inputs, "the paper's configuration", marks)
     ours = drawn(figure, scenario_inputs, note or f"scenario {scenario}", marks)
     share_scales(paper, ours)
-    first = [load_result(p) for p in paper_inputs][0]
-    second = [load_result(p) for p in scenario_inputs][0]
+    first, second = load_result(paper_inputs[0]), load_result(scenario_inputs[0])
     difference = difference_figure(
         first, second, figure.compare, f"scenario {scenario} \u2212 the paper's configuration"
     )
