@@ -10,10 +10,14 @@ from pathlib import Path
 import numpy as np
 import pytest
 from chromium import CHROMIUM, DRIVER, MISSING, ROWS_JS, chromium, hover_lines, wait_idle
+from conftest import SCENARIO, SCENARIO_PAGE
 
 from tennis_stroke.experiments.specs import RESULT_FILES
+from tennis_stroke.inference.measures import valid_v_out
 from tennis_stroke.io.netcdf import load_result
+from tennis_stroke.pipeline.scenarios import scenario_path
 from tennis_stroke.replication import views
+from tennis_stroke.replication.registry import FIGURES
 
 pytestmark = [
     pytest.mark.browser,
@@ -203,3 +207,82 @@ def test_a_screenshot_of_a_hovered_map_for_a_person(browser, page, tiny_run, tmp
     shot = shots / "report-hover-fig2.png"
     assert browser.save_screenshot(str(shot)) and shot.stat().st_size > 0
     print(f"screenshot: {shot}")
+
+
+#: Where the crosshair's shared lines of comparison arguments[0] stand: [x, y].
+CROSS_JS = """
+const doc = Bokeh.documents[0];
+return ["x", "y"].map((a) => doc.get_model_by_name(`${arguments[0]}-cross-${a}`)?.location);
+"""
+
+
+def _shown(value: float, signed: bool = False) -> str:
+    """A value as a view's hover writes it (float32 in the page)."""
+    if not np.isfinite(value):
+        return "none (failed stroke)"
+    return f"{value:+.2f}" if signed else f"{value:.2f}"
+
+
+def _pair(work: Path, figure: str) -> tuple:
+    """The paper's and the scenario's result file of ``figure`` in ``work``."""
+    path = RESULT_FILES[FIGURES[figure].files[0]]
+    return load_result(work / path), load_result(work / scenario_path(path, SCENARIO[0]))
+
+
+@pytest.fixture
+def scenario_page(tiny_scenario, tmp_path):
+    work, _ = tiny_scenario
+    shutil.copy(work / SCENARIO_PAGE, tmp_path / "index.html")
+    return work, tmp_path / "index.html"
+
+
+def test_a_scenario_map_hovered_in_any_panel_shows_the_paper_the_scenario_and_the_difference(
+    browser, scenario_page
+):
+    """Fig. 13 on the scenario's page: a cell hovered in the paper's panel, the
+    scenario's or the difference's shows the paper file's value, the scenario file's
+    and scenario minus paper, and the crosshair's lines, which every panel draws, stand
+    on that cell."""
+    work, page = scenario_page
+    name = "fig13_elbow_force"
+    x, y = FIGURES[name].axes
+    paper, scenario = _pair(work, name)
+    first, second = (valid_v_out(ds).astype(np.float32) for ds in (paper, scenario))
+    assert not np.array_equal(first.values, second.values)  # the scenario changes it
+    _open(browser, page)
+    n, m = paper.sizes[x], paper.sizes[y]
+    for side, (i, j) in zip(
+        ("paper", "scenario", "difference"), [(0, 0), (n // 2, m // 2), (n - 1, m - 1)], strict=True
+    ):
+        at = float(paper[x][i]), float(paper[y][j])
+        shown = hover_lines(browser, f"{name}-{side}", *at)
+        a, b = float(first[{x: i, y: j}]), float(second[{x: i, y: j}])
+        assert shown["v_out (km/h), paper"] == _shown(a), side
+        assert shown["v_out (km/h), scenario"] == _shown(b), side
+        assert shown["v_out (km/h), scenario \u2212 paper"] == _shown(b - a, signed=True), side
+        cross = browser.execute_script(CROSS_JS, name)
+        steps = [float(paper[d][1] - paper[d][0]) for d in (x, y)]
+        for where, want, step in zip(cross, at, steps, strict=True):
+            assert abs(where - want) < 0.5 * step, (side, cross, at)
+
+
+def test_a_scenario_curve_hovered_shows_both_curves_and_their_difference(browser, scenario_page):
+    """Fig. 9 on the scenario's page: a sample hovered on the curves or on their
+    difference shows the paper file's v_out, the scenario file's and the difference,
+    and the shared vertical line stands at its tau."""
+    work, page = scenario_page
+    name = "fig09_v_tau"
+    paper, scenario = (ds.isel(delta0=0) for ds in _pair(work, name))
+    first, second = valid_v_out(paper), valid_v_out(scenario)
+    _open(browser, page)
+    k = paper.sizes["tau"] // 3
+    tau = float(paper["tau"][k])
+    for plot, level in ((f"{name}-curves", float(second[k])), (f"{name}-difference", 0.0)):
+        shown = hover_lines(browser, plot, tau, level)
+        a, b = float(first[k]), float(second[k])
+        assert float(shown["tau (s)"]) == pytest.approx(tau, abs=5e-5), plot
+        assert shown["v_out (km/h), paper"] == _shown(a), plot
+        assert shown["v_out (km/h), scenario"] == _shown(b), plot
+        assert shown["v_out (km/h), scenario \u2212 paper"] == _shown(b - a, signed=True), plot
+        x_line, _ = browser.execute_script(CROSS_JS, name)
+        assert x_line == pytest.approx(tau, abs=0.5 * float(paper["tau"][1] - paper["tau"][0]))

@@ -146,3 +146,115 @@ def test_text_in_a_view_is_escaped(tiny_run):
     ds = ds.assign_coords(label=("stroke", [hostile] * ds.sizes["stroke"]))
     head, divs = views.page_views({"s": views.stroke_view(ds, "s", "t")})
     assert hostile not in head and "alert(1)" in head
+
+
+def _angle_map(theta: np.ndarray, tilt: float = 0.0) -> xr.Dataset:
+    """A map of v_out over (theta0, delta0) with a status, as a result file holds it;
+    ``tilt`` adds a change that is negative at small theta0 and positive at large."""
+    delta = np.arange(0.0, 91.0, 10.0)
+    v = 100.0 + 0.3 * theta[:, None] + 0.1 * delta[None, :]
+    v = v + tilt * (theta[:, None] - theta.mean())
+    status = {"flag_values": np.arange(7, dtype=np.int8), "flag_meanings": " ".join("abcdefg")}
+    attrs = {"units": "km/h", "long_name": "rebound speed"}
+    return xr.Dataset(
+        {
+            "v_out": (("theta0", "delta0"), v, attrs),
+            "status": (("theta0", "delta0"), np.zeros(v.shape, np.int8), status),
+        },
+        coords={
+            "theta0": ("theta0", theta, {"units": "degree"}),
+            "delta0": ("delta0", delta, {"units": "degree"}),
+        },
+    )
+
+
+def _models(view, kind):
+    return [m for m in view.select({"type": kind})]
+
+
+def test_a_comparison_holds_both_maps_and_their_difference_on_shared_scales():
+    """Paper and scenario on one colour range (the union of theirs) and one pair of axis
+    ranges; the difference is scenario minus paper cell for cell (NaN where a stroke
+    failed) on colours centred on 0; one crosshair's lines are every panel's, and every
+    panel's hover reads the three values."""
+    from bokeh.models import CrosshairTool, HoverTool, LinearColorMapper, Plot
+
+    theta = np.arange(60.0, 121.0, 5.0)
+    paper, scenario = _angle_map(theta), _angle_map(theta, tilt=0.4)
+    scenario["status"][3, 2] = 5
+    view = views.map_comparison(paper, scenario, "theta0", "delta0", "v_out", "fig", "s")
+    data = _source(view, "fig-compare").data
+    first = valid_v_out(paper).transpose("delta0", "theta0").values.astype(np.float32)
+    second = valid_v_out(scenario).transpose("delta0", "theta0").values.astype(np.float32)
+    np.testing.assert_array_equal(data["paper"][0], first)
+    np.testing.assert_array_equal(data["scenario"][0], second)
+    np.testing.assert_array_equal(data["difference"][0], second - first)
+    assert np.isnan(data["difference"][0][2, 3]) and data["status_scenario"][0][2, 3] == 5
+    assert np.nanmin(data["difference"][0]) < 0 < np.nanmax(data["difference"][0])
+    mappers = {m.name: m for m in _models(view, LinearColorMapper)}
+    both = np.concatenate([first.ravel(), second.ravel()])
+    assert (mappers["fig-colors"].low, mappers["fig-colors"].high) == (
+        np.nanmin(both),
+        np.nanmax(both),
+    )
+    reach = np.nanmax(np.abs(data["difference"][0]))
+    assert mappers["fig-difference-colors"].high == -mappers["fig-difference-colors"].low == reach
+    palette = mappers["fig-difference-colors"].palette
+    assert palette[len(palette) // 2] == "#f7f7f7"  # white at 0
+    plots = [c for c in view.children if isinstance(c, Plot)]
+    assert [p.name for p in plots] == ["fig-paper", "fig-scenario", "fig-difference"]
+    assert all(p.x_range is plots[0].x_range and p.y_range is plots[0].y_range for p in plots)
+    overlays = [t.overlay for p in plots for t in p.tools if isinstance(t, CrosshairTool)]
+    assert len(overlays) == 3 and all(o == overlays[0] for o in overlays)
+    assert [s.name for s in overlays[0]] == ["fig-cross-x", "fig-cross-y"]
+    for p in plots:
+        (hover,) = [t for t in p.tools if isinstance(t, HoverTool) and t.renderers[0].glyph]
+        assert [field for _, field in hover.tooltips][2:5] == [
+            "@paper{value}",
+            "@scenario{value}",
+            "@difference{signed}",
+        ]
+
+
+def test_a_comparison_on_different_grids_draws_no_difference_and_says_why():
+    from bokeh.models import Div, LinearColorMapper, Plot
+
+    paper = _angle_map(np.arange(60.0, 121.0, 5.0))
+    scenario = _angle_map(np.arange(50.0, 131.0, 2.5), tilt=0.4)
+    view = views.map_comparison(paper, scenario, "theta0", "delta0", "v_out", "fig", "s")
+    names = {m.name for m in _models(view, ColumnDataSource)}
+    assert "fig-compare" not in names and {"fig-paper-map", "fig-scenario-map"} <= names
+    (note,) = _models(view, Div)
+    assert "different grids" in note.text
+    plots = [c for c in view.children if isinstance(c, Plot)]
+    assert len(plots) == 2 and plots[0].x_range is plots[1].x_range
+    assert (plots[0].x_range.start, plots[0].x_range.end) == (50.0 - 1.25, 130.0 + 1.25)
+    colors = next(m for m in _models(view, LinearColorMapper) if m.name == "fig-colors")
+    assert colors.high == pytest.approx(float(scenario["v_out"].max()))
+
+
+def test_a_curve_comparison_holds_both_curves_and_their_difference():
+    from bokeh.models import CrosshairTool, Plot
+
+    tau = np.linspace(0.0, 0.3, 31)
+    status = {"flag_values": np.arange(7, dtype=np.int8), "flag_meanings": " ".join("abcdefg")}
+
+    def curve(scale):
+        return xr.Dataset(
+            {
+                "v_out": ("tau", 140.0 + scale * np.sin(10 * tau), {"units": "km/h"}),
+                "status": ("tau", np.zeros(tau.size, np.int8), status),
+            },
+            coords={"tau": ("tau", tau, {"units": "s"})},
+        )
+
+    paper, scenario = curve(20.0), curve(30.0)
+    view = views.curve_comparison(paper, scenario, "tau", "v_out", "fig", "s")
+    data = _source(view, "fig-compare").data
+    expected = scenario["v_out"].values - paper["v_out"].values
+    np.testing.assert_array_equal(data["difference"], expected)
+    plots = [c for c in view.children if isinstance(c, Plot)]
+    assert [p.name for p in plots] == ["fig-curves", "fig-difference"]
+    assert plots[0].x_range is plots[1].x_range
+    overlays = [t.overlay for p in plots for t in p.tools if isinstance(t, CrosshairTool)]
+    assert len(overlays) == 2 and overlays[0] is overlays[1] and overlays[0].name == "fig-cross-x"

@@ -18,6 +18,16 @@ def _loaded(source) -> xr.Dataset:
     return load_result(source)
 
 
+def same_grid(a: xr.DataArray, b: xr.DataArray) -> bool:
+    """Whether two variables lie on one grid: the same dimensions, and the same values
+    along each that has a coordinate (what a difference of the two needs)."""
+    return a.dims == b.dims and all(
+        a[d].size == b[d].size and np.array_equal(a[d].values, b[d].values)
+        for d in a.dims
+        if d in a.coords
+    )
+
+
 def result_differences(a, b, also_differ: Sequence[str] = ()) -> list[str]:
     """How two results (datasets or netCDF paths) differ; empty when they are the same.
 

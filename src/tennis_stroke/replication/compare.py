@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
+from ..io.compare import same_grid
 from ..io.netcdf import load_result
 from .drawing.axes import axis_label
 from .figures import drawn
@@ -79,12 +80,7 @@ def difference_figure(
         units = a.attrs.get("units", "")
         label = f"scenario \u2212 paper ({units})"
         ax.set_title(f"{name}: {a.attrs.get('long_name', name)}", fontsize=8)
-        same_grid = a.dims == b.dims and all(
-            a[d].size == b[d].size and np.array_equal(a[d].values, b[d].values)
-            for d in a.dims
-            if d in a.coords
-        )
-        if not same_grid:
+        if not same_grid(a, b):
             ax.text(0.5, 0.5, f"{name}: the grids differ\n(no difference drawn)", ha="center")
             ax.set_axis_off()
             continue

@@ -102,21 +102,41 @@ def claim_rows(scenario: pd.DataFrame, paper: pd.DataFrame | None) -> list[dict]
     return rows
 
 
-def _scenario_views(shown: Sequence[Mapping], declared: Sequence[Mapping], table: pd.DataFrame):
-    """The interactive view of each shown figure under the scenario (its files), its
-    marks at the paper's values and the scenario's: the page's head and divs by name."""
+def _scenario_views(
+    shown: Sequence[Mapping],
+    declared: Sequence[Mapping],
+    table: pd.DataFrame,
+    paper: pd.DataFrame | None,
+    who: str,
+):
+    """The interactive view of each shown figure: against the paper configuration's
+    (shared scales, the difference, linked hovers: :func:`views.comparison_view`) where
+    the paper's files exist, else the scenario's alone; each with its marks at the
+    paper's values and ours (the paper configuration's, the scenario's).  The page's
+    head and divs by name."""
     from . import views  # Bokeh: only the page jobs draw views
 
     claims = {c["id"]: c for c in declared}
     ours = dict(zip(table["id"], table["reproduced_value"].astype(float), strict=True))
+    base = (
+        dict(zip(paper["id"], paper["reproduced_value"].astype(float), strict=True))
+        if paper is not None
+        else {}
+    )
     made = {}
     for f in shown:
         figure = FIGURES[f["name"]]
         if figure.draw not in views.MAP_VIEWS or len(f["files"]) != len(figure.files):
             continue
         data = [load_result(p) for p in f["files"]]
-        title = figure.filled_title(data[0].attrs)
-        made[f["name"]] = views.figure_view(figure, data, title, mark_values(figure, claims, ours))
+        marks = mark_values(figure, claims, ours)
+        if all(Path(p).is_file() for p in f["paper_files"]):
+            first = [load_result(p) for p in f["paper_files"]]
+            pair = (mark_values(figure, claims, base), marks)
+            made[f["name"]] = views.comparison_view(figure, first, data, who, pair)
+        else:
+            title = figure.filled_title(data[0].attrs)
+            made[f["name"]] = views.figure_view(figure, data, title, marks)
     if not made:
         return Markup(""), {}
     head, divs = views.page_views(made)
@@ -155,6 +175,7 @@ def build_scenario_report(
             {
                 "name": f["name"],
                 "files": [scenario for _, scenario in f.get("files", [])],
+                "paper_files": [paper for paper, _ in f.get("files", [])],
                 "title": title,
                 "changes": f["changes"],
                 "scenario": _figure_entry(f["scenario"]),
@@ -166,9 +187,10 @@ def build_scenario_report(
                 ),
             }
         )
-    views_head, views = _scenario_views(shown, declared, table)
+    views_head, views = _scenario_views(shown, declared, table, paper, scenario["name"])
     for f in shown:
         f["view"] = views.get(f["name"])
+        f["linked"] = all(Path(p).is_file() for p in f["paper_files"])
     rows = claim_rows(table, paper)
     html = ENVIRONMENT.get_template("scenario.html.j2").render(
         name=scenario["name"],

@@ -36,6 +36,7 @@ from bokeh.models import (
     BoxAnnotation,
     Button,
     ColumnDataSource,
+    CrosshairTool,
     CustomJS,
     CustomJSHover,
     DataTable,
@@ -44,16 +45,18 @@ from bokeh.models import (
     Label,
     LinearColorMapper,
     NumberFormatter,
+    Range1d,
     Select,
     Slider,
     Span,
     TableColumn,
 )
-from bokeh.palettes import Category10_10, Magma256, Viridis256
+from bokeh.palettes import Category10_10, Magma256, RdBu11, Viridis256, interp_palette
 from bokeh.plotting import figure as bokeh_figure
 from bokeh.resources import Resources
 
 from ..inference.measures import valid_v_out
+from ..io.compare import same_grid
 from .registry import Figure
 
 #: Tools of every plot (no scroll zoom by default: the page scrolls under the mouse).
@@ -105,18 +108,20 @@ const ij = special_vars.image_index, g = src.data
 if (format === "x") return (g.x0[0] + ij.i * g.dx[0]).toFixed(g.xd[0])
 if (format === "y") return (g.y0[0] + ij.j * g.dy[0]).toFixed(g.yd[0])
 if (format === "status") return (names[value] ?? String(value))
-return Number.isFinite(value) ? value.toFixed(2) : "none (failed stroke)"
+if (!Number.isFinite(value)) return "none (failed stroke)"
+return (format === "signed" && value >= 0 ? "+" : "") + value.toFixed(2)
 """
 
 
-def _cell_hover(image, source: ColumnDataSource, tooltips, names):
+def _cell_hover(image, source: ColumnDataSource, tooltips, names, fields=("image", "status")):
     """The hover of a map's image: each cell's coordinates from its column and row and
-    the grid of ``source`` (:func:`map_data`), written with the decimals the step needs."""
+    the grid of ``source`` (:func:`map_data`), written with the decimals the step needs;
+    the image ``fields`` of ``source`` the tooltips read through it."""
     cell = CustomJSHover(
         args={"src": source, "names": {str(k): v for k, v in names.items()}},
         code=_CELL_JS,
     )
-    formatters = {"@image": cell, "@status": cell}
+    formatters = {f"@{field}": cell for field in fields}
     return HoverTool(renderers=[image], tooltips=tooltips, formatters=formatters)
 
 
@@ -151,6 +156,18 @@ def value_range(image: np.ndarray) -> tuple[float, float]:
     """The colour range of a map: its finite values' (0 to 1 without any)."""
     finite = image[np.isfinite(image)]
     return (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+
+
+def map_colors(var: str, span: tuple[float, float], name: str) -> LinearColorMapper:
+    """The colours of a map of ``var`` over ``span`` (low, high), failed strokes grey;
+    named ``<name>-colors``."""
+    return LinearColorMapper(
+        palette=Magma256 if var == "theta_c" else Viridis256,
+        low=span[0],
+        high=span[1],
+        nan_color="lightgray",
+        name=f"{name}-colors",
+    )
 
 
 def map_view(
@@ -188,14 +205,7 @@ def map_view(
         height=460,
         name=name,
     )
-    low, high = value_range(data["image"][0])
-    mapper = LinearColorMapper(
-        palette=Magma256 if var == "theta_c" else Viridis256,
-        low=low,
-        high=high,
-        nan_color="lightgray",
-        name=f"{name}-colors",
-    )
+    mapper = map_colors(var, value_range(data["image"][0]), name)
     image = p.image(
         image="image",
         source=source,
@@ -356,6 +366,257 @@ def figure_view(figure: Figure, datasets: Sequence[xr.Dataset], title: str, mark
     if kind == "curve":
         return curve_view(ds.isel(delta0=0), x, var, title, figure.name, marks)
     return map_view(ds, x, y, var, title, figure.name, marks, line, extra)
+
+
+# ---------------------------------------------------------------------------------------
+# a scenario against the paper's configuration
+
+#: Colours of a difference: diverging, white at 0, blue below and red above (those of
+#: the comparison PNG, :data:`tennis_stroke.replication.compare.DIVERGING`).
+DIFFERENCE_COLORS = tuple(interp_palette(RdBu11, 255))
+DIFFERENCE = "scenario \u2212 paper"
+#: Each panel of a comparison of maps (three fit the page's width) and of curves (two).
+MAP_PANEL, CURVE_PANEL = (372, 340), (560, 380)
+
+
+def _crosshair(name: str, dimensions: str = "both"):
+    """The crosshair lines (data units, named ``<name>-cross-x`` and ``-y``) every panel
+    of comparison ``name`` shares, and a function giving a panel its crosshair tool
+    drawing them: the mouse over one panel draws them in all."""
+    spans = tuple(
+        Span(dimension=d, line_color="black", line_dash="dashed", name=f"{name}-cross-{a}")
+        for d, a in (("height", "x"), ("width", "y"))
+        if dimensions in ("both", d)
+    )
+    overlay = spans if len(spans) == 2 else spans[0]
+    return lambda: CrosshairTool(overlay=overlay, dimensions=dimensions)
+
+
+def _union(first: Sequence[float], second: Sequence[float]) -> tuple[float, float]:
+    return min(first[0], second[0]), max(first[1], second[1])
+
+
+def _panel(ds: xr.Dataset, x: str, y: str, title: str, name: str, ranges, size):
+    """A panel of a comparison: ``ranges`` (x, y) shared with its other panels (None:
+    its own); its axes labelled by name and unit (the long names would not fit: the
+    comparison's PNG above has them)."""
+    shared = {k: r for k, r in zip(("x_range", "y_range"), ranges, strict=True) if r is not None}
+    return bokeh_figure(
+        title=title,
+        **shared,
+        x_axis_label=_short(ds[x]),
+        y_axis_label=_short(ds[y]),
+        tools=TOOLS,
+        width=size[0],
+        height=size[1],
+        name=name,
+    )
+
+
+def map_comparison(
+    paper: xr.Dataset,
+    scenario: xr.Dataset,
+    x: str,
+    y: str,
+    var: str,
+    name: str,
+    who: str,
+    marks: tuple[Sequence[Mapping], Sequence[Mapping]] = ((), ()),
+):
+    """The paper configuration's map of ``var`` beside scenario ``who``'s, on one colour
+    scale (``<name>-colors``, the union of their ranges) and shared axes, then their
+    difference (scenario minus paper, ``<name>-difference-colors``: diverging, centred on
+    0) where both lie on one grid.  Hovering a cell of any panel shows the cell's paper,
+    scenario and difference values and statuses (one source, ``<name>-compare``), and
+    draws a crosshair at it in every panel.  Where the grids differ, each map keeps its
+    own source (``<name>-paper-map``, ``<name>-scenario-map``) and the difference panel
+    says why it is missing.  ``marks``: the paper configuration's and the scenario's."""
+    first, second = map_data(paper, x, y, var), map_data(scenario, x, y, var)
+    span = _union(value_range(first["image"][0]), value_range(second["image"][0]))
+    mapper = map_colors(var, span, name)
+    ranges = (
+        Range1d(*_union(*((d["left"][0], d["left"][0] + d["dw"][0]) for d in (first, second)))),
+        Range1d(*_union(*((d["bottom"][0], d["bottom"][0] + d["dh"][0]) for d in (first, second)))),
+    )
+    label, coords = _short(paper[var]), (_short(paper[x]), _short(paper[y]))
+    names = _status_names(paper)
+    panels = {"paper": "the paper's configuration", "scenario": f"scenario {who}"}
+    plots, crosshair = [], _crosshair(name)
+    if same_grid(paper[var], scenario[var]):
+        grid = {k: v for k, v in first.items() if k not in ("image", "status")}
+        data = grid | {"paper": first["image"], "scenario": second["image"]}
+        data["difference"] = [second["image"][0] - first["image"][0]]
+        statuses = [f"status_{side}" for side in panels if "status" in first]
+        for field in statuses:
+            data[field] = (first if field.endswith("paper") else second)["status"]
+        source = ColumnDataSource(data, name=f"{name}-compare")
+        tips = [(coords[0], "@paper{x}"), (coords[1], "@paper{y}")]
+        tips += [(f"{label}, {side}", f"@{side}{{value}}") for side in panels]
+        tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
+        tips += [(field.replace("_", ", "), f"@{field}{{status}}") for field in statuses]
+        reach = float(np.nanmax(np.abs(data["difference"][0]), initial=0.0)) or 1.0
+        colors = LinearColorMapper(
+            palette=DIFFERENCE_COLORS,
+            low=-reach,
+            high=reach,
+            nan_color="lightgray",
+            name=f"{name}-difference-colors",
+        )
+        layers = [
+            (side, source, side, mapper, label, pick)
+            for (side, _), pick in zip(panels.items(), marks, strict=True)
+        ] + [("difference", source, "difference", colors, f"{DIFFERENCE} ({label})", ())]
+        fields = tuple(k for k in data if k not in grid)
+        hovers = {side: tips for side in ("paper", "scenario", "difference")}
+    else:
+        layers, hovers, fields = [], {}, ("image", "status")
+        for (side, _), data, ds, pick in zip(
+            panels.items(), (first, second), (paper, scenario), marks, strict=True
+        ):
+            source = ColumnDataSource(data, name=f"{name}-{side}-map")
+            layers.append((side, source, "image", mapper, label, pick))
+            hovers[side] = [(coords[0], "@image{x}"), (coords[1], "@image{y}")]
+            hovers[side].append((f"{label}, {side}", "@image{value}"))
+            if "status" in ds:
+                hovers[side].append(("status", "@status{status}"))
+    for side, source, field, colors, bar, pick in layers:
+        title = panels.get(side, DIFFERENCE)
+        p = _panel(paper, x, y, title, f"{name}-{side}", ranges, MAP_PANEL)
+        image = p.image(
+            image=field, source=source, x="left", y="bottom", dw="dw", dh="dh", color_mapper=colors
+        )
+        p.add_layout(image.construct_color_bar(title=bar, width=10), "right")
+        p.add_tools(_cell_hover(image, source, hovers[side], names, fields), crosshair())
+        _draw_marks(p, pick, x, y)
+        plots.append(p)
+    if len(plots) == 2:
+        plots.append(Div(text=_NO_DIFFERENCE.format(var=var), width=MAP_PANEL[0]))
+    return row(*plots, name=name)
+
+
+_NO_DIFFERENCE = (
+    "<p><b>No difference drawn:</b> the paper's configuration and the scenario compute "
+    "{var} on different grids (the difference would need one of them interpolated).</p>"
+)
+
+
+def curve_comparison(
+    paper: xr.Dataset,
+    scenario: xr.Dataset,
+    x: str,
+    var: str,
+    name: str,
+    who: str,
+    marks: Sequence[Mapping] = (),
+):
+    """The paper configuration's curve of ``var`` along ``x`` and scenario ``who``'s on
+    one plot (``<name>-curves``), then their difference (scenario minus paper) on the
+    same x axis where both lie on one grid.  Hovering either panel shows the paper,
+    scenario and difference values and statuses at the nearest sample (one source,
+    ``<name>-compare``) and draws a vertical line at it in both; ``marks``: the
+    scenario's."""
+    first, second = curve_data(paper, x, var), curve_data(scenario, x, var)
+    x_range = Range1d(
+        *_union(*((float(np.min(d["x"])), float(np.max(d["x"]))) for d in (first, second)))
+    )
+    label = _short(paper[var])
+    p = _panel(
+        paper,
+        x,
+        var,
+        f"the paper's configuration and scenario {who}",
+        f"{name}-curves",
+        (x_range, None),
+        CURVE_PANEL,
+    )
+    one = same_grid(paper[var], scenario[var])
+    tips = [(_short(paper[x]), "@x{0.0000}")]
+    if one:
+        source = ColumnDataSource(
+            {
+                "x": first["x"],
+                "paper": first["v"],
+                "scenario": second["v"],
+                "difference": second["v"] - first["v"],
+                "status_paper": first["status"],
+                "status_scenario": second["status"],
+            },
+            name=f"{name}-compare",
+        )
+        sides = [("paper", source, "paper"), ("scenario", source, "scenario")]
+        tips += [(f"{label}, {side}", f"@{side}{{0.00}}") for side in ("paper", "scenario")]
+        tips.append((f"{label}, {DIFFERENCE}", "@difference{+0.00}"))
+        tips += [(f"status, {side}", f"@status_{side}") for side in ("paper", "scenario")]
+    else:
+        sides = [
+            (side, ColumnDataSource(data, name=f"{name}-{side}-map"), "v")
+            for side, data in (("paper", first), ("scenario", second))
+        ]
+    lines = {}
+    for (side, source, field), color, dash in zip(
+        sides, ("black", Category10_10[0]), ("dashed", "solid"), strict=True
+    ):
+        legend = "the paper's configuration" if side == "paper" else f"scenario {who}"
+        lines[side] = p.line(
+            "x",
+            field,
+            source=source,
+            color=color,
+            line_dash=dash,
+            line_width=2,
+            legend_label=legend,
+        )
+        if not one:
+            own = [
+                (_short(paper[x]), "@x{0.0000}"),
+                (f"{label}, {side}", "@v{0.00}"),
+                ("status", "@status"),
+            ]
+            p.add_tools(_vline_hover(lines[side], own))
+    p.legend.location = "bottom_right"
+    p.legend.background_fill_alpha = 0.6
+    _draw_marks(p, marks, x, var, ours_color="black")
+    crosshair = _crosshair(name, "height")
+    p.add_tools(crosshair())
+    if not one:
+        return row(
+            p, Div(text=_NO_DIFFERENCE.format(var=var), width=CURVE_PANEL[0] // 2), name=name
+        )
+    p.add_tools(_vline_hover(lines["scenario"], tips))
+    q = _panel(paper, x, var, DIFFERENCE, f"{name}-difference", (x_range, None), CURVE_PANEL)
+    q.yaxis.axis_label = f"{DIFFERENCE} ({label})"
+    q.add_layout(Span(location=0.0, dimension="width", line_color="gray", line_width=1))
+    difference = q.line("x", "difference", source=source, line_width=2, color=Category10_10[3])
+    q.add_tools(_vline_hover(difference, tips), crosshair())
+    return row(p, q, name=name)
+
+
+def _vline_hover(line, tooltips) -> HoverTool:
+    """A hover on a curve: the sample nearest the mouse along x, one tooltip."""
+    return HoverTool(renderers=[line], tooltips=tooltips, mode="vline")
+
+
+def comparison_view(
+    figure: Figure,
+    paper: Sequence[xr.Dataset],
+    scenario: Sequence[xr.Dataset],
+    who: str,
+    marks: tuple[Sequence[Mapping], Sequence[Mapping]] = ((), ()),
+):
+    """The view of a registry figure under the paper's configuration and scenario
+    ``who`` with their difference (:func:`map_comparison`, :func:`curve_comparison`),
+    or None for a figure without a view.  ``marks``: the paper configuration's and the
+    scenario's (:func:`~tennis_stroke.replication.marks.mark_values`)."""
+    spec = MAP_VIEWS.get(figure.draw)
+    if spec is None:
+        return None
+    kind, var, _, _ = spec
+    x, y = figure.axes
+    var = var or figure.args[0]
+    if kind == "curve":
+        first, second = (ds[0].isel(delta0=0) for ds in (paper, scenario))
+        return curve_comparison(first, second, x, var, figure.name, who, marks[1])
+    return map_comparison(paper[0], scenario[0], x, y, var, figure.name, who, marks)
 
 
 # ---------------------------------------------------------------------------------------
