@@ -3,6 +3,8 @@ files' data, its axes labelled from the files' ``long_name`` and ``units`` (the 
 the registry declares along x and y exactly), and the paper's value of each claim it marks
 drawn and named at the paper's coordinates (the figures job's params)."""
 
+import re
+
 import matplotlib.pyplot as plt
 import numpy as np
 import pytest
@@ -12,7 +14,7 @@ from matplotlib.collections import PathCollection, QuadMesh
 from tennis_stroke.experiments.specs import RESULT_FILES
 from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.io.netcdf import load_result
-from tennis_stroke.replication.figures import drawn
+from tennis_stroke.replication.figures import drawn, wrapped
 from tennis_stroke.replication.marks import mark_values
 from tennis_stroke.replication.registry import FIGURES
 
@@ -143,8 +145,24 @@ def _check_texts_inside_and_legends_clear(fig):
 #: A scenario's note as long as a title gets (it wrapped inside a value: "(paper:\n0.4)").
 NOTE = (
     "scenario long_name: torque_delay.L1 = 0.5 m (paper: 0.4 m); "
-    "model.M2 = 0.35 kg (paper: 0.3 kg); model.k_contact = 20000 N/m (paper: 7800 N/m)"
+    "model.M2 = 0.35 kg (paper: 0.3 kg); model.k_contact = 20000 N/m (fitted: 7800 N/m); "
+    "model.inertia = paper_text (ours: uniform_rod)"
 )
+
+
+@pytest.mark.parametrize("width", [12, 20, 33, 44, 60, 90])
+def test_a_note_breaks_between_changes_or_before_the_old_value_only(width):
+    """Whatever the width, a line break falls between two changes or before "(paper:",
+    "(fitted:", "(ours:" ..., never inside a key, a value or its unit."""
+    text = wrapped(NOTE, width)
+    assert text.replace("\u00a0", " ").replace("\n", " ") == NOTE
+    lines = [line.replace("\u00a0", " ") for line in text.split("\n")]
+    for line in lines:  # a line too long for the width is one it cannot break
+        assert len(line) <= width or not re.search(r".\((paper|fitted|ours):", line), line
+    for change in NOTE.split("; "):
+        head, old = re.match(r"(.*?)( \((?:paper|fitted|ours): .*\))?$", change).groups()
+        for whole in (head.rpartition(": ")[2], (old or " ").strip()):
+            assert any(whole in line for line in lines), (width, whole, lines)
 
 
 @pytest.mark.parametrize("name", sorted(FIGURES))
@@ -157,7 +175,7 @@ def test_every_figure_is_drawn_labelled_and_marked(tiny_run, name):
         try:
             title = fig.axes[0].get_title() or fig.get_suptitle()
             assert title and "{" not in title
-            assert "(paper:\n" not in title and "\n0.4 m)" not in title
+            assert not re.search(r"\((paper|fitted|ours):\n|\n0.4 m\)", title)
             _check_labels_and_data(fig, figure, [load_result(p) for p in inputs])
             _check_marks(fig.axes[0], figure, marks)
             _check_texts_inside_and_legends_clear(fig)

@@ -17,6 +17,7 @@ from tennis_stroke.inference.paper_config import (
     read_record,
     write_record,
 )
+from tennis_stroke.inference.reading_space import load_reading_space
 from tennis_stroke.io.config_files import load_yaml
 from tennis_stroke.pipeline.explain import explain, leaves, markdown, rows_reading
 from tennis_stroke.pipeline.params import changed_results
@@ -153,9 +154,15 @@ def test_command_line_overrides_name_a_parameter_or_a_dotted_key():
 
 def test_an_override_is_described_with_the_papers_value_and_unit():
     assert describe("model.M2", None, 0.35) == "model.M2 = 0.35 kg (paper: 0.3 kg)"
+    # one vocabulary: a default is the paper's, fitted, derived or ours (model.listing)
     assert describe("model.inertia", None, "paper_text") == (
-        "model.inertia = paper_text (paper: uniform_rod)"
+        "model.inertia = paper_text (ours: uniform_rod)"
     )
+    assert describe("model.k_contact", None, 2e4, {"k_contact"}) == (
+        "model.k_contact = 20000 N/m (fitted: 7800 N/m)"
+    )
+    fitted = load_reading_space(ROOT / "config" / "readings.yaml").fitted()
+    assert describe("model.k_contact", None, 2e4, fitted).endswith("(fitted: 7800 N/m)")
     assert describe("torque_delay.base_stroke.C2", 5.0, 8.0) == (
         "torque_delay.base_stroke.C2 = 8 N m (paper: 5 N m)"
     )

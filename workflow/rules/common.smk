@@ -89,6 +89,9 @@ try:
 except ReadingSpaceError as _exc:
     sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
     sys.exit(1)
+# The model parameters and readings whose default a fit set chose: a scenario's overrides
+# call their default "fitted", as `tennis-stroke params` does.
+FITTED = READING_SPACE.fitted()
 # The claims' searches of the largest robustness job (its readings in lockstep) against
 # the memory limit, as the config check does for one reading.
 _multiverse = READING_SPACE.raw["multiverse"]
@@ -454,7 +457,12 @@ def scenario_record(wildcards):
         "name": name,
         "overrides": SCENARIOS[name],
         "changes": [
-            {"key": k, "paper": old, "scenario": new, "text": describe(k, old, new)}
+            {
+                "key": k,
+                "paper": old,
+                "scenario": new,
+                "text": describe(k, old, new, FITTED),
+            }
             for k, old, new in changes(config, SCENARIO_CONFIGS[name])
         ],
     }
@@ -507,7 +515,7 @@ def scenario_figure_table(wildcards):
                 "compare": (
                     f"{scenario_folder(name)}/compare/{f}.png" if f in changed else None
                 ),
-                "changes": [describe(*c) for c in read],
+                "changes": [describe(*c, FITTED) for c in read],
                 "files": [
                     [PAPER_RESULTS[k], scenario_files(name)[k]]
                     for k in FIGURES[f].files
@@ -529,7 +537,10 @@ def scenario_figure_note(wildcards):
     the figure's files read."""
     name = wildcards.scenario
     read = changes_read(FIGURES[wildcards.name].files, config, SCENARIO_CONFIGS[name])
-    what = "; ".join(describe(*change) for change in read) or "no change to its inputs"
+    what = (
+        "; ".join(describe(*change, FITTED) for change in read)
+        or "no change to its inputs"
+    )
     return f"scenario {name}: {what}"
 
 

@@ -22,7 +22,7 @@ import contextlib
 import fcntl
 import os
 import re
-from collections.abc import Iterator, Mapping
+from collections.abc import Collection, Iterator, Mapping
 from pathlib import Path
 
 import yaml
@@ -30,6 +30,7 @@ import yaml
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, shown, sorted_data
 from ..io.config_files import ConfigFileError, load_yaml
 from ..io.netcdf import read_only, temporary_beside
+from ..model.listing import origin
 from ..model.params import PARAMETERS, READINGS
 from .config_check import (
     canonical,
@@ -255,22 +256,27 @@ KEY_PARAMETERS = {
 }
 
 
-def describe(key: str, old, new) -> str:
-    """One override for a title or a banner: ``key = new (paper: old)``; a model
+def describe(key: str, old, new, fitted: Collection[str] = ()) -> str:
+    """One override for a title or a banner: ``key = new (paper: old)``.  A model
     parameter or reading the paper's configuration leaves at its default is shown with
-    that default and its unit (:data:`~tennis_stroke.model.params.PARAMETERS`)."""
-    unit = ""
+    that default, its unit (:data:`~tennis_stroke.model.params.PARAMETERS`) and where
+    the default comes from (:func:`~tennis_stroke.model.listing.origin`: ``paper``,
+    ``fitted``, ``derived`` or ``ours``; ``fitted``: the names whose default a fit set
+    chose, :meth:`~tennis_stroke.inference.reading_space.ReadingSpace.fitted`), the
+    words of ``tennis-stroke params``, the report and the explorer."""
+    unit, word = "", "paper"
     section, _, name = key.partition(".")
     if section == "model" and name in PARAMETERS:
         spec = PARAMETERS[name]
-        old = spec.default if old is None else old
+        if old is None or old == spec.default:
+            old, word = spec.default, origin(name, fitted)
         unit = "" if spec.unit == "1" else f" {spec.unit}"
-    elif section == "model" and name in READINGS and old is None:
-        old = READINGS[name].default
+    elif section == "model" and name in READINGS and old in (None, READINGS[name].default):
+        old, word = READINGS[name].default, origin(name, fitted)
     elif key in KEY_PARAMETERS:  # a value a row puts into the model: its parameter's unit
         spec = PARAMETERS[KEY_PARAMETERS[key]]
         unit = "" if spec.unit == "1" else f" {spec.unit}"
-    return f"{key} = {_shown(new)}{unit} (paper: {_shown(old)}{unit})"
+    return f"{key} = {_shown(new)}{unit} ({word}: {_shown(old)}{unit})"
 
 
 def _shown(value) -> str:

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import importlib
 import pkgutil
+import re
 import textwrap
 from collections.abc import Callable, Mapping, Sequence
 from pathlib import Path
@@ -16,6 +17,7 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 
 from ..io.netcdf import load_result
+from ..model.listing import ORIGINS
 from .registry import FIGURES, Figure
 
 #: The package of the drawing functions, one module each named after its function.
@@ -81,14 +83,19 @@ def drawn(
 
 
 def wrapped(note: str, width: int) -> str:
-    """``note`` (changes ``key = value (paper: value)`` joined by ``"; "``) on lines of at
-    most ``width`` characters, broken between changes or before ``(paper: ...)`` only,
-    never inside a value and its unit."""
+    """``note`` (changes ``key = value (paper: value)`` joined by ``"; "``, the word
+    before the old value any of :data:`~tennis_stroke.model.listing.ORIGINS`) on lines
+    of at most ``width`` characters, broken between changes or before ``(paper: ...)``
+    only, never inside a value and its unit."""
+    before = re.compile(r" \((" + "|".join(ORIGINS) + r"): ")
     items = []
     for item in note.split("; "):
-        head, sep, paper = item.partition(" (paper: ")
+        head, *found = before.split(item, maxsplit=1)
         keep = head.replace(" ", "\u00a0")
-        items.append(keep + (" (paper:\u00a0" + paper.replace(" ", "\u00a0") if sep else ""))
+        if found:
+            word, old = found
+            keep += f" ({word}:\u00a0" + old.replace(" ", "\u00a0")
+        items.append(keep)
     return "\n".join(textwrap.wrap("; ".join(items), width, break_long_words=False))
 
 
