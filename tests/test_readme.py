@@ -216,37 +216,36 @@ def test_the_readme_scenario_is_the_declared_one_and_valid():
 
 @pytest.mark.workflow
 def test_the_readme_scenario_commands_plan_what_they_say(tmp_path):
-    """Each command of the README's scenario block as a dry run: the snakemake ones in a
-    fresh working folder with the project's config (the checkout's own results may hold
-    them already), `whatif` in the checkout under a name no run used; the figure plans
-    its map, gathering and figure, `config explain` names the base stroke's files."""
+    """Each command of the README's scenario block, the `whatif` ones as dry runs in a
+    fresh working folder with the project's config and workflow (the checkout's own
+    results may hold them already): the page plans the scenario's Fig. 9 and its page,
+    the figure its map and figure, the ad hoc one three jobs; each logs as `make report`
+    does (no job's input list); `config explain` names the base stroke's files."""
     import re
     import shutil
 
     blocks = re.findall(r"```(\w*)\n(.*?)```", _what_if_section(), flags=re.S)
     lines = next(text for lang, text in blocks if lang == "sh").splitlines()
     commands = [line.split("#")[0].split() for line in lines if line.strip()]
-    assert [c[0] for c in commands] == ["snakemake"] * 2 + ["tennis-stroke"] * 2
+    assert [c[:2] for c in commands] == [["tennis-stroke", "whatif"]] * 3 + [
+        ["tennis-stroke", "config"]
+    ]
     work = tmp_path / "work"
     shutil.copytree(ROOT / "config", work / "config")
+    for linked in ("Snakefile", "workflow", "src"):
+        (work / linked).symlink_to(ROOT / linked)
     bin_ = ROOT / ".venv" / "bin"
-    for command in commands[:2]:
+    planned = []
+    for command in commands[:3]:
         done = subprocess.run(
-            [str(bin_ / "snakemake"), *command[1:], "-n", "-s", str(ROOT / "Snakefile")],
-            cwd=work,
-            capture_output=True,
-            text=True,
+            [str(bin_ / command[0]), *command[1:], "-n"], cwd=work, capture_output=True, text=True
         )
         assert done.returncode == 0, done.stderr[-2000:]
-        assert "scenario_fig9" in done.stdout and "scenario_figure" in done.stdout
-    name = f"readme_test_{os.getpid()}"
-    whatif = [arg if arg != commands[2][2] else name for arg in commands[2]]
-    done = subprocess.run(
-        [str(bin_ / whatif[0]), *whatif[1:], "-n"], cwd=ROOT, capture_output=True, text=True
-    )
-    assert done.returncode == 0, done.stderr[-2000:]
-    stats = done.stdout.split("Job stats:")[1].split("Reasons:")[0]
-    assert "scenario_fig2" in stats and re.search(r"^total\s+3\s*$", stats, re.M), stats
+        assert "    input: " not in done.stdout + done.stderr  # the quiet log
+        planned.append(done.stdout.split("Job stats:")[1].split("Reasons:")[0])
+    assert "scenario_fig9" in planned[0] and "scenario_report" in planned[0], planned[0]
+    assert "scenario_fig9" in planned[1] and "scenario_report" not in planned[1], planned[1]
+    assert "scenario_fig2" in planned[2] and re.search(r"^total\s+3\s*$", planned[2], re.M)
     explain = subprocess.run(
         [str(bin_ / commands[3][0]), *commands[3][1:]], cwd=ROOT, capture_output=True, text=True
     )
@@ -263,9 +262,9 @@ NOT_RUN = {
     "make report": "the whole replication (minutes)",
     "source .venv/bin/activate": "how the others run: each one runs after it",
     "snakemake --profile profiles/slurm report": "needs a SLURM cluster (docs/slurm.md)",
-    "snakemake -j2 results/scenarios/strong_wrist/figures/fig09_v_tau.png": "a workflow "
-    "run; planned by test_the_readme_scenario_commands_plan_what_they_say",
-    "snakemake -j2 report/scenarios/strong_wrist/index.html": "a workflow run; planned there too",
+    "tennis-stroke whatif strong_wrist": "a workflow run; planned by "
+    "test_the_readme_scenario_commands_plan_what_they_say",
+    "tennis-stroke whatif strong_wrist --figure fig9": "a workflow run; planned there too",
     "tennis-stroke whatif heavy --set M2=0.35 --figure fig2": "a workflow run; planned there too",
 }
 #: Top-level entries of the checkout the commands do not see: their results.
