@@ -178,7 +178,7 @@ BAD = [  # (path, value, fragment of the message)
         ("search", "tau_step"),
         1e-9,
         "'search': the search of the Fig. 7 map's claims (search.C2_step = 0.5, "
-        "search.tau_step = 1e-09: 6300000021 strokes at once) needs",
+        "search.tau_step = 1e-09: 6300000021 strokes at once",
     ),
     (
         ("search", "psi_F_step"),

@@ -32,8 +32,8 @@ from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,
     load_schema,
-    memory_errors,
     numbers_from_strings,
+    rows_per_job,
 )
 from tennis_stroke.io.interrupts import PARENT_ENV, process_identity
 from tennis_stroke.pipeline import params as job_params
@@ -62,18 +62,6 @@ config.update(numbers_from_strings(config))
 # Scenarios given on the command line (--config 'scenarios={NAME: {...}}') are not part
 # of the paper's configuration: taken out before it is checked.
 _ADHOC_SCENARIOS = config.pop("scenarios", None)
-# One line naming the key and the rule it breaks, before any job starts (no traceback).
-SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
-_errors = config_errors(config, SCHEMA)
-if _errors:
-    sys.stderr.write(f"tennis-stroke config error: {_errors[0]}\n")
-    sys.exit(1)
-validate(config, "../schemas/config.schema.yaml", set_default=True)
-# One spelling per value (C2: 5 is 5.0, keys in the schema's order): equal settings, equal
-# job params, no rerun.
-_canonical = canonical(config, load_schema(SCHEMA))
-config.clear()
-config.update(_canonical)
 # The claims (config/claims.yaml), checked before any job: ids, result files,
 # measurements and their arguments, tolerances (else they fail after every simulation).
 _errors = claim_errors("config/claims.yaml")
@@ -89,25 +77,26 @@ try:
 except ReadingSpaceError as _exc:
     sys.stderr.write(f"tennis-stroke readings error: {_exc}\n")
     sys.exit(1)
-# The model parameters and readings whose default a fit set chose: a scenario's overrides
-# call their default "fitted", as `tennis-stroke params` does.
-FITTED = READING_SPACE.fitted()
-# The claims' searches of the largest robustness job (its readings in lockstep) against
-# the memory limit, as the config check does for one reading.
+# One line naming the key and the rule it breaks, before any job starts (no traceback);
+# the memory a job needs counts the readings the largest robustness job searches in
+# lockstep.
+SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
 _multiverse = READING_SPACE.raw["multiverse"]
-_errors = list(
-    memory_errors(
-        config,
-        -(
-            -_multiverse["readings"]
-            // chunk_count(_multiverse["chunks"], _multiverse["readings"])
-        ),
-    )
+_errors = config_errors(
+    config, SCHEMA, rows_per_job(_multiverse["readings"], _multiverse["chunks"])
 )
 if _errors:
     sys.stderr.write(f"tennis-stroke config error: {_errors[0]}\n")
     sys.exit(1)
-
+validate(config, "../schemas/config.schema.yaml", set_default=True)
+# One spelling per value (C2: 5 is 5.0, keys in the schema's order): equal settings, equal
+# job params, no rerun.
+_canonical = canonical(config, load_schema(SCHEMA))
+config.clear()
+config.update(_canonical)
+# The model parameters and readings whose default a fit set chose: a scenario's overrides
+# call their default "fitted", as `tennis-stroke params` does.
+FITTED = READING_SPACE.fitted()
 # The what-if scenarios (config/scenarios.yaml and --config scenarios=...), each checked
 # as the paper's configuration is, before any job: their configurations by name.  A bad
 # scenario never stops the paper's run: it is named in one warning line, and asking for

@@ -155,8 +155,9 @@ def _n(count: int) -> str:
     return str(count) if count < 10**12 else f"{Decimal(count):.3g}"
 
 
-def _rows_per_job(rows: int, requested: int) -> int:
-    """Rows of the largest chunk when ``rows`` are split into ``requested`` chunks."""
+def rows_per_job(rows: int, requested: int) -> int:
+    """Rows of the largest chunk when ``rows`` are split into ``requested`` chunks (the
+    readings of the largest robustness job, searched in lockstep)."""
     return -(-rows // chunk_count(requested, rows))
 
 
@@ -195,7 +196,7 @@ def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int
             continue
         batches = e.strokes(args)
         rows = e.row_count(args)
-        per_job = _rows_per_job(rows, _requested_chunks(config, e.chunks)) if e.chunks else rows
+        per_job = rows_per_job(rows, _requested_chunks(config, e.chunks)) if e.chunks else rows
         sizes = [b // rows * per_job for b in batches]
         if len(sizes) == 1:
             what = f"a {e.label} job ({_n(per_job)} x {_n(sizes[0] // per_job)} strokes)"
@@ -403,8 +404,10 @@ def _parsed_schema(path: Path, mtime_ns: int, size: int) -> dict:
     return load_yaml(path)
 
 
-def config_errors(config: Mapping, schema_path: str | Path) -> list[str]:
-    """Every problem of ``config`` as one-line messages (empty: the config is good)."""
+def config_errors(config: Mapping, schema_path: str | Path, readings: int = 1) -> list[str]:
+    """Every problem of ``config`` as one-line messages (empty: the config is good);
+    ``readings``: how many readings the largest job searches in lockstep (the memory
+    check, :func:`memory_errors`)."""
     schema = load_schema(schema_path)
     errors = schema_errors(config, schema, "config")
-    return errors or list(_semantic_errors(config)) or list(memory_errors(config))
+    return errors or list(_semantic_errors(config)) or list(memory_errors(config, readings))
