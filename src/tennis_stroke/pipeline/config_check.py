@@ -25,7 +25,7 @@ from pathlib import Path
 import numpy as np
 
 from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
-from ..experiments.specs import EXPERIMENTS
+from ..experiments.specs import BOUND_KEYS, EXPERIMENTS
 from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
 from ..inference.search_plan import BRACKET_KEYS, SEARCHED, search_strokes
 from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
@@ -111,21 +111,15 @@ def _bound_errors(config: Mapping) -> Iterator[str]:
     """The values the table's rows put into the model (``Experiment.bounds``) against the
     unit and bounds of their parameter, naming the config key: a value the solver would
     refuse never reaches a job."""
-    seen = set()
-    for e in EXPERIMENTS.values():
-        for argument, name in e.bounds.items():
-            key = e.key_of(argument)
-            if key in seen:
-                continue
-            seen.add(key)
-            try:
-                value = value_at(config, key)
-            except ConfigKeyError:  # a key the schema gives a default
-                continue
-            try:
-                resolve_params({name: np.asarray(_values(value), dtype=float)})
-            except (ParameterError, TypeError, ValueError) as exc:
-                yield f"config key {key!r}: {exc} (rule: bounds of {name})"
+    for key, name in BOUND_KEYS.items():
+        try:
+            value = value_at(config, key)
+        except ConfigKeyError:  # a key the schema gives a default
+            continue
+        try:
+            resolve_params({name: np.asarray(_values(value), dtype=float)})
+        except (ParameterError, TypeError, ValueError) as exc:
+            yield f"config key {key!r}: {exc} (rule: bounds of {name})"
 
 
 def _solver_errors(config: Mapping) -> Iterator[str]:

@@ -27,7 +27,7 @@ from pathlib import Path
 
 import yaml
 
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, merged, shown, sorted_data
+from ..experiments.specs import BOUND_KEYS, EXPERIMENTS, PAPER_RESULTS, merged, shown, sorted_data
 from ..io.config_files import ConfigFileError, load_yaml
 from ..io.netcdf import read_only, temporary_beside
 from ..model.listing import origin
@@ -247,15 +247,6 @@ def scenario_reach(
     return unreached(base, config)
 
 
-#: The config keys whose values rows of the table put into the model, and the model
-#: parameter each is (``Experiment.bounds``: ``torque_delay.L1`` is an ``L1``, in m).
-KEY_PARAMETERS = {
-    e.key_of(argument): parameter
-    for e in EXPERIMENTS.values()
-    for argument, parameter in e.bounds.items()
-}
-
-
 def describe(key: str, old, new, fitted: Collection[str] = ()) -> str:
     """One override for a title or a banner: ``key = new (paper: old)``.  A model
     parameter or reading the paper's configuration leaves at its default is shown with
@@ -273,8 +264,8 @@ def describe(key: str, old, new, fitted: Collection[str] = ()) -> str:
         unit = "" if spec.unit == "1" else f" {spec.unit}"
     elif section == "model" and name in READINGS and old in (None, READINGS[name].default):
         old, word = READINGS[name].default, origin(name, fitted)
-    elif key in KEY_PARAMETERS:  # a value a row puts into the model: its parameter's unit
-        spec = PARAMETERS[KEY_PARAMETERS[key]]
+    elif key in BOUND_KEYS:  # a value a row puts into the model: its parameter's unit
+        spec = PARAMETERS[BOUND_KEYS[key]]
         unit = "" if spec.unit == "1" else f" {spec.unit}"
     return f"{key} = {_shown(new)}{unit} ({word}: {_shown(old)}{unit})"
 
