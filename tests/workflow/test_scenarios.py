@@ -311,6 +311,65 @@ def test_explain_agrees_with_what_a_scenario_reruns_for_every_model_key():
     assert "Fig. 9 map (reads torque_delay.base_stroke.C2)" in explain("C2", PAPER, CLAIMS).instead
 
 
+def _changed(value):
+    """Another valid-looking value of a config leaf: a number moved by 10 % (0 -> 0.01),
+    an int by one, a bool flipped, a list of numbers each moved, a range's stop moved;
+    None for what this cannot move (a name, a list of mappings)."""
+    if isinstance(value, bool):
+        return not value
+    if isinstance(value, int):
+        return value + 1
+    if isinstance(value, float):
+        return value * 1.1 if value else 0.01
+    if isinstance(value, list) and value and all(_changed(v) is not None for v in value):
+        return [_changed(v) for v in value if not isinstance(v, (list, dict))] or None
+    if isinstance(value, dict) and isinstance(value.get("stop"), (int, float)):
+        return {**value, "stop": _changed(value["stop"])}
+    return None
+
+
+#: Leaves of config.yaml that :func:`_changed` cannot move: names and structured lists.
+UNMOVED = {
+    "solver.method",
+    "max_memory",
+    "model",
+    "figure_curves",
+    "fig4.strokes",
+    "model_ladder.rungs",
+    "model_ladder.reference",
+    "solver_study.stability.cases",
+    "solver_study.optimum.steps",
+    "solver_study.optimum.searches",
+}
+
+
+def test_explain_agrees_with_what_a_scenario_reruns_for_every_config_key():
+    """For every leaf of config.yaml a scenario may override, the paper files `config
+    explain` names are exactly those a scenario changing it recomputes (a chunk count
+    or the failure limit moves no number: no file).  Every leaf is checked, refused to
+    scenarios (PAPER_ONLY sections) or named in UNMOVED."""
+    from tennis_stroke.pipeline.explain import effect
+    from tennis_stroke.pipeline.scenarios import PAPER_ONLY
+
+    checked = []
+    for key in leaves(PAPER):
+        node = PAPER
+        for part in key.split("."):
+            node = node[part]
+        value = _changed(node)
+        if key.split(".")[0] in PAPER_ONLY or value is None:
+            assert key.split(".")[0] in PAPER_ONLY or key in UNMOVED, key
+            continue
+        for part in reversed(key.split(".")):
+            value = {part: value}
+        config = scenario_config(BASE, "s", value, SCHEMA)
+        files = effect(key, CLAIMS).files
+        explained = [k for k, path in PAPER_RESULTS.items() if path in files]
+        assert changed_results(BASE, config) == explained, key
+        checked.append(key)
+    assert {"fig4.samples", "search.tau_step", "chunks.angle_map", "elbow_force.F0"} <= set(checked)
+
+
 def test_a_mistyped_key_gets_the_nearest_full_keys():
     with pytest.raises(KeyError, match=r"did you mean model\.ball_mass"):
         explain("model.ballmass", PAPER, CLAIMS)
