@@ -781,11 +781,11 @@ def _whatif(args: argparse.Namespace) -> int:
         load_scenarios("config/scenarios.yaml", {args.name: overrides or {}})  # its name
         figures = [paper_figure(f) for f in args.figure]
         # checked as the workflow will check it: a bad value is one line here, not
-        # Snakemake's log; an override that reaches nothing asked for is refused
-        for line in scenario_reach(
+        # Snakemake's log; an override that reaches nothing asked for is refused (what
+        # it does not reach of the rest, the workflow says at planning)
+        scenario_reach(
             args.name, declared.get(args.name) if overrides is None else overrides, figures
-        ):
-            print(f"tennis-stroke whatif: {line}", flush=True)
+        )
     except (ScenarioError, KeyError) as exc:
         raise ValueError(str(exc).strip("'\"")) from None
     where = folder(args.name)

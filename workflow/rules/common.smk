@@ -52,6 +52,7 @@ from tennis_stroke.pipeline.scenarios import (
     load_scenarios,
     resolved_results,
     scenario_config,
+    unreached,
 )
 from tennis_stroke.pipeline.targets import damaged_results, targets
 from tennis_stroke.replication.marks import mark_values
@@ -469,7 +470,9 @@ def scenario_changed_figures(name):
 
 def scenario_report_figures(wildcards):
     """A scenario's page's figure inputs: its own of the figures it changes, and each
-    against the paper's (shared scales, the difference)."""
+    against the paper's (shared scales, the difference); and, once, what of the
+    scenario reaches none of them."""
+    say_unreached(wildcards.scenario)
     folder = scenario_folder(wildcards.scenario)
     changed = scenario_changed_figures(wildcards.scenario)
     return [f"{folder}/figures/{f}.png" for f in changed] + [
@@ -515,8 +518,27 @@ def scenario_figure_table(wildcards):
     return out
 
 
+#: The scenario notes said in this run: (scenario, override) pairs.
+_SAID = set()
+
+
+def say_unreached(name, files=None):
+    """At planning, once per override: each model override of scenario ``name`` that
+    the rows of ``files`` (default all) set themselves, and the key each reads instead
+    (one line; the jobs neither rerun nor relabel those figures)."""
+    for line in unreached(config, SCENARIO_CONFIGS[name], files):
+        said = (name, line.split(" ", 1)[0])
+        if said not in _SAID:
+            _SAID.add(said)
+            sys.stderr.write(
+                f"tennis-stroke scenario note: scenario {name!r}: {line}\n"
+            )
+
+
 def scenario_figure_inputs(wildcards):
-    """The result files a scenario's figure is drawn from."""
+    """The result files a scenario's figure is drawn from (and, once, what of the
+    scenario does not reach them)."""
+    say_unreached(wildcards.scenario, FIGURES[wildcards.name].files)
     files = scenario_files(wildcards.scenario)
     return [files[key] for key in FIGURES[wildcards.name].files]
 
