@@ -146,7 +146,7 @@ BAD = [  # (path, value, fragment of the message)
     (
         ("mass_length", "coarse_step"),
         1e-4,
-        "'mass_length': a Figs. 5-6 job (13 x 7.80e+12 strokes)",
+        "'mass_length': a Figs. 5-6 map job (13 x 7.80e+12 strokes)",
     ),
     (
         ("solver_study", "optimum", "reference_step"),

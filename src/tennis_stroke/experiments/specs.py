@@ -366,7 +366,7 @@ EXPERIMENTS: dict[str, Experiment] = {
                 "failed_strokes",
                 "evaluated_strokes",
             ),
-            "Figs. 5-6",
+            "Figs. 5-6 map",
             section="mass_length",
             bounds={"M2": "M2", "L1": "L1"},
             sets={"M2": "M2", "L1": "L1"},
