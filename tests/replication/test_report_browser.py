@@ -277,9 +277,9 @@ def test_a_scenario_curve_hovered_shows_both_curves_and_their_difference(browser
     _open(browser, page)
     k = paper.sizes["tau"] // 3
     tau = float(paper["tau"][k])
-    for plot, level in ((f"{name}-curves", float(second[k])), (f"{name}-difference", 0.0)):
+    a, b = float(first[k]), float(second[k])
+    for plot, level in ((f"{name}-curves", b), (f"{name}-difference", b - a)):
         shown = hover_lines(browser, plot, tau, level)
-        a, b = float(first[k]), float(second[k])
         assert float(shown["tau (s)"]) == pytest.approx(tau, abs=5e-5), plot
         assert shown["v_out (km/h), paper"] == _shown(a), plot
         assert shown["v_out (km/h), scenario"] == _shown(b), plot

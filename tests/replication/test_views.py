@@ -177,7 +177,7 @@ def test_a_comparison_holds_both_maps_and_their_difference_on_shared_scales():
     ranges; the difference is scenario minus paper cell for cell (NaN where a stroke
     failed) on colours centred on 0; one crosshair's lines are every panel's, and every
     panel's hover reads the three values."""
-    from bokeh.models import CrosshairTool, HoverTool, LinearColorMapper, Plot
+    from bokeh.models import CrosshairTool, HoverTool, Image, LinearColorMapper, Plot
 
     theta = np.arange(60.0, 121.0, 5.0)
     paper, scenario = _angle_map(theta), _angle_map(theta, tilt=0.4)
@@ -207,8 +207,10 @@ def test_a_comparison_holds_both_maps_and_their_difference_on_shared_scales():
     overlays = [t.overlay for p in plots for t in p.tools if isinstance(t, CrosshairTool)]
     assert len(overlays) == 3 and all(o == overlays[0] for o in overlays)
     assert [s.name for s in overlays[0]] == ["fig-cross-x", "fig-cross-y"]
-    for p in plots:
-        (hover,) = [t for t in p.tools if isinstance(t, HoverTool) and t.renderers[0].glyph]
+    for p, field in zip(plots, ("paper", "scenario", "difference"), strict=True):
+        (image,) = [r for r in p.renderers if isinstance(r.glyph, Image)]
+        assert image.glyph.image == field and image.data_source is plots[0].renderers[0].data_source
+        (hover,) = [t for t in p.tools if isinstance(t, HoverTool) and t.renderers == [image]]
         assert [field for _, field in hover.tooltips][2:5] == [
             "@paper{value}",
             "@scenario{value}",
@@ -249,12 +251,72 @@ def test_a_curve_comparison_holds_both_curves_and_their_difference():
         )
 
     paper, scenario = curve(20.0), curve(30.0)
+    scenario["status"][4] = 5  # a stroke that fails under the scenario only
     view = views.curve_comparison(paper, scenario, "tau", "v_out", "fig", "s")
     data = _source(view, "fig-compare").data
     expected = scenario["v_out"].values - paper["v_out"].values
+    expected[4] = np.nan
     np.testing.assert_array_equal(data["difference"], expected)
+    assert (data["status_paper"][4], data["status_scenario"][4]) == ("a", "f")
+    # the hovers find every sample, a failed one too: their lines are finite everywhere
+    assert np.isfinite(data["near"]).all() and np.isfinite(data["near_difference"]).all()
+    assert data["near"][4] == data["paper"][4]
     plots = [c for c in view.children if isinstance(c, Plot)]
     assert [p.name for p in plots] == ["fig-curves", "fig-difference"]
     assert plots[0].x_range is plots[1].x_range
     overlays = [t.overlay for p in plots for t in p.tools if isinstance(t, CrosshairTool)]
     assert len(overlays) == 2 and overlays[0] is overlays[1] and overlays[0].name == "fig-cross-x"
+
+
+def test_a_curve_comparison_on_different_grids_draws_no_difference():
+    from bokeh.models import Div, Plot
+
+    def curve(tau):
+        status = {"flag_values": np.arange(2, dtype=np.int8), "flag_meanings": "ok failed"}
+        return xr.Dataset(
+            {
+                "v_out": ("tau", 140.0 + 20 * np.sin(10 * tau), {"units": "km/h"}),
+                "status": ("tau", np.zeros(tau.size, np.int8), status),
+            },
+            coords={"tau": ("tau", tau, {"units": "s"})},
+        )
+
+    paper, scenario = curve(np.linspace(0, 0.3, 31)), curve(np.linspace(0, 0.4, 81))
+    view = views.curve_comparison(paper, scenario, "tau", "v_out", "fig", "s")
+    names = {m.name for m in _models(view, ColumnDataSource)}
+    assert "fig-compare" not in names and {"fig-paper-map", "fig-scenario-map"} <= names
+    (plot,) = [c for c in view.children if isinstance(c, Plot)]
+    assert (plot.x_range.start, plot.x_range.end) == (0.0, 0.4)
+    assert "different grids" in next(c for c in view.children if isinstance(c, Div)).text
+
+
+def test_a_map_comparison_draws_each_side_s_line_and_hovers_its_extras():
+    """Figs. 2-3 draw the best delta0 of each side on its own map; Figs. 5-6 hover the
+    optimum angles of both sides."""
+    from bokeh.models import Line, Plot
+
+    theta = np.arange(60.0, 121.0, 5.0)
+    paper, scenario = _angle_map(theta), _angle_map(theta, tilt=0.4)
+    for ds, shift in ((paper, 0.0), (scenario, 5.0)):
+        ds["best_delta0"] = ("theta0", 20.0 + shift + 0 * theta, {"units": "degree"})
+        ds["theta0_best"] = (("theta0", "delta0"), 0 * ds["v_out"].values + shift)
+    view = views.map_comparison(
+        paper,
+        scenario,
+        "theta0",
+        "delta0",
+        "v_out",
+        "fig",
+        "s",
+        line="best_delta0",
+        extra=["theta0_best"],
+    )
+    plots = [c for c in view.children if isinstance(c, Plot)]
+    drawn = [
+        [r.data_source.data["y"] for r in p.renderers if isinstance(r.glyph, Line)] for p in plots
+    ]
+    np.testing.assert_array_equal(drawn[0][0], paper["best_delta0"].values)
+    np.testing.assert_array_equal(drawn[1][0], scenario["best_delta0"].values)
+    assert drawn[2] == []  # the difference has no line
+    data = _source(view, "fig-compare").data
+    assert data["theta0_best_scenario"][0].max() == 5.0 and data["theta0_best_paper"][0].max() == 0

@@ -143,6 +143,8 @@ def test_command_line_overrides_name_a_parameter_or_a_dotted_key():
     assert override_from(["M2=0.35", "inertia=paper_text"]) == {
         "model": {"M2": 0.35, "inertia": "paper_text"}
     }
+    # a model option is set as a reading is (it went to the top level and was refused)
+    assert override_from(["contact_model=impact"]) == {"model": {"contact_model": "impact"}}
     assert override_from(["torque_delay.base_stroke.C2=8", "angle_maps.L1=[0.3, 0.5]"]) == {
         "torque_delay": {"base_stroke": {"C2": 8}},
         "angle_maps": {"L1": [0.3, 0.5]},
@@ -153,21 +155,24 @@ def test_command_line_overrides_name_a_parameter_or_a_dotted_key():
 
 
 def test_an_override_is_described_with_the_papers_value_and_unit():
-    assert describe("model.M2", None, 0.35) == "model.M2 = 0.35 kg (paper: 0.3 kg)"
+    assert describe("model.M2", None, 0.35, ()) == "model.M2 = 0.35 kg (paper: 0.3 kg)"
     # one vocabulary: a default is the paper's, fitted, derived or ours (model.listing)
-    assert describe("model.inertia", None, "paper_text") == (
+    assert describe("model.inertia", None, "paper_text", ()) == (
         "model.inertia = paper_text (ours: uniform_rod)"
+    )
+    assert describe("model.contact_model", None, "impact", ()) == (
+        "model.contact_model = impact (paper: spring)"
     )
     assert describe("model.k_contact", None, 2e4, {"k_contact"}) == (
         "model.k_contact = 20000 N/m (fitted: 7800 N/m)"
     )
     fitted = load_reading_space(ROOT / "config" / "readings.yaml").fitted()
     assert describe("model.k_contact", None, 2e4, fitted).endswith("(fitted: 7800 N/m)")
-    assert describe("torque_delay.base_stroke.C2", 5.0, 8.0) == (
+    assert describe("torque_delay.base_stroke.C2", 5.0, 8.0, ()) == (
         "torque_delay.base_stroke.C2 = 8 N m (paper: 5 N m)"
     )
     # a value a row puts into the model has its parameter's unit (torque_delay.L1 had none)
-    assert describe("torque_delay.L1", 0.4, 0.5) == "torque_delay.L1 = 0.5 m (paper: 0.4 m)"
+    assert describe("torque_delay.L1", 0.4, 0.5, ()) == "torque_delay.L1 = 0.5 m (paper: 0.4 m)"
 
 
 def test_the_paper_configuration_is_the_declared_inputs():
@@ -321,8 +326,9 @@ def _changed(value):
         return value + 1
     if isinstance(value, float):
         return value * 1.1 if value else 0.01
-    if isinstance(value, list) and value and all(_changed(v) is not None for v in value):
-        return [_changed(v) for v in value if not isinstance(v, (list, dict))] or None
+    numbers = isinstance(value, list) and value
+    if numbers and all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+        return [_changed(v) for v in value]
     if isinstance(value, dict) and isinstance(value.get("stop"), (int, float)):
         return {**value, "stop": _changed(value["stop"])}
     return None

@@ -518,21 +518,26 @@ def scenario_figure_table(wildcards):
     return out
 
 
-#: The scenario notes said in this run: (scenario, override) pairs.
+#: The scenario notes said in this run: (scenario, override, row) triples.
 _SAID = set()
 
 
 def say_unreached(name, files=None):
-    """At planning, once per override: each model override of scenario ``name`` that
-    the rows of ``files`` (default all) set themselves, and the key each reads instead
-    (one line; the jobs neither rerun nor relabel those figures)."""
-    for line in unreached(config, SCENARIO_CONFIGS[name], files):
-        said = (name, line.split(" ", 1)[0])
-        if said not in _SAID:
-            _SAID.add(said)
-            sys.stderr.write(
-                f"tennis-stroke scenario note: scenario {name!r}: {line}\n"
-            )
+    """At planning, once per override and row: each model override of scenario ``name``
+    that the rows of ``files`` (default all) set themselves, and the key each reads
+    instead (one line per override; the jobs neither rerun nor relabel those rows)."""
+    rows = {}
+    for key in PAPER_RESULTS if files is None else files:
+        for line in unreached(config, SCENARIO_CONFIGS[name], [key]):
+            override, _, row = line.partition(" does not reach ")
+            if (name, override, row) not in _SAID:
+                _SAID.add((name, override, row))
+                rows.setdefault(override, []).append(row)
+    for override, missed in rows.items():
+        sys.stderr.write(
+            f"tennis-stroke scenario note: scenario {name!r}: {override} does not reach "
+            f"{', '.join(missed)}\n"
+        )
 
 
 def scenario_figure_inputs(wildcards):

@@ -531,17 +531,17 @@ def fit_set_arguments(config: Mapping) -> dict[str, object]:
     }
 
 
-#: The paper's result files (the claims read these), by key.  A file is named by the
-#: paper's figure, never by a parameter value the config can change (the value is in the
-#: file's attributes and the figure's title).
 #: The config keys whose values rows of the table put into the model, and the model
 #: parameter each is (``Experiment.bounds``: ``torque_delay.L1`` is an ``L1``, in m): what
 #: the config check bounds and a scenario's note gives a unit.
-BOUND_KEYS: dict[str, str] = {}
-for _e in EXPERIMENTS.values():
-    for _argument, _parameter in _e.bounds.items():
-        BOUND_KEYS.setdefault(_e.key_of(_argument), _parameter)
-
+BOUND_KEYS: dict[str, str] = {
+    e.key_of(argument): parameter
+    for e in EXPERIMENTS.values()
+    for argument, parameter in e.bounds.items()
+}
+#: The paper's result files (the claims read these), by key.  A file is named by the
+#: paper's figure, never by a parameter value the config can change (the value is in the
+#: file's attributes and the figure's title).
 PAPER_RESULTS = {k: e.path for k, e in EXPERIMENTS.items() if e.family == "paper"}
 #: The speed-against-accuracy studies' result files, by key.
 STUDY_RESULTS = {k: e.path for k, e in EXPERIMENTS.items() if e.family == "study"}

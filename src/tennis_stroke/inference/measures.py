@@ -21,6 +21,12 @@ def valid_v_out(ds: xr.Dataset) -> xr.DataArray:
     return ds["v_out"].where(ds["status"] == OK)
 
 
+def valid_values(ds: xr.Dataset, var: str) -> xr.DataArray:
+    """Variable ``var`` as a view or a difference shows it: v_out of a file with
+    statuses with its failed strokes NaN (:func:`valid_v_out`), any other as it is."""
+    return valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
+
+
 def measure_delay_threshold(ds: xr.Dataset) -> float:
     """Fig. 7: the torque C2 above which the best delay is no longer 0 (N m).
 

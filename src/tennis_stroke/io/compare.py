@@ -21,7 +21,7 @@ def _loaded(source) -> xr.Dataset:
 def same_grid(a: xr.DataArray, b: xr.DataArray) -> bool:
     """Whether two variables lie on one grid: the same dimensions, and the same values
     along each that has a coordinate (what a difference of the two needs)."""
-    return a.dims == b.dims and all(
+    return (a.dims, a.shape) == (b.dims, b.shape) and all(
         a[d].size == b[d].size and np.array_equal(a[d].values, b[d].values)
         for d in a.dims
         if d in a.coords

@@ -31,7 +31,7 @@ from ..experiments.specs import BOUND_KEYS, EXPERIMENTS, PAPER_RESULTS, merged, 
 from ..io.config_files import ConfigFileError, load_yaml
 from ..io.netcdf import read_only, temporary_beside
 from ..model.listing import origin
-from ..model.params import PARAMETERS, READINGS
+from ..model.params import CHOICES, PARAMETERS
 from .config_check import (
     canonical,
     config_errors,
@@ -157,7 +157,7 @@ def override_from(items) -> dict:
             value = yaml.safe_load(text)
         except yaml.YAMLError:
             raise ScenarioError(f"--set {item!r}: {text!r} is not a value") from None
-        parts = ["model", key] if key in PARAMETERS or key in READINGS else key.split(".")
+        parts = ["model", key] if key in PARAMETERS or key in CHOICES else key.split(".")
         node = out
         for part in parts[:-1]:
             node = node.setdefault(part, {})
@@ -223,8 +223,8 @@ def scenario_reach(
 ) -> list[str]:
     """Check scenario ``name`` (``overrides`` of the project at ``root``) as the workflow
     will, and what it reaches: raises :class:`ScenarioError` (one line) for a value the
-    workflow refuses, or for a figure of
-    ``figures`` (registry names) that nothing of them reaches; returns the lines to say
+    workflow refuses, or for a figure of ``figures`` (registry names) that nothing of
+    them reaches; returns what of it does not reach them, the lines the workflow says
     at planning (:func:`unreached`; of ``figures``' files where given)."""
     from ..replication.registry import FIGURES
 
@@ -247,9 +247,10 @@ def scenario_reach(
     return unreached(base, config)
 
 
-def describe(key: str, old, new, fitted: Collection[str] = ()) -> str:
+def describe(key: str, old, new, fitted: Collection[str]) -> str:
     """One override for a title or a banner: ``key = new (paper: old)``.  A model
-    parameter or reading the paper's configuration leaves at its default is shown with
+    parameter, reading or model option the paper's configuration leaves at its default
+    is shown with
     that default, its unit (:data:`~tennis_stroke.model.params.PARAMETERS`) and where
     the default comes from (:func:`~tennis_stroke.model.listing.origin`: ``paper``,
     ``fitted``, ``derived`` or ``ours``; ``fitted``: the names whose default a fit set
@@ -262,8 +263,8 @@ def describe(key: str, old, new, fitted: Collection[str] = ()) -> str:
         if old is None or old == spec.default:
             old, word = spec.default, origin(name, fitted)
         unit = "" if spec.unit == "1" else f" {spec.unit}"
-    elif section == "model" and name in READINGS and old in (None, READINGS[name].default):
-        old, word = READINGS[name].default, origin(name, fitted)
+    elif section == "model" and name in CHOICES and old in (None, CHOICES[name].default):
+        old, word = CHOICES[name].default, origin(name, fitted)
     elif key in BOUND_KEYS:  # a value a row puts into the model: its parameter's unit
         spec = PARAMETERS[BOUND_KEYS[key]]
         unit = "" if spec.unit == "1" else f" {spec.unit}"

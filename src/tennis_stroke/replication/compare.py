@@ -20,6 +20,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 import xarray as xr
 
+from ..inference.measures import valid_values
 from ..io.compare import same_grid
 from ..io.netcdf import load_result
 from .drawing.axes import axis_label
@@ -69,14 +70,15 @@ def _curve_dim(da: xr.DataArray) -> str | None:
 def difference_figure(
     paper: xr.Dataset, scenario: xr.Dataset, variables: Sequence[str], title: str
 ) -> plt.Figure:
-    """Scenario minus paper of ``variables`` (one panel each): a map on diverging colours
-    centred on 0 where the variable has two dimensions of more than one point, else
-    curves (one per stroke) along its dimension.  A panel whose grids differ between the
-    two says so instead of interpolating."""
+    """Scenario minus paper of ``variables`` (one panel each; failed strokes blank, as
+    :func:`~tennis_stroke.inference.measures.valid_values` shows them): a map on
+    diverging colours centred on 0 where the variable has two dimensions of more than one
+    point, else curves (one per stroke) along its dimension.  A panel whose grids differ
+    between the two says so instead of interpolating."""
     fig, axes = plt.subplots(1, len(variables), figsize=(0.4 + 5.6 * len(variables), 4.8))
     axes = np.atleast_1d(axes)
     for ax, name in zip(axes, variables, strict=True):
-        a, b = paper[name], scenario[name]
+        a, b = valid_values(paper, name), valid_values(scenario, name)
         units = a.attrs.get("units", "")
         label = f"scenario \u2212 paper ({units})"
         ax.set_title(f"{name}: {a.attrs.get('long_name', name)}", fontsize=8)

@@ -17,7 +17,6 @@ from pathlib import Path
 import matplotlib.pyplot as plt
 
 from ..io.netcdf import load_result
-from ..model.listing import ORIGINS
 from .registry import FIGURES, Figure
 
 #: The package of the drawing functions, one module each named after its function.
@@ -79,15 +78,29 @@ def drawn(
             ax = fig.axes[0]
             ax.set_title(ax.get_title() + "\n" + wrapped(note, 48))
     fig.tight_layout()
+    if note:
+        _room_for_titles(fig)
     return fig
+
+
+def _room_for_titles(fig: plt.Figure) -> None:
+    """Make ``fig`` taller by what its titles reach above it (a long scenario note over
+    axes whose aspect tight_layout cannot shrink), then lay it out again."""
+    fig.canvas.draw()
+    titles = [*fig.texts, *(ax.title for ax in fig.axes)]  # the suptitle is a text
+    top = max(t.get_window_extent().y1 for t in titles)
+    over = top - fig.bbox.y1
+    if over > 0:
+        fig.set_figheight(fig.get_figheight() + (over + 4) / fig.dpi)
+        fig.tight_layout()
 
 
 def wrapped(note: str, width: int) -> str:
     """``note`` (changes ``key = value (paper: value)`` joined by ``"; "``, the word
-    before the old value any of :data:`~tennis_stroke.model.listing.ORIGINS`) on lines
-    of at most ``width`` characters, broken between changes or before ``(paper: ...)``
-    only, never inside a value and its unit."""
-    before = re.compile(r" \((" + "|".join(ORIGINS) + r"): ")
+    before the old value where it comes from: ``paper``, ``fitted``, ``ours`` ...) on
+    lines of at most ``width`` characters, broken between changes or before ``(paper:
+    ...)`` only, never inside a value and its unit."""
+    before = re.compile(r" \(([a-z]+): ")
     items = []
     for item in note.split("; "):
         head, *found = before.split(item, maxsplit=1)

@@ -111,9 +111,9 @@ def _scenario_views(
 ):
     """The interactive view of each shown figure: against the paper configuration's
     (shared scales, the difference, linked hovers: :func:`views.comparison_view`) where
-    the paper's files exist, else the scenario's alone; each with its marks at the
-    paper's values and ours (the paper configuration's, the scenario's).  The page's
-    head and divs by name."""
+    the paper's files exist (``linked`` of its entry), else the scenario's alone; each
+    with its marks at the paper's values and ours (the paper configuration's, the
+    scenario's).  The page's head and divs by name."""
     from . import views  # Bokeh: only the page jobs draw views
 
     claims = {c["id"]: c for c in declared}
@@ -130,7 +130,8 @@ def _scenario_views(
             continue
         data = [load_result(p) for p in f["files"]]
         marks = mark_values(figure, claims, ours)
-        if all(Path(p).is_file() for p in f["paper_files"]):
+        f["linked"] = all(Path(p).is_file() for p in f["paper_files"])
+        if f["linked"]:
             first = [load_result(p) for p in f["paper_files"]]
             pair = (mark_values(figure, claims, base), marks)
             made[f["name"]] = views.comparison_view(figure, first, data, who, pair)
@@ -190,7 +191,6 @@ def build_scenario_report(
     views_head, views = _scenario_views(shown, declared, table, paper, scenario["name"])
     for f in shown:
         f["view"] = views.get(f["name"])
-        f["linked"] = all(Path(p).is_file() for p in f["paper_files"])
     rows = claim_rows(table, paper)
     html = ENVIRONMENT.get_template("scenario.html.j2").render(
         name=scenario["name"],

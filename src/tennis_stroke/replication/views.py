@@ -55,7 +55,7 @@ from bokeh.palettes import Category10_10, Magma256, RdBu11, Viridis256, interp_p
 from bokeh.plotting import figure as bokeh_figure
 from bokeh.resources import Resources
 
-from ..inference.measures import valid_v_out
+from ..inference.measures import valid_values
 from ..io.compare import same_grid
 from .registry import Figure
 
@@ -129,7 +129,7 @@ def map_data(ds: xr.Dataset, x: str, y: str, var: str, extra: Sequence[str] = ()
     """The image source of a map of ``var`` over ``(x, y)``: the values (float32, failed
     strokes NaN), the status codes (int8), the variables ``extra``, and the grid (first
     value, step, decimals of each axis; the image's corner and size)."""
-    da = valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
+    da = valid_values(ds, var)
     xs, ys = ds[x].values.astype(float), ds[y].values.astype(float)
     dx, dy = _step(xs, x), _step(ys, y)
     data = {"image": [da.transpose(y, x).values.astype(np.float32)]}
@@ -260,7 +260,7 @@ def curve_view(
 def curve_data(ds: xr.Dataset, x: str, var: str) -> dict:
     """The source of a curve of ``var`` along ``x``: the values (failed strokes NaN) and
     each sample's status by name."""
-    v = valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
+    v = valid_values(ds, var)
     names = _status_names(ds)
     return {
         "x": ds[x].values,
@@ -422,38 +422,51 @@ def map_comparison(
     name: str,
     who: str,
     marks: tuple[Sequence[Mapping], Sequence[Mapping]] = ((), ()),
+    line: str | None = None,
+    extra: Sequence[str] = (),
 ):
     """The paper configuration's map of ``var`` beside scenario ``who``'s, on one colour
-    scale (``<name>-colors``, the union of their ranges) and shared axes, then their
-    difference (scenario minus paper, ``<name>-difference-colors``: diverging, centred on
-    0) where both lie on one grid.  Hovering a cell of any panel shows the cell's paper,
-    scenario and difference values and statuses (one source, ``<name>-compare``), and
-    draws a crosshair at it in every panel.  Where the grids differ, each map keeps its
-    own source (``<name>-paper-map``, ``<name>-scenario-map``) and the difference panel
-    says why it is missing.  ``marks``: the paper configuration's and the scenario's."""
-    first, second = map_data(paper, x, y, var), map_data(scenario, x, y, var)
-    span = _union(value_range(first["image"][0]), value_range(second["image"][0]))
-    mapper = map_colors(var, span, name)
-    ranges = (
-        Range1d(*_union(*((d["left"][0], d["left"][0] + d["dw"][0]) for d in (first, second)))),
-        Range1d(*_union(*((d["bottom"][0], d["bottom"][0] + d["dh"][0]) for d in (first, second)))),
+    scale (``<name>-colors``, from both maps' finite values) and shared axes, then their
+    difference (scenario minus paper, ``<name>-difference-colors``: diverging, centred
+    on 0) where both lie on one grid.  Hovering a cell of any panel shows the cell's
+    paper, scenario and difference values, both statuses and both ``extra`` variables
+    (one source, ``<name>-compare``); a crosshair follows the mouse in every panel, and
+    pan and zoom are shared.  Where the grids differ, each map keeps its own source
+    (``<name>-paper-map``, ``<name>-scenario-map``) and hover, and the difference panel
+    says why it is missing.  Each map draws its own ``line`` (a variable over ``x``: the
+    best ``y`` per column) and ``marks`` (the paper configuration's, the scenario's)."""
+    first = map_data(paper, x, y, var, extra)
+    second = map_data(scenario, x, y, var, extra)
+    both = np.concatenate([first["image"][0].ravel(), second["image"][0].ravel()])
+    mapper = map_colors(var, value_range(both), name)
+    ranges = tuple(
+        Range1d(*_union(*((d[lo][0], d[lo][0] + d[size][0]) for d in (first, second))))
+        for lo, size in (("left", "dw"), ("bottom", "dh"))
     )
     label, coords = _short(paper[var]), (_short(paper[x]), _short(paper[y]))
     names = _status_names(paper)
-    panels = {"paper": "the paper's configuration", "scenario": f"scenario {who}"}
-    plots, crosshair = [], _crosshair(name)
-    if same_grid(paper[var], scenario[var]):
-        grid = {k: v for k, v in first.items() if k not in ("image", "status")}
-        data = grid | {"paper": first["image"], "scenario": second["image"]}
+    sides = {"paper": (paper, first), "scenario": (scenario, second)}
+    titles = {"paper": "the paper's configuration", "scenario": f"scenario {who}"}
+    status = "status" in first and "status" in second
+    layers, hovers = [], {}
+    if same_grid(valid_values(paper, var), valid_values(scenario, var)):
+        grid = {k: v for k, v in first.items() if k not in ("image", "status", *extra)}
+        data = dict(grid)
+        for side, (_, own) in sides.items():
+            data[side] = own["image"]
+            data |= {f"{k}_{side}": own[k] for k in extra}
+            if status:
+                data[f"status_{side}"] = own["status"]
         data["difference"] = [second["image"][0] - first["image"][0]]
-        statuses = [f"status_{side}" for side in panels if "status" in first]
-        for field in statuses:
-            data[field] = (first if field.endswith("paper") else second)["status"]
         source = ColumnDataSource(data, name=f"{name}-compare")
         tips = [(coords[0], "@paper{x}"), (coords[1], "@paper{y}")]
-        tips += [(f"{label}, {side}", f"@{side}{{value}}") for side in panels]
+        tips += [(f"{label}, {side}", f"@{side}{{value}}") for side in sides]
         tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
-        tips += [(field.replace("_", ", "), f"@{field}{{status}}") for field in statuses]
+        tips += [(f"status, {side}", f"@status_{side}{{status}}") for side in sides if status]
+        tips += [
+            (f"{_short(paper[k])}, {side}", f"@{k}_{side}{{0.00}}") for k in extra for side in sides
+        ]
+        fields = tuple(k for k in data if k not in grid)
         reach = float(np.nanmax(np.abs(data["difference"][0]), initial=0.0)) or 1.0
         colors = LinearColorMapper(
             palette=DIFFERENCE_COLORS,
@@ -462,31 +475,31 @@ def map_comparison(
             nan_color="lightgray",
             name=f"{name}-difference-colors",
         )
-        layers = [
-            (side, source, side, mapper, label, pick)
-            for (side, _), pick in zip(panels.items(), marks, strict=True)
-        ] + [("difference", source, "difference", colors, f"{DIFFERENCE} ({label})", ())]
-        fields = tuple(k for k in data if k not in grid)
-        hovers = {side: tips for side in ("paper", "scenario", "difference")}
+        for side, pick in zip(sides, marks, strict=True):
+            layers.append((side, source, side, mapper, label, pick))
+            hovers[side] = tips
+        layers.append(("difference", source, "difference", colors, f"{DIFFERENCE} ({label})", ()))
+        hovers["difference"] = tips
     else:
-        layers, hovers, fields = [], {}, ("image", "status")
-        for (side, _), data, ds, pick in zip(
-            panels.items(), (first, second), (paper, scenario), marks, strict=True
-        ):
-            source = ColumnDataSource(data, name=f"{name}-{side}-map")
+        fields = ("image", "status")
+        for (side, (ds, own)), pick in zip(sides.items(), marks, strict=True):
+            source = ColumnDataSource(own, name=f"{name}-{side}-map")
             layers.append((side, source, "image", mapper, label, pick))
             hovers[side] = [(coords[0], "@image{x}"), (coords[1], "@image{y}")]
             hovers[side].append((f"{label}, {side}", "@image{value}"))
             if "status" in ds:
                 hovers[side].append(("status", "@status{status}"))
+    plots, crosshair = [], _crosshair(name)
     for side, source, field, colors, bar, pick in layers:
-        title = panels.get(side, DIFFERENCE)
-        p = _panel(paper, x, y, title, f"{name}-{side}", ranges, MAP_PANEL)
+        p = _panel(paper, x, y, titles.get(side, DIFFERENCE), f"{name}-{side}", ranges, MAP_PANEL)
         image = p.image(
             image=field, source=source, x="left", y="bottom", dw="dw", dh="dh", color_mapper=colors
         )
         p.add_layout(image.construct_color_bar(title=bar, width=10), "right")
         p.add_tools(_cell_hover(image, source, hovers[side], names, fields), crosshair())
+        if line is not None and side in sides:
+            ds = sides[side][0]
+            p.line(ds[x].values, ds[line].values, color="red", line_width=2)
         _draw_marks(p, pick, x, y)
         plots.append(p)
     if len(plots) == 2:
@@ -510,11 +523,11 @@ def curve_comparison(
     marks: Sequence[Mapping] = (),
 ):
     """The paper configuration's curve of ``var`` along ``x`` and scenario ``who``'s on
-    one plot (``<name>-curves``), then their difference (scenario minus paper) on the
-    same x axis where both lie on one grid.  Hovering either panel shows the paper,
-    scenario and difference values and statuses at the nearest sample (one source,
-    ``<name>-compare``) and draws a vertical line at it in both; ``marks``: the
-    scenario's."""
+    one plot (``<name>-curves``), and beside it their difference (scenario minus paper)
+    on the same x axis where both lie on one grid.  Hovering either panel shows the
+    paper, scenario and difference values and statuses at the sample nearest the mouse
+    (one source, ``<name>-compare``; a failed stroke's value is "none (failed stroke)"),
+    and a vertical line follows the mouse in both; ``marks``: the scenario's."""
     first, second = curve_data(paper, x, var), curve_data(scenario, x, var)
     x_range = Range1d(
         *_union(*((float(np.min(d["x"])), float(np.max(d["x"]))) for d in (first, second)))
@@ -529,38 +542,37 @@ def curve_comparison(
         (x_range, None),
         CURVE_PANEL,
     )
-    one = same_grid(paper[var], scenario[var])
-    tips = [(_short(paper[x]), "@x{0.0000}")]
+    one = same_grid(valid_values(paper, var), valid_values(scenario, var))
     if one:
+        difference = second["v"] - first["v"]
         source = ColumnDataSource(
             {
                 "x": first["x"],
                 "paper": first["v"],
                 "scenario": second["v"],
-                "difference": second["v"] - first["v"],
+                "difference": difference,
                 "status_paper": first["status"],
                 "status_scenario": second["status"],
+                # where the mouse finds a sample: finite wherever a stroke failed
+                "near": np.where(np.isfinite(second["v"]), second["v"], first["v"]),
+                "near_difference": np.nan_to_num(difference, nan=0.0),
             },
             name=f"{name}-compare",
         )
         sides = [("paper", source, "paper"), ("scenario", source, "scenario")]
-        tips += [(f"{label}, {side}", f"@{side}{{0.00}}") for side in ("paper", "scenario")]
-        tips.append((f"{label}, {DIFFERENCE}", "@difference{+0.00}"))
-        tips += [(f"status, {side}", f"@status_{side}") for side in ("paper", "scenario")]
     else:
         sides = [
             (side, ColumnDataSource(data, name=f"{name}-{side}-map"), "v")
             for side, data in (("paper", first), ("scenario", second))
         ]
-    lines = {}
-    for (side, source, field), color, dash in zip(
+    for (side, source_, field), color, dash in zip(
         sides, ("black", Category10_10[0]), ("dashed", "solid"), strict=True
     ):
         legend = "the paper's configuration" if side == "paper" else f"scenario {who}"
-        lines[side] = p.line(
+        p.line(
             "x",
             field,
-            source=source,
+            source=source_,
             color=color,
             line_dash=dash,
             line_width=2,
@@ -569,10 +581,10 @@ def curve_comparison(
         if not one:
             own = [
                 (_short(paper[x]), "@x{0.0000}"),
-                (f"{label}, {side}", "@v{0.00}"),
+                (f"{label}, {side}", "@v{value}"),
                 ("status", "@status"),
             ]
-            p.add_tools(_vline_hover(lines[side], own))
+            p.add_tools(_curve_hover(p, source_, "v", own, ("v",)))
     p.legend.location = "bottom_right"
     p.legend.background_fill_alpha = 0.6
     _draw_marks(p, marks, x, var, ours_color="black")
@@ -582,18 +594,32 @@ def curve_comparison(
         return row(
             p, Div(text=_NO_DIFFERENCE.format(var=var), width=CURVE_PANEL[0] // 2), name=name
         )
-    p.add_tools(_vline_hover(lines["scenario"], tips))
+    tips = [(_short(paper[x]), "@x{0.0000}")]
+    tips += [(f"{label}, {side}", f"@{side}{{value}}") for side in ("paper", "scenario")]
+    tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
+    tips += [(f"status, {side}", f"@status_{side}") for side in ("paper", "scenario")]
+    fields = ("paper", "scenario", "difference")
+    p.add_tools(_curve_hover(p, source, "near", tips, fields))
     q = _panel(paper, x, var, DIFFERENCE, f"{name}-difference", (x_range, None), CURVE_PANEL)
     q.yaxis.axis_label = f"{DIFFERENCE} ({label})"
     q.add_layout(Span(location=0.0, dimension="width", line_color="gray", line_width=1))
-    difference = q.line("x", "difference", source=source, line_width=2, color=Category10_10[3])
-    q.add_tools(_vline_hover(difference, tips), crosshair())
+    q.line("x", "difference", source=source, line_width=2, color=Category10_10[3])
+    q.add_tools(_curve_hover(q, source, "near_difference", tips, fields), crosshair())
     return row(p, q, name=name)
 
 
-def _vline_hover(line, tooltips) -> HoverTool:
-    """A hover on a curve: the sample nearest the mouse along x, one tooltip."""
-    return HoverTool(renderers=[line], tooltips=tooltips, mode="vline")
+def _curve_hover(p, source: ColumnDataSource, field: str, tooltips, fields) -> HoverTool:
+    """A hover on a curve: the sample nearest the mouse along x (one tooltip), found on
+    an invisible line through ``field`` of ``source``; ``fields`` written as the maps'
+    values are (two decimals, a failed stroke's "none (failed stroke)")."""
+    near = p.line("x", field, source=source, line_alpha=0.0)
+    value = CustomJSHover(args={"src": source, "names": {}}, code=_CELL_JS)
+    return HoverTool(
+        renderers=[near],
+        tooltips=tooltips,
+        mode="vline",
+        formatters={f"@{f}": value for f in fields},
+    )
 
 
 def comparison_view(
@@ -605,18 +631,18 @@ def comparison_view(
 ):
     """The view of a registry figure under the paper's configuration and scenario
     ``who`` with their difference (:func:`map_comparison`, :func:`curve_comparison`),
-    or None for a figure without a view.  ``marks``: the paper configuration's and the
+    or None for a figure without one.  ``marks``: the paper configuration's and the
     scenario's (:func:`~tennis_stroke.replication.marks.mark_values`)."""
     spec = MAP_VIEWS.get(figure.draw)
     if spec is None:
         return None
-    kind, var, _, _ = spec
+    kind, var, line, extra = spec
     x, y = figure.axes
     var = var or figure.args[0]
     if kind == "curve":
         first, second = (ds[0].isel(delta0=0) for ds in (paper, scenario))
         return curve_comparison(first, second, x, var, figure.name, who, marks[1])
-    return map_comparison(paper[0], scenario[0], x, y, var, figure.name, who, marks)
+    return map_comparison(paper[0], scenario[0], x, y, var, figure.name, who, marks, line, extra)
 
 
 # ---------------------------------------------------------------------------------------
