@@ -178,7 +178,7 @@ BAD = [  # (path, value, fragment of the message)
         ("search", "tau_step"),
         1e-9,
         "'search': the search of the Fig. 7 map's claims (search.C2_step = 0.5, "
-        "search.tau_step = 1e-09: 6300000021 strokes at once",
+        "search.tau_step = 1e-09: 6300000021 strokes at once for each of 32 readings) needs",
     ),
     (
         ("search", "psi_F_step"),
