@@ -178,7 +178,7 @@ BAD = [  # (path, value, fragment of the message)
         ("search", "tau_step"),
         1e-9,
         "'search': the search of the Fig. 7 map's claims (search.C2_step = 0.5, "
-        "search.tau_step = 1e-09: 6300000021 strokes at once for each of 32 readings) needs",
+        "search.tau_step = 1e-09: 6300000021 strokes at once",
     ),
     (
         ("search", "psi_F_step"),
@@ -257,6 +257,19 @@ def test_readings_searched_in_lockstep_multiply_a_search_s_memory():
     assert error.startswith("config key 'search.angle_step': the search of the Figs. 2-3 ")
     needed = format_size(32 * 24100241 * BATCH_BYTES_PER_STROKE)
     assert f"24100241 strokes at once for each of 32 readings) needs about {needed}" in error
+
+
+@pytest.mark.workflow
+def test_planning_counts_the_readings_searched_in_lockstep(tmp_path):
+    """The workflow checks the memory once, for the readings of the largest robustness
+    job (config/readings.yaml: 64 readings in 2 chunks), before any job."""
+    config = copy.deepcopy(GOOD)
+    config["max_memory"] = "12G"
+    config["search"]["angle_step"] = 1e-3
+    done = run_snakemake("report", workdir(tmp_path, config), "-n")
+    lines = [line for line in done.stderr.splitlines() if line.strip()]
+    assert done.returncode == 1 and len(lines) == 1, lines
+    assert "24100241 strokes at once for each of 32 readings) needs about" in lines[0]
 
 
 def test_the_shipped_config_declares_max_memory_with_a_default():
