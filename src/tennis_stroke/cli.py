@@ -411,16 +411,18 @@ def _add_whatif(sub) -> None:
         action="append",
         default=[],
         metavar="KEY=VALUE",
-        help="an override: a model parameter or reading (M2=0.35; 'tennis-stroke params' "
-        "lists them) or a dotted config key (torque_delay.base_stroke.C2=8); replaces the "
-        "declared scenario's overrides",
+        help="an override of a new scenario: a model parameter, reading or option "
+        "(M2=0.35; 'tennis-stroke params' lists them) or a dotted config key "
+        "(torque_delay.base_stroke.C2=8); a declared scenario is changed in "
+        "config/scenarios.yaml",
     )
     whatif.add_argument(
         "--figure",
         action="append",
         default=[],
         metavar="FIG",
-        help="only this figure of the paper (fig2, fig09, fig09_v_tau); default: the page",
+        help="only this figure of the paper (fig2, fig09, fig09_v_tau); default: the page "
+        "and its article",
     )
     whatif.add_argument("-j", "--cores", type=int, default=2, help="snakemake --cores (2)")
     whatif.add_argument("-n", "--dry-run", action="store_true", help="plan only (snakemake -n)")
@@ -755,7 +757,9 @@ def _whatif(args: argparse.Namespace) -> int:
     import yaml
 
     from .io.interrupts import run_forwarding
+    from .pipeline.config_check import load_schema
     from .pipeline.scenarios import (
+        SCHEMA_FILE,
         ScenarioError,
         folder,
         load_scenarios,
@@ -769,7 +773,15 @@ def _whatif(args: argparse.Namespace) -> int:
     try:
         others: dict = {}  # another scenario's error does not stop this one
         declared = load_scenarios("config/scenarios.yaml", errors=others)
-        overrides = override_from(args.set) if args.set else None
+        if args.set and (args.name in declared or args.name in others):
+            # its folder holds the declared scenario's files: --set would replace them
+            raise ScenarioError(
+                f"scenario {args.name!r} is declared in config/scenarios.yaml: --set would "
+                "replace its overrides and its files; give the new scenario another name "
+                "(or change the declaration)"
+            )
+        top_level = load_schema(SCHEMA_FILE).get("properties", {})
+        overrides = override_from(args.set, top_level) if args.set else None
         if overrides is None and args.name in others:
             raise ScenarioError(others[args.name])
         if overrides is None and args.name not in declared:
@@ -786,11 +798,14 @@ def _whatif(args: argparse.Namespace) -> int:
         scenario_reach(
             args.name, declared.get(args.name) if overrides is None else overrides, figures
         )
-    except (ScenarioError, KeyError) as exc:
-        raise ValueError(str(exc).strip("'\"")) from None
-    where = folder(args.name)
+    except ScenarioError as exc:
+        raise ValueError(str(exc)) from None
+    except KeyError as exc:  # str() of a KeyError quotes its message
+        raise ValueError(str(exc.args[0])) from None
+    where, pages = folder(args.name), folder(args.name, "report")
     targets = [f"{where}/figures/{f}.png" for f in figures] or [
-        f"{folder(args.name, 'report')}/index.html"
+        f"{pages}/index.html",
+        f"{pages}/article.pdf",
     ]
     command = [sys.executable, "-m", "snakemake", "--cores", str(args.cores), *targets]
     command += ["--quiet", "rules"]  # the log of make report: one line per job

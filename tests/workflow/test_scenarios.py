@@ -381,6 +381,12 @@ def test_a_mistyped_key_gets_the_nearest_full_keys():
         explain("model.ballmass", PAPER, CLAIMS)
 
 
+def test_a_model_option_is_explained_as_whatif_sets_it():
+    """`whatif --set contact_model=impact` sets model.contact_model: explain knows it."""
+    for key in ("contact_model", "model.contact_model"):
+        assert explain(key, PAPER, CLAIMS).key == "model.contact_model"
+
+
 def test_the_config_keys_page_is_current():
     """docs/config_keys.md holds `tennis-stroke config explain --all` of config.yaml."""
     text = (ROOT / "docs" / "config_keys.md").read_text()
@@ -405,6 +411,16 @@ def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
         (["whatif", "x", "--set", "M2=0.4", "--figure", "fig99"], "no figure 'fig99'"),
         (["whatif", "x", "--set", "M2"], "--set 'M2': expected KEY=VALUE"),
         (["whatif", "1x", "--set", "M2=0.4"], "scenario name '1x'"),
+        # a declared scenario's files are not replaced by --set
+        (
+            ["whatif", "strong_wrist", "--set", "M2=0.35", "-n"],
+            "scenario 'strong_wrist' is declared in config/scenarios.yaml: --set would",
+        ),
+        # a bare name that is nothing gets the closest names (it went to the top level)
+        (["whatif", "x", "--set", "M22=0.35", "-n"], "'M22' is no model parameter"),
+        (["whatif", "x", "--set", "M22=0.35", "-n"], "(did you mean M2?)"),
+        # a message keeps its closing quote
+        (["whatif", "x", "--set", "M2=abc", "-n"], "got 'abc'\n"),
         # a bad value: one line, not Snakemake's log and exit 1
         (
             ["whatif", "x", "--set", "M2=-1", "-n"],

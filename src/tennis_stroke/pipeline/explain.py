@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 from ..experiments.specs import EXPERIMENTS, VALIDATION_GROUPS
 from ..inference.claims import claim_files
-from ..model.params import PARAMETERS, READINGS
+from ..model.params import CHOICES, PARAMETERS
 from ..replication.registry import FIGURES
 from .params import PAPER_SECTIONS, reads, related
 
@@ -131,12 +131,12 @@ def leaves(node, parts: tuple = ()) -> Iterator[str]:
 def explain(key: str, config: Mapping, claims: Sequence[Mapping]) -> KeyEffect:
     """:func:`effect` of a key of ``config`` (a leaf or a section); raises
     :class:`UnknownKeyError` naming the closest keys otherwise."""
-    if key in PARAMETERS or key in READINGS:  # a model parameter or reading by its name
+    if key in PARAMETERS or key in CHOICES:  # a model parameter, reading or option by name
         key = f"model.{key}"
     known = list(leaves(config))
     section, _, name = key.partition(".")
-    every = [*known, *(f"model.{p}" for p in (*PARAMETERS, *READINGS))]
-    if section == "model" and (name in PARAMETERS or name in READINGS):
+    every = [*known, *(f"model.{p}" for p in (*PARAMETERS, *CHOICES))]
+    if section == "model" and (name in PARAMETERS or name in CHOICES):
         return effect(key, claims)
     if key not in known and not any(k.startswith(f"{key}.") for k in known):
         import difflib

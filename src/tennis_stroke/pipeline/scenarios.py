@@ -19,6 +19,7 @@ runs (:data:`PAPER_ONLY`).
 from __future__ import annotations
 
 import contextlib
+import difflib
 import fcntl
 import os
 import re
@@ -144,20 +145,30 @@ def load_scenarios(
     return out
 
 
-def override_from(items) -> dict:
-    """Overrides from ``KEY=VALUE`` items (the command line): a model parameter or
-    reading by its name (``M2=0.35``: ``model.M2``), any other config key dotted
-    (``torque_delay.base_stroke.C2=8``); a value is read as YAML (a number, a list)."""
+def override_from(items, top_level: Collection[str] | None = None) -> dict:
+    """Overrides from ``KEY=VALUE`` items (the command line): a model parameter, reading
+    or model option by its name (``M2=0.35``: ``model.M2``), any other config key dotted
+    (``torque_delay.base_stroke.C2=8``); a value is read as YAML (a number, a list).
+    With ``top_level`` (the config's top-level keys), a bare name that is none of them
+    is refused with the closest names."""
     out: dict = {}
     for item in items:
         key, sep, text = item.partition("=")
         if not sep or not key or not text:
             raise ScenarioError(f"--set {item!r}: expected KEY=VALUE")
+        named = key in PARAMETERS or key in CHOICES
+        if top_level is not None and "." not in key and not named and key not in top_level:
+            close = difflib.get_close_matches(key, [*PARAMETERS, *CHOICES, *top_level], n=3)
+            hint = f" (did you mean {', '.join(close)}?)" if close else ""
+            raise ScenarioError(
+                f"--set {item!r}: {key!r} is no model parameter, reading or option, nor a "
+                f"top-level config key{hint}"
+            )
         try:
             value = yaml.safe_load(text)
         except yaml.YAMLError:
             raise ScenarioError(f"--set {item!r}: {text!r} is not a value") from None
-        parts = ["model", key] if key in PARAMETERS or key in CHOICES else key.split(".")
+        parts = ["model", key] if named else key.split(".")
         node = out
         for part in parts[:-1]:
             node = node.setdefault(part, {})
