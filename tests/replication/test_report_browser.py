@@ -257,9 +257,11 @@ def test_a_scenario_map_hovered_in_any_panel_shows_the_paper_the_scenario_and_th
         at = float(paper[x][i]), float(paper[y][j])
         shown = hover_lines(browser, f"{name}-{side}", *at)
         a, b = float(first[{x: i, y: j}]), float(second[{x: i, y: j}])
-        assert shown["v_out (km/h), paper"] == _shown(a), side
+        assert shown["v_out (km/h), paper's configuration"] == _shown(a), side
         assert shown["v_out (km/h), scenario"] == _shown(b), side
-        assert shown["v_out (km/h), scenario \u2212 paper"] == _shown(b - a, signed=True), side
+        assert shown["v_out (km/h), scenario \u2212 paper's configuration"] == _shown(
+            b - a, signed=True
+        ), side
         cross = browser.execute_script(CROSS_JS, name)
         steps = [float(paper[d][1] - paper[d][0]) for d in (x, y)]
         for where, want, step in zip(cross, at, steps, strict=True):
@@ -281,8 +283,10 @@ def test_a_scenario_curve_hovered_shows_both_curves_and_their_difference(browser
     for plot, level in ((f"{name}-curves", b), (f"{name}-difference", b - a)):
         shown = hover_lines(browser, plot, tau, level)
         assert float(shown["tau (s)"]) == pytest.approx(tau, abs=5e-5), plot
-        assert shown["v_out (km/h), paper"] == _shown(a), plot
+        assert shown["v_out (km/h), paper's configuration"] == _shown(a), plot
         assert shown["v_out (km/h), scenario"] == _shown(b), plot
-        assert shown["v_out (km/h), scenario \u2212 paper"] == _shown(b - a, signed=True), plot
+        assert shown["v_out (km/h), scenario \u2212 paper's configuration"] == _shown(
+            b - a, signed=True
+        ), plot
         x_line, _ = browser.execute_script(CROSS_JS, name)
         assert x_line == pytest.approx(tau, abs=0.5 * float(paper["tau"][1] - paper["tau"][0]))

@@ -374,7 +374,10 @@ def figure_view(figure: Figure, datasets: Sequence[xr.Dataset], title: str, mark
 #: Colours of a difference: diverging, white at 0, blue below and red above (those of
 #: the comparison PNG, :data:`tennis_stroke.replication.compare.DIVERGING`).
 DIFFERENCE_COLORS = tuple(interp_palette(RdBu11, 255))
-DIFFERENCE = "scenario \u2212 paper"
+DIFFERENCE = "scenario \u2212 paper's configuration"
+#: How a comparison's hover names each side: ours under the paper's configuration (not
+#: the paper's printed value, which the red marks show) and ours under the scenario.
+SIDES = {"paper": "paper's configuration", "scenario": "scenario"}
 #: Each panel of a comparison of maps (three fit the page's width) and of curves (two).
 MAP_PANEL, CURVE_PANEL = (372, 340), (560, 380)
 
@@ -460,11 +463,15 @@ def map_comparison(
         data["difference"] = [second["image"][0] - first["image"][0]]
         source = ColumnDataSource(data, name=f"{name}-compare")
         tips = [(coords[0], "@paper{x}"), (coords[1], "@paper{y}")]
-        tips += [(f"{label}, {side}", f"@{side}{{value}}") for side in sides]
+        tips += [(f"{label}, {SIDES[side]}", f"@{side}{{value}}") for side in sides]
         tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
-        tips += [(f"status, {side}", f"@status_{side}{{status}}") for side in sides if status]
         tips += [
-            (f"{_short(paper[k])}, {side}", f"@{k}_{side}{{0.00}}") for k in extra for side in sides
+            (f"status, {SIDES[side]}", f"@status_{side}{{status}}") for side in sides if status
+        ]
+        tips += [
+            (f"{_short(paper[k])}, {SIDES[side]}", f"@{k}_{side}{{0.00}}")
+            for k in extra
+            for side in sides
         ]
         fields = tuple(k for k in data if k not in grid)
         reach = float(np.nanmax(np.abs(data["difference"][0]), initial=0.0)) or 1.0
@@ -486,7 +493,7 @@ def map_comparison(
             source = ColumnDataSource(own, name=f"{name}-{side}-map")
             layers.append((side, source, "image", mapper, label, pick))
             hovers[side] = [(coords[0], "@image{x}"), (coords[1], "@image{y}")]
-            hovers[side].append((f"{label}, {side}", "@image{value}"))
+            hovers[side].append((f"{label}, {SIDES[side]}", "@image{value}"))
             if "status" in ds:
                 hovers[side].append(("status", "@status{status}"))
     plots, crosshair = [], _crosshair(name)
@@ -566,7 +573,7 @@ def curve_comparison(
             for side, data in (("paper", first), ("scenario", second))
         ]
     for (side, source_, field), color, dash in zip(
-        sides, ("black", Category10_10[0]), ("dashed", "solid"), strict=True
+        sides, ("gray", Category10_10[0]), ("solid", "solid"), strict=True
     ):
         legend = "the paper's configuration" if side == "paper" else f"scenario {who}"
         p.line(
@@ -581,7 +588,7 @@ def curve_comparison(
         if not one:
             own = [
                 (_short(paper[x]), "@x{0.0000}"),
-                (f"{label}, {side}", "@v{value}"),
+                (f"{label}, {SIDES[side]}", "@v{value}"),
                 ("status", "@status"),
             ]
             p.add_tools(_curve_hover(p, source_, "v", own, ("v",)))
@@ -595,9 +602,9 @@ def curve_comparison(
             p, Div(text=_NO_DIFFERENCE.format(var=var), width=CURVE_PANEL[0] // 2), name=name
         )
     tips = [(_short(paper[x]), "@x{0.0000}")]
-    tips += [(f"{label}, {side}", f"@{side}{{value}}") for side in ("paper", "scenario")]
+    tips += [(f"{label}, {SIDES[side]}", f"@{side}{{value}}") for side in SIDES]
     tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
-    tips += [(f"status, {side}", f"@status_{side}") for side in ("paper", "scenario")]
+    tips += [(f"status, {SIDES[side]}", f"@status_{side}") for side in SIDES]
     fields = ("paper", "scenario", "difference")
     p.add_tools(_curve_hover(p, source, "near", tips, fields))
     q = _panel(paper, x, var, DIFFERENCE, f"{name}-difference", (x_range, None), CURVE_PANEL)
