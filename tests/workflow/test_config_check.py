@@ -378,7 +378,8 @@ def test_equal_values_spelled_differently_are_one_config(edit):
 def test_canonical_keeps_integers_booleans_and_sorts_free_keys():
     shipped = load_yaml(ROOT / "config" / "config.yaml")
     config = copy.deepcopy(shipped)
-    config["model"] = {"M2": 1, "L1": 0.3, "inertia": "rod"}
+    # a parameter (C1 = 25 N m, an int) or option (the spring) at its default is left out
+    config["model"] = {"M2": 1, "L1": 0.35, "inertia": "rod", "C1": 25, "contact_model": "spring"}
     out = _checked(config)
     assert list(out["model"]) == ["L1", "M2", "inertia"] and out["model"]["M2"] == 1.0
     assert isinstance(out["model"]["M2"], float)

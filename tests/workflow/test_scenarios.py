@@ -294,7 +294,8 @@ def _other(name):
         return next(c for c in READINGS[name].choices if c != READINGS[name].default)
     spec = PARAMETERS[name]
     value = spec.default * 1.1 if spec.default else 0.01
-    return min(value, spec.upper) if spec.upper is not None else value
+    value = min(value, spec.upper) if spec.upper is not None else value
+    return value if value != spec.default else spec.default * 0.9  # at its upper bound
 
 
 def test_explain_agrees_with_what_a_scenario_reruns_for_every_model_key():

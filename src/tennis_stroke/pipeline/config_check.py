@@ -29,7 +29,7 @@ from ..experiments.specs import BOUND_KEYS, EXPERIMENTS
 from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
 from ..inference.search_plan import BRACKET_KEYS, SEARCHED, search_strokes
 from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
-from ..model.params import ParameterError, resolve_params
+from ..model.params import CHOICES, PARAMETERS, ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
 from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case
 from .memory import (
@@ -336,6 +336,15 @@ def _is_number(schema: Mapping) -> bool:
 REAL_SECTIONS = {("model",)}
 
 
+def _is_default(name: str, value) -> bool:
+    """Whether model ``name`` set to ``value`` is its default: a parameter that is not
+    derived (a derived one's default depends on the others), a reading or an option."""
+    if name in PARAMETERS and not PARAMETERS[name].derived:
+        default = PARAMETERS[name].default
+        return isinstance(value, float) and default is not None and value == float(default)
+    return name in CHOICES and value == CHOICES[name].default
+
+
 def canonical(node, schema: Mapping, root: Mapping | None = None, path: tuple = ()):
     """``node`` (a checked config) in one spelling per value, so that equal settings give
     equal job params (Snakemake reruns a job whose params' text changed):
@@ -344,7 +353,9 @@ def canonical(node, schema: Mapping, root: Mapping | None = None, path: tuple = 
       YAML's ``1e3`` is already ``1000.0``); booleans stay booleans;
     - a mapping's keys follow the schema's ``properties`` order, then the keys it does not
       name in sorted order;
-    - every number of a :data:`REAL_SECTIONS` section is a float.
+    - every number of a :data:`REAL_SECTIONS` section is a float;
+    - a model parameter, reading or option set to its default is left out (``model: {M2:
+      0.3}`` is the model of ``model: {}``: nothing reruns).
     """
     root = schema if root is None else root
     schema = _resolved(schema, root)
@@ -352,9 +363,12 @@ def canonical(node, schema: Mapping, root: Mapping | None = None, path: tuple = 
         properties = schema.get("properties", {})
         order = [key for key in properties if key in node]
         order += sorted((key for key in node if key not in properties), key=str)
-        return {
+        out = {
             key: canonical(node[key], properties.get(key, {}), root, (*path, key)) for key in order
         }
+        if path == ("model",):
+            out = {key: value for key, value in out.items() if not _is_default(key, value)}
+        return out
     if isinstance(node, list):
         prefix = schema.get("prefixItems", [])
         return [
