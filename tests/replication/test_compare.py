@@ -61,6 +61,15 @@ def test_the_difference_is_scenario_minus_paper_on_colours_centred_on_zero():
     plt.close(fig)
 
 
+def test_a_variable_the_scenario_does_not_move_is_said_not_drawn_as_zeros():
+    """Fig. 14's elbow path is prescribed: a flat zero panel looked like a change."""
+    paper = _map([[100, 110], [120, 130], [140, 150]])
+    fig = difference_figure(paper, paper.copy(deep=True), ["v_out"], "t")
+    (text,) = fig.axes[0].texts
+    assert "the same under both" in text.get_text() and not fig.axes[0].collections
+    plt.close(fig)
+
+
 def test_grids_that_differ_are_said_not_interpolated():
     paper = _map([[100, 110], [120, 130], [140, 150]])
     scenario = _map([[100, 110], [120, 130]], theta0=(60.0, 120.0))

@@ -74,7 +74,8 @@ def difference_figure(
     :func:`~tennis_stroke.inference.measures.valid_values` shows them): a map on
     diverging colours centred on 0 where the variable has two dimensions of more than one
     point, else curves (one per stroke) along its dimension.  A panel whose grids differ
-    between the two says so instead of interpolating."""
+    between the two says so instead of interpolating; one whose values are the same says
+    that instead of drawing zeros."""
     fig, axes = plt.subplots(1, len(variables), figsize=(0.4 + 5.6 * len(variables), 4.8))
     axes = np.atleast_1d(axes)
     for ax, name in zip(axes, variables, strict=True):
@@ -88,6 +89,17 @@ def difference_figure(
             continue
         diff = (b - a).squeeze()
         diff.attrs = a.attrs
+        if np.isfinite(diff).any() and not np.nanmax(np.abs(diff.values)):
+            ax.text(  # a flat zero panel would look like a drawing of a change
+                0.5,
+                0.5,
+                f"{name}: the same under both\nconfigurations (scenario \u2212 paper = 0)",
+                ha="center",
+                va="center",
+                transform=ax.transAxes,
+            )
+            ax.set_axis_off()
+            continue
         dim = _curve_dim(diff)
         if diff.ndim == 2 and all(diff.sizes[d] > 1 for d in diff.dims) and dim != "t":
             x, y = diff.dims[0], diff.dims[1]
