@@ -37,6 +37,7 @@ SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 PAPER = load_yaml(ROOT / "config" / "config.yaml")
 INPUTS = load_paper_inputs(ROOT / "config" / "claims.yaml")
 CLAIMS = load_claims(ROOT / "config" / "claims.yaml")
+STATED = [i["key"] for i in load_paper_inputs(ROOT / "config" / "claims.yaml")]
 BASE_STROKE = {"torque_delay": {"base_stroke": {"C2": 8.0}}}
 #: The tiny configuration with the defaults the workflow's schema fills in.
 BASE = merged(PAPER, TINY)
@@ -155,24 +156,31 @@ def test_command_line_overrides_name_a_parameter_or_a_dotted_key():
 
 
 def test_an_override_is_described_with_the_papers_value_and_unit():
-    assert describe("model.M2", None, 0.35, ()) == "model.M2 = 0.35 kg (paper: 0.3 kg)"
+    assert describe("model.M2", None, 0.35, (), STATED) == "model.M2 = 0.35 kg (paper: 0.3 kg)"
     # one vocabulary: a default is the paper's, fitted, derived or ours (model.listing)
-    assert describe("model.inertia", None, "paper_text", ()) == (
+    assert describe("model.inertia", None, "paper_text", (), STATED) == (
         "model.inertia = paper_text (ours: uniform_rod)"
     )
-    assert describe("model.contact_model", None, "impact", ()) == (
+    assert describe("model.contact_model", None, "impact", (), STATED) == (
         "model.contact_model = impact (paper: spring)"
     )
-    assert describe("model.k_contact", None, 2e4, {"k_contact"}) == (
+    assert describe("model.k_contact", None, 2e4, {"k_contact"}, STATED) == (
         "model.k_contact = 20000 N/m (fitted: 7800 N/m)"
     )
     fitted = load_reading_space(ROOT / "config" / "readings.yaml").fitted()
-    assert describe("model.k_contact", None, 2e4, fitted).endswith("(fitted: 7800 N/m)")
-    assert describe("torque_delay.base_stroke.C2", 5.0, 8.0, ()) == (
+    assert describe("model.k_contact", None, 2e4, fitted, STATED).endswith("(fitted: 7800 N/m)")
+    assert describe("torque_delay.base_stroke.C2", 5.0, 8.0, (), STATED) == (
         "torque_delay.base_stroke.C2 = 8 N m (paper: 5 N m)"
     )
     # a value a row puts into the model has its parameter's unit (torque_delay.L1 had none)
-    assert describe("torque_delay.L1", 0.4, 0.5, ()) == "torque_delay.L1 = 0.5 m (paper: 0.4 m)"
+    assert describe("torque_delay.L1", 0.4, 0.5, (), STATED) == (
+        "torque_delay.L1 = 0.5 m (paper: 0.4 m)"
+    )
+    # a key the paper does not state is config.yaml's (it said "paper: 0.25" of our grid)
+    assert describe("angle_maps.theta0.step", 0.25, 1.0, (), STATED) == (
+        "angle_maps.theta0.step = 1 (config: 0.25)"
+    )
+    assert describe("angle_maps.L1.0", 0.3, 0.35, (), STATED).endswith("(paper: 0.3 m)")
 
 
 def test_the_paper_configuration_is_the_declared_inputs():

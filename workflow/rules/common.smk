@@ -28,6 +28,7 @@ from tennis_stroke.experiments.specs import (
 )
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
+from tennis_stroke.inference.paper_config import load_paper_inputs
 from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,
@@ -98,6 +99,9 @@ config.update(_canonical)
 # The model parameters and readings whose default a fit set chose: a scenario's overrides
 # call their default "fitted", as `tennis-stroke params` does.
 FITTED = READING_SPACE.fitted()
+# The config keys the paper states (config/claims.yaml's inputs): a scenario's change of
+# any other key names its old value config.yaml's, not the paper's.
+STATED = [item["key"] for item in load_paper_inputs("config/claims.yaml")]
 # The what-if scenarios (config/scenarios.yaml and --config scenarios=...), each checked
 # as the paper's configuration is, before any job: their configurations by name.  A bad
 # scenario never stops the paper's run: it is named in one warning line, and asking for
@@ -451,7 +455,7 @@ def scenario_record(wildcards):
                 "key": k,
                 "paper": old,
                 "scenario": new,
-                "text": describe(k, old, new, FITTED),
+                "text": describe(k, old, new, FITTED, STATED),
             }
             for k, old, new in changes(config, SCENARIO_CONFIGS[name])
         ],
@@ -507,7 +511,7 @@ def scenario_figure_table(wildcards):
                 "compare": (
                     f"{scenario_folder(name)}/compare/{f}.png" if f in changed else None
                 ),
-                "changes": [describe(*c, FITTED) for c in read],
+                "changes": [describe(*c, FITTED, STATED) for c in read],
                 "files": [
                     [PAPER_RESULTS[k], scenario_files(name)[k]]
                     for k in FIGURES[f].files
@@ -554,7 +558,7 @@ def scenario_figure_note(wildcards):
     name = wildcards.scenario
     read = changes_read(FIGURES[wildcards.name].files, config, SCENARIO_CONFIGS[name])
     what = (
-        "; ".join(describe(*change, FITTED) for change in read)
+        "; ".join(describe(*change, FITTED, STATED) for change in read)
         or "no change to its inputs"
     )
     return f"scenario {name}: {what}"

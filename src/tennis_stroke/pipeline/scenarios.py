@@ -258,17 +258,21 @@ def scenario_reach(
     return unreached(base, config)
 
 
-def describe(key: str, old, new, fitted: Collection[str]) -> str:
-    """One override for a title or a banner: ``key = new (paper: old)``.  A model
-    parameter, reading or model option the paper's configuration leaves at its default
-    is shown with
-    that default, its unit (:data:`~tennis_stroke.model.params.PARAMETERS`) and where
-    the default comes from (:func:`~tennis_stroke.model.listing.origin`: ``paper``,
-    ``fitted``, ``derived`` or ``ours``; ``fitted``: the names whose default a fit set
-    chose, :meth:`~tennis_stroke.inference.reading_space.ReadingSpace.fitted`), the
-    words of ``tennis-stroke params``, the report and the explorer."""
-    unit, word = "", "paper"
+def describe(key: str, old, new, fitted: Collection[str], stated: Collection[str]) -> str:
+    """One override for a title or a banner: ``key = new (paper: old)``, the word before
+    the old value saying where it comes from.  A model parameter, reading or model
+    option the paper's configuration leaves at its default is shown with that default,
+    its unit (:data:`~tennis_stroke.model.params.PARAMETERS`) and its origin
+    (:func:`~tennis_stroke.model.listing.origin`: ``paper``, ``fitted``, ``derived`` or
+    ``ours``; ``fitted``: the names whose default a fit set chose,
+    :meth:`~tennis_stroke.inference.reading_space.ReadingSpace.fitted`), the words of
+    ``tennis-stroke params``, the report and the explorer.  Any other key is ``paper``
+    where it is (or lies in) one of the paper's stated inputs ``stated``
+    (``config/claims.yaml``, :func:`~tennis_stroke.inference.paper_config.load_paper_inputs`),
+    else ``config``: a value of config.yaml the paper does not state (a grid, a step)."""
+    unit = ""
     section, _, name = key.partition(".")
+    word = "paper" if any(key == k or key.startswith(f"{k}.") for k in stated) else "config"
     if section == "model" and name in PARAMETERS:
         spec = PARAMETERS[name]
         if old is None or old == spec.default:
