@@ -84,12 +84,25 @@ def drawn(
 
 
 def _room_for_titles(fig: plt.Figure) -> None:
-    """Make ``fig`` taller by what its titles reach above it (a long scenario note over
-    axes whose aspect tight_layout cannot shrink), then lay it out again."""
-    fig.canvas.draw()
-    titles = [*fig.texts, *(ax.title for ax in fig.axes)]  # the suptitle is a text
-    top = max(t.get_window_extent().y1 for t in titles)
-    over = top - fig.bbox.y1
+    """Fit ``fig``'s titles on its canvas: a title wider than the canvas (a scenario
+    note's unbreakable change over a narrow figure) gets a smaller font, down to 6 pt;
+    then the figure grows by what the titles reach above it (over axes whose aspect
+    tight_layout cannot shrink), and is laid out again."""
+    titles = [t for t in (*fig.texts, *(ax.title for ax in fig.axes)) if t.get_text()]
+    for _ in range(16):  # the suptitle is one of the figure's texts
+        fig.canvas.draw()
+        wide = [
+            t
+            for t in titles
+            if t.get_fontsize() > 6
+            and (t.get_window_extent().x0 < 0 or t.get_window_extent().x1 > fig.bbox.x1)
+        ]
+        if not wide:
+            break
+        for title in wide:
+            title.set_fontsize(title.get_fontsize() - 0.5)
+        fig.tight_layout()
+    over = max(t.get_window_extent().y1 for t in titles) - fig.bbox.y1
     if over > 0:
         fig.set_figheight(fig.get_figheight() + (over + 4) / fig.dpi)
         fig.tight_layout()
