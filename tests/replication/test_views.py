@@ -320,3 +320,26 @@ def test_a_map_comparison_draws_each_side_s_line_and_hovers_its_extras():
     assert drawn[2] == []  # the difference has no line
     data = _source(view, "fig-compare").data
     assert data["theta0_best_scenario"][0].max() == 5.0 and data["theta0_best_paper"][0].max() == 0
+
+
+def test_a_mark_label_in_the_right_half_ends_at_its_line():
+    """Fig. 13's direction marks near the right edge were cut ("fig14_wors"): a label
+    in the right half of a map is right-aligned to its line, one in the left half not."""
+    from bokeh.models import Label
+
+    theta = np.arange(60.0, 121.0, 5.0)
+    marks = [
+        {
+            "claim": c,
+            "axis": "theta0",
+            "paper": x,
+            "ours": x,
+            "other_paper": None,
+            "other_ours": None,
+        }
+        for c, x in (("left_one", 65.0), ("right_one", 118.0))
+    ]
+    p = views.map_view(_angle_map(theta), "theta0", "delta0", "v_out", "t", "fig", marks)
+    labels = {m.text: m for m in _models(p, Label)}
+    assert labels["right_one (paper)"].text_align == "right"
+    assert labels["left_one (paper)"].text_align == "left"

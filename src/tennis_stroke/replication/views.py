@@ -315,10 +315,18 @@ def _mark_line(p, value: float, along_x: bool, who: str, color: str, text: str, 
     p.add_layout(
         Span(location=value, dimension=dimension, line_color=color, line_dash=dash, line_width=2)
     )
-    if along_x:
-        p.add_layout(_mark_label(text, color, x=value, y=edge, y_units="screen"))
+    if along_x:  # in the right half, the label ends at the line (else it is cut)
+        place = {"x_offset": -4, "text_align": "right"} if _right_half(p, value) else {}
+        p.add_layout(_mark_label(text, color, x=value, y=edge, y_units="screen", **place))
     else:
         p.add_layout(_mark_label(text, color, x=40 + edge, y=value, x_units="screen"))
+
+
+def _right_half(p, x: float) -> bool:
+    """Whether ``x`` lies in the right half of ``p``'s x range (False for a range the
+    browser computes)."""
+    start, end = getattr(p.x_range, "start", None), getattr(p.x_range, "end", None)
+    return start is not None and end is not None and x > 0.5 * (start + end)
 
 
 def _mark_point(p, at: tuple[float, float], who: str, color: str, text: str):
@@ -336,8 +344,7 @@ def _mark_point(p, at: tuple[float, float], who: str, color: str, text: str):
         line_width=2.5,
     )
     offset = 6 if who == "paper" else -16
-    start, end = getattr(p.x_range, "start", None), getattr(p.x_range, "end", None)
-    right = start is not None and end is not None and at[0] > 0.5 * (start + end)
+    right = _right_half(p, at[0])
     place = {"x_offset": -8, "text_align": "right"} if right else {"x_offset": 8}
     p.add_layout(_mark_label(text, color, x=at[0], y=at[1], y_offset=offset, **place))
     return glyph
