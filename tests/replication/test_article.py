@@ -100,3 +100,8 @@ def test_a_scenario_s_article_is_an_exploration_never_a_replication(tiny_scenari
         assert claim["id"].replace("_", "") in text.replace("_", "").replace(" ", ""), claim["id"]
     images = [i for page in pypdf.PdfReader(out).pages for i in page.images]
     assert len(images) == len(comparisons) > 0
+    # each comparison on a landscape page (its three panels were about 2 pt type at
+    # portrait width), and every value with its unit
+    shown = [page for page in pypdf.PdfReader(out).pages if page.images]
+    assert all(float(p.mediabox.width) > float(p.mediabox.height) for p in shown)
+    assert "km/h" in text and "((" not in text
