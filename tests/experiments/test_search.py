@@ -12,6 +12,7 @@ from tennis_stroke.experiments.search import (
     first_crossing,
     maximize,
     stacked,
+    step_bound,
 )
 from tennis_stroke.solver.settings import SolverSettings
 from tennis_stroke.solver.stroke import strike_batch
@@ -54,6 +55,32 @@ def test_maximize_keeps_an_optimum_on_the_edge_and_finds_minima():
     # the minimum of -(x - c)^2 is at the end farthest from c; the value is not negated
     assert low.x[:, 0] == pytest.approx([100.0, 0.0, 0.0], abs=1e-3)
     assert low.value == pytest.approx(-((low.x[:, 0] - centres[:, 0]) ** 2))
+
+
+def _ridge(points, index):
+    """A narrow diagonal ridge rising to (97, 97): from the coarse grid's best corner
+    (100, 100), the compass search climbs it in hundreds of small steps."""
+    x, y = points[..., 0], points[..., 1]
+    return -100.0 * (x - y) ** 2 - (x - 97.0) ** 2
+
+
+def test_a_long_climb_converges_and_a_search_still_moving_is_named():
+    """A whole climb (542 steps here) is not cut short (the Figs. 5-6 searches at
+    C1 = -10 N m took up to about 3900 and were stopped at 200): the search's bound is
+    the lattice points it can visit; a search stopped while it still moves says how
+    many are."""
+    box = ([0.0, 0.0], [100.0, 100.0], [50.0, 50.0], [1e-3, 1e-3])
+    best = maximize(_ridge, 1, *box)
+    assert best.x[0] == pytest.approx([97.0, 97.0], abs=0.1)  # on the ridge, near its top
+    with pytest.raises(RuntimeError, match=r"in 200 steps \(1 of 1 searches still moving\)"):
+        maximize(_ridge, 1, *box, max_iterations=200)
+
+
+def test_the_step_bound_counts_the_lattice_points_of_every_step_size():
+    # h = 2.5 over a width of 10: 5 points; h = 1.25: 9; h = 0.625 is below the tolerance
+    assert step_bound(np.array([10.0]), np.array([2.5]), np.array([1.0])) == 5 + 9 + 1
+    # a second axis of one point (no step) multiplies nothing
+    assert step_bound(np.array([10.0, 0.0]), np.array([2.5, 0.0]), np.array([1.0, 1.0])) == 15
 
 
 def test_a_periodic_axis_wraps_around():

@@ -57,6 +57,22 @@ def _worst(values: np.ndarray) -> np.ndarray:
     return np.where(np.isfinite(values), values, -np.inf)
 
 
+def step_bound(extent: np.ndarray, first: np.ndarray, tolerances: np.ndarray) -> int:
+    """The most steps a compass search can take: at each step size ``h`` (``first``,
+    halved until every axis is at most its tolerance) it moves to a strictly better
+    point of the lattice of spacing ``h`` over the box (``extent`` per axis: its width,
+    or a periodic axis's period) or halves, so it visits each lattice point at most once.
+    A search with a deterministic objective ends before it; one still moving after it
+    is a fault, stopped with an error."""
+    h, total = np.asarray(first, float).copy(), 0
+    while np.any(h > tolerances):
+        with np.errstate(divide="ignore"):
+            points = np.where(h > 0, np.floor(extent / np.where(h > 0, h, 1.0)) + 1, 1)
+        total += int(np.prod(points))
+        h *= 0.5
+    return total + 1
+
+
 def maximize(
     objective: Objective,
     problems: int,
@@ -65,7 +81,7 @@ def maximize(
     steps: Sequence[float],
     tolerances: Sequence[float],
     sign: float = 1.0,
-    max_iterations: int = 200,
+    max_iterations: int | None = None,
     periods: Sequence[float | None] | None = None,
 ) -> Optimum:
     """The maximum of ``sign * objective`` of each of ``problems`` problems over the box
@@ -81,7 +97,8 @@ def maximize(
     the box stays there.  ``periods``: per axis, None or the period of a periodic axis
     (an angle over a full turn, ``upper - lower`` equal to it): its grid leaves out
     ``upper`` (the same point as ``lower``) and the compass search wraps around,
-    returning values in ``[lower, upper)``.
+    returning values in ``[lower, upper)``.  ``max_iterations``: the steps after which a
+    search still moving is an error; None, the most it can take (:func:`step_bound`).
     """
     lo, hi = np.asarray(lower, float), np.asarray(upper, float)
     steps, tol = np.asarray(steps, float), np.asarray(tolerances, float)
@@ -115,6 +132,8 @@ def maximize(
         h[done] = 0.0  # the compass search takes the maxima on the edges only
         evaluations += count[2]
     offsets = np.concatenate([np.eye(dims), -np.eye(dims)])  # (2 dims, dims)
+    if max_iterations is None:  # the search's own bound: only a fault reaches it
+        max_iterations = step_bound(np.where(wrap, period, hi - lo), 0.5 * spacing, tol)
     for _ in range(max_iterations):
         active = np.flatnonzero(np.any(h > tol, axis=1) & np.isfinite(v))
         if active.size == 0:
@@ -130,7 +149,11 @@ def maximize(
         v[moved] = tv[gain, j[gain]]
         h[active[~gain]] *= 0.5
     else:
-        raise RuntimeError(f"the compass search did not converge in {max_iterations} steps")
+        moving = int(np.sum(np.any(h > tol, axis=1) & np.isfinite(v)))
+        raise RuntimeError(
+            f"the compass search did not converge in {max_iterations} steps "
+            f"({moving} of {problems} searches still moving)"
+        )
     value = np.where(np.isfinite(v), sign * v, np.nan)
     return Optimum(x, value, evaluations)
 
