@@ -756,6 +756,7 @@ def _whatif(args: argparse.Namespace) -> int:
 
     import yaml
 
+    from .io.config_files import ConfigFileError
     from .io.interrupts import run_forwarding
     from .pipeline.config_check import load_schema
     from .pipeline.scenarios import (
@@ -780,7 +781,10 @@ def _whatif(args: argparse.Namespace) -> int:
                 "replace its overrides and its files; give the new scenario another name "
                 "(or change the declaration)"
             )
-        top_level = load_schema(SCHEMA_FILE).get("properties", {})
+        try:
+            top_level = load_schema(SCHEMA_FILE).get("properties", {})
+        except (OSError, ConfigFileError) as exc:
+            raise ScenarioError(f"{SCHEMA_FILE}: {exc}") from None
         overrides = override_from(args.set, top_level) if args.set else None
         if overrides is None and args.name in others:
             raise ScenarioError(others[args.name])

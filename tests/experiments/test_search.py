@@ -81,6 +81,10 @@ def test_the_step_bound_counts_the_lattice_points_of_every_step_size():
     assert step_bound(np.array([10.0]), np.array([2.5]), np.array([1.0])) == 5 + 9 + 1
     # a second axis of one point (no step) multiplies nothing
     assert step_bound(np.array([10.0, 0.0]), np.array([2.5, 0.0]), np.array([1.0, 1.0])) == 15
+    # 0.6 / 0.05 is 11.999999999999998: still 13 points, not 12
+    assert step_bound(np.array([0.6]), np.array([0.05]), np.array([0.04])) == 13 + 1
+    # a bound beyond 64 bits is a Python int, not an overflow
+    assert step_bound(np.array([1.0] * 3), np.array([0.5] * 3), np.array([1e-30] * 3)) > 2**64
 
 
 def test_a_periodic_axis_wraps_around():

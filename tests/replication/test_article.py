@@ -105,3 +105,4 @@ def test_a_scenario_s_article_is_an_exploration_never_a_replication(tiny_scenari
     shown = [page for page in pypdf.PdfReader(out).pages if page.images]
     assert all(float(p.mediabox.width) > float(p.mediabox.height) for p in shown)
     assert "km/h" in text and "((" not in text
+    assert "); ours under the scenario" in text  # typst swallowed a ';' after a value

@@ -57,7 +57,7 @@ def test_the_difference_is_scenario_minus_paper_on_colours_centred_on_zero():
         np.asarray(mesh.get_array()).reshape(2, 3), [[1, 0, 0], [0, -3, 0]]
     )
     assert mesh.get_clim() == (-3.0, 3.0)  # symmetric: white is no change
-    assert fig.axes[1].get_ylabel() == "scenario \u2212 paper (km/h)"
+    assert fig.axes[1].get_ylabel() == "scenario \u2212 paper's configuration (km/h)"
     plt.close(fig)
 
 
@@ -67,6 +67,12 @@ def test_a_variable_the_scenario_does_not_move_is_said_not_drawn_as_zeros():
     fig = difference_figure(paper, paper.copy(deep=True), ["v_out"], "t")
     (text,) = fig.axes[0].texts
     assert "the same under both" in text.get_text() and not fig.axes[0].collections
+    plt.close(fig)
+    # a value missing on one side only (a failed stroke) is not "the same"
+    scenario = paper.copy(deep=True)
+    scenario["v_out"][0, 0] = np.nan
+    fig = difference_figure(paper, scenario, ["v_out"], "t")
+    assert not fig.axes[0].texts and fig.axes[0].collections
     plt.close(fig)
 
 

@@ -176,6 +176,8 @@ def test_an_override_is_described_with_the_papers_value_and_unit():
     assert describe("torque_delay.L1", 0.4, 0.5, (), STATED) == (
         "torque_delay.L1 = 0.5 m (paper: 0.4 m)"
     )
+    # a model value set back to its default (canonical leaves it out: new is None)
+    assert describe("model.M2", 0.35, None, (), STATED) == "model.M2 = 0.3 kg (config: 0.35 kg)"
     # a key the paper does not state is config.yaml's (it said "paper: 0.25" of our grid)
     assert describe("angle_maps.theta0.step", 0.25, 1.0, (), STATED) == (
         "angle_maps.theta0.step = 1 (config: 0.25)"
@@ -428,6 +430,8 @@ def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
         # a bare name that is nothing gets the closest names (it went to the top level)
         (["whatif", "x", "--set", "M22=0.35", "-n"], "'M22' is no model parameter"),
         (["whatif", "x", "--set", "M22=0.35", "-n"], "(did you mean M2?)"),
+        # an override that is the value already: nothing to compute (it ran 40 jobs)
+        (["whatif", "x", "--set", "M2=0.3", "-n"], "changes nothing of the paper's"),
         # a message keeps its closing quote
         (["whatif", "x", "--set", "M2=abc", "-n"], "got 'abc'\n"),
         # a bad value: one line, not Snakemake's log and exit 1

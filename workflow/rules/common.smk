@@ -28,7 +28,7 @@ from tennis_stroke.experiments.specs import (
 )
 from tennis_stroke.inference.claims import claim_errors, load_claims
 from tennis_stroke.inference.reading_space import ReadingSpaceError, load_reading_space
-from tennis_stroke.inference.paper_config import load_paper_inputs
+from tennis_stroke.inference.paper_config import PaperConfigError, load_paper_inputs
 from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,
@@ -101,7 +101,11 @@ config.update(_canonical)
 FITTED = READING_SPACE.fitted()
 # The config keys the paper states (config/claims.yaml's inputs): a scenario's change of
 # any other key names its old value config.yaml's, not the paper's.
-STATED = [item["key"] for item in load_paper_inputs("config/claims.yaml")]
+try:
+    STATED = [item["key"] for item in load_paper_inputs("config/claims.yaml")]
+except PaperConfigError as _exc:
+    sys.stderr.write(f"tennis-stroke claims error: {_exc}\n")
+    sys.exit(1)
 # The what-if scenarios (config/scenarios.yaml and --config scenarios=...), each checked
 # as the paper's configuration is, before any job: their configurations by name.  A bad
 # scenario never stops the paper's run: it is named in one warning line, and asking for

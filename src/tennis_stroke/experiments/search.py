@@ -24,6 +24,7 @@ in one batch).
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 
@@ -66,9 +67,9 @@ def step_bound(extent: np.ndarray, first: np.ndarray, tolerances: np.ndarray) ->
     is a fault, stopped with an error."""
     h, total = np.asarray(first, float).copy(), 0
     while np.any(h > tolerances):
-        with np.errstate(divide="ignore"):
-            points = np.where(h > 0, np.floor(extent / np.where(h > 0, h, 1.0)) + 1, 1)
-        total += int(np.prod(points))
+        # ceil: an extent of 12 steps may divide to 11.999999999999998
+        points = np.where(h > 0, np.ceil(extent / np.where(h > 0, h, 1.0)) + 1, 1)
+        total += math.prod(int(n) for n in points)  # Python ints: no overflow
         h *= 0.5
     return total + 1
 

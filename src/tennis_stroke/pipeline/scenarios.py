@@ -247,6 +247,11 @@ def scenario_reach(
     except ConfigFileError as exc:
         raise ScenarioError(str(exc)) from None
     config = scenario_config(base, name, overrides, schema)
+    if not changes(base, config):
+        raise ScenarioError(
+            f"scenario {name!r} changes nothing of the paper's configuration (each "
+            "override is the value it has, or a model value's default)"
+        )
     moved = set(changed_results(base, config))
     for figure in figures:
         if not moved & set(FIGURES[figure].files):
@@ -277,9 +282,12 @@ def describe(key: str, old, new, fitted: Collection[str], stated: Collection[str
         spec = PARAMETERS[name]
         if old is None or old == spec.default:
             old, word = spec.default, origin(name, fitted)
+        new = spec.default if new is None else new  # set back to its default
         unit = "" if spec.unit == "1" else f" {spec.unit}"
-    elif section == "model" and name in CHOICES and old in (None, CHOICES[name].default):
-        old, word = CHOICES[name].default, origin(name, fitted)
+    elif section == "model" and name in CHOICES:
+        if old in (None, CHOICES[name].default):
+            old, word = CHOICES[name].default, origin(name, fitted)
+        new = CHOICES[name].default if new is None else new
     elif key in BOUND_KEYS:  # a value a row puts into the model: its parameter's unit
         spec = PARAMETERS[BOUND_KEYS[key]]
         unit = "" if spec.unit == "1" else f" {spec.unit}"

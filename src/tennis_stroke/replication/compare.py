@@ -81,7 +81,7 @@ def difference_figure(
     for ax, name in zip(axes, variables, strict=True):
         a, b = valid_values(paper, name), valid_values(scenario, name)
         units = a.attrs.get("units", "")
-        label = f"scenario \u2212 paper ({units})"
+        label = f"scenario \u2212 paper's configuration ({units})"
         ax.set_title(f"{name}: {a.attrs.get('long_name', name)}", fontsize=8)
         if not same_grid(a, b):
             ax.text(0.5, 0.5, f"{name}: the grids differ\n(no difference drawn)", ha="center")
@@ -89,11 +89,12 @@ def difference_figure(
             continue
         diff = (b - a).squeeze()
         diff.attrs = a.attrs
-        if np.isfinite(diff).any() and not np.nanmax(np.abs(diff.values)):
+        same = np.array_equal(np.isnan(a.values), np.isnan(b.values))  # failures too
+        if same and np.isfinite(diff).any() and not np.nanmax(np.abs(diff.values)):
             ax.text(  # a flat zero panel would look like a drawing of a change
                 0.5,
                 0.5,
-                f"{name}: the same under both\nconfigurations (scenario \u2212 paper = 0)",
+                f"{name}: the same under both\nconfigurations (the difference is 0)",
                 ha="center",
                 va="center",
                 transform=ax.transAxes,
