@@ -76,7 +76,7 @@ def test_a_missing_input_is_one_line(tmp_path):
 def test_a_scenario_s_article_is_an_exploration_never_a_replication(tiny_scenario, tmp_path):
     """Its changes, the figures it changes against the paper's, and every claim under
     both configurations with the signed change; no verdict, no replication's counts."""
-    from tennis_stroke.replication.article import build_scenario_article
+    from tennis_stroke.replication.scenario_article import build_scenario_article
 
     run, _ = tiny_scenario
     folder = run / "results" / "scenarios" / "strong"

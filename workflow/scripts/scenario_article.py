@@ -1,7 +1,7 @@
 """Write a scenario's article (report/scenarios/NAME/article.pdf) from its results."""
 
 from tennis_stroke.pipeline.jobs import logged
-from tennis_stroke.replication.article import build_scenario_article
+from tennis_stroke.replication.scenario_article import build_scenario_article
 
 with logged(snakemake.log[0]):
     build_scenario_article(

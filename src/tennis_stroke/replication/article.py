@@ -8,7 +8,7 @@ record and the result files' provenance (commit, lock).  The text around them is
 template ``templates/article.typ``, typeset by the Typst compiler (the ``typst`` wheel:
 no LaTeX).  The template reads the numbers from a JSON file as data, never as markup, so
 no text from a file can change the layout.  A missing or unreadable input is one line
-(:class:`~tennis_stroke.replication.report.ReportInputError`).
+(:class:`~tennis_stroke.replication.formats.ReportInputError`).
 """
 
 from __future__ import annotations
@@ -29,12 +29,11 @@ from ..io.config_files import load_yaml
 from ..io.netcdf import load_result
 from ..model.params import READINGS
 from .claims import ClaimsTableError, read_table
+from .formats import ReportInputError, _number, _timings
 from .registry import FIGURES
-from .report import ReportInputError, _number, _timings
 
 #: The article's template (Typst), beside the report's templates, and a scenario's.
 TEMPLATE = Path(__file__).parent / "templates" / "article.typ"
-SCENARIO_TEMPLATE = Path(__file__).parent / "templates" / "scenario_article.typ"
 #: The replicated article.
 ORIGINAL = {
     "authors": "Sun-Hyun Youn",
@@ -238,44 +237,6 @@ def _typeset(template: Path, data: Mapping, images: Sequence[str], output_pdf: s
         pdf = typst.compile(str(work / template.name), root=str(work))
     Path(output_pdf).parent.mkdir(parents=True, exist_ok=True)
     Path(output_pdf).write_bytes(pdf)
-
-
-def build_scenario_article(
-    scenario: Mapping,
-    comparisons: Sequence[str],
-    claims_csv: str,
-    claims_yaml: str,
-    output_pdf: str,
-    paper_claims_csv: str = "results/claims.csv",
-) -> None:
-    """Write scenario ``scenario``'s article (``{name, changes}``; ``comparisons``: the
-    PNGs of the figures it changes against the paper's): an exploration beside the
-    paper, never a replication: its changes, the figures and every claim under both
-    configurations, the change signed."""
-    from .scenario_report import _paper_table, claim_rows
-
-    _require(claims_csv, claims_yaml, *comparisons)
-    ids = [c["id"] for c in load_claims(claims_yaml)]
-    try:
-        table = read_table(claims_csv, ids)
-    except ClaimsTableError as exc:
-        raise ReportInputError(str(exc)) from None
-    paper, note = _paper_table(paper_claims_csv, ids)
-    rows = claim_rows(table, paper)
-    name = str(scenario["name"])
-    data = {
-        "title": f"What if {name}: an exploration beside the replication",
-        "original": ORIGINAL,
-        "scenario": {"name": name, "changes": [c["text"] for c in scenario["changes"]]},
-        "figures": [
-            {"file": Path(p).name, "title": FIGURES[Path(p).stem].title.split(":")[0]}
-            for p in comparisons
-        ],
-        "rows": [{k: str(v) for k, v in r.items()} for r in rows],
-        "moved": sum(r["moved"] for r in rows),
-        "paper_note": note,
-    }
-    _typeset(SCENARIO_TEMPLATE, data, comparisons, output_pdf)
 
 
 def build_article(

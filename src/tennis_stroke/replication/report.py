@@ -42,6 +42,7 @@ from ..io.netcdf import git_commit, load_result
 from ..model.listing import origin
 from ..model.params import PARAMETERS, READINGS
 from .claims import STATUS_WORDS, ClaimsTableError, consistency_errors, read_table
+from .formats import UNIT_SHORT, ReportInputError, _number, _timings
 from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
 from .marks import mark_values
 from .registry import FIGURES, LIVE
@@ -54,8 +55,6 @@ ENVIRONMENT = jinja2.Environment(
     undefined=jinja2.StrictUndefined,
     trim_blocks=False,
 )
-#: Units as the page prints them beside a number.
-UNIT_SHORT = {"degree": "deg", "1": ""}
 
 
 def _safe(html: str) -> Markup:
@@ -76,14 +75,6 @@ def markdown_html(text: str) -> Markup:
     text = re.sub(r"<!--.*?-->", "", text, flags=re.DOTALL)
     md = MarkdownIt("commonmark", {"html": False}).enable("table")
     return _safe(md.render(text))
-
-
-def _number(value, digits: int = 4) -> str:
-    try:
-        x = float(value)
-    except (TypeError, ValueError):
-        return str(value)
-    return f"{x:.{digits}g}" if pd.notna(x) else "-"
 
 
 def _claim_row(claim: Mapping) -> dict:
@@ -393,30 +384,6 @@ def _validation(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
     }
 
 
-def _timings(directory: Path) -> pd.DataFrame:
-    """Per-job timings, with the time each was measured: jobs of an earlier run (e.g.
-    with other chunk counts) keep their files until ``benchmarks/workflow`` is removed.
-    Every job writes one (a gather's below ``gather_map/``); the scenarios' (below
-    ``scenarios/``, the workflow's scenario folder) are not the paper's run."""
-    rows = []
-    paths = [
-        p for p in directory.rglob("*.tsv") if "scenarios" not in p.relative_to(directory).parts
-    ]
-    for path in sorted(paths):
-        table = pd.read_csv(path, sep="\t")
-        rows.append(
-            {
-                "job": path.relative_to(directory).with_suffix("").as_posix().replace("/", "_"),
-                "wall time (s)": round(float(table["s"].iloc[-1]), 2),
-                "max RSS (MB)": table.get("max_rss", pd.Series([float("nan")])).iloc[-1],
-                "measured (UTC)": datetime.fromtimestamp(path.stat().st_mtime, UTC).isoformat(
-                    timespec="seconds"
-                ),
-            }
-        )
-    return pd.DataFrame(rows)
-
-
 def _failures(results: Sequence[str]) -> pd.DataFrame:
     """Strokes, failed strokes and the failing statuses of every result file; "-" where a
     file records no count of a status (Figs. 5-6 count failed strokes per point only)."""
@@ -505,10 +472,6 @@ def _model_ladder(inference: Mapping[str, str]) -> dict:
         "experiments": _table(experiments_by_rung(ds).round(3), na_rep="-"),
         "claims": _table(claims_by_rung(ds)),
     }
-
-
-class ReportInputError(ValueError):
-    """An input of the report is not one the workflow wrote (one line)."""
 
 
 def _check_image(path: str) -> None:

@@ -1,0 +1,49 @@
+"""What the report, the article and a scenario's page write alike: a number as text, a
+unit's short form, the per-job timings of a run, and the one-line error of an input the
+workflow did not write."""
+
+from __future__ import annotations
+
+from datetime import UTC, datetime
+from pathlib import Path
+
+import pandas as pd
+
+#: Units as the page prints them beside a number.
+UNIT_SHORT = {"degree": "deg", "1": ""}
+
+
+class ReportInputError(ValueError):
+    """An input of the report is not one the workflow wrote (one line)."""
+
+
+def _number(value, digits: int = 4) -> str:
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        return str(value)
+    return f"{x:.{digits}g}" if pd.notna(x) else "-"
+
+
+def _timings(directory: Path) -> pd.DataFrame:
+    """Per-job timings, with the time each was measured: jobs of an earlier run (e.g.
+    with other chunk counts) keep their files until ``benchmarks/workflow`` is removed.
+    Every job writes one (a gather's below ``gather_map/``); the scenarios' (below
+    ``scenarios/``, the workflow's scenario folder) are not the paper's run."""
+    rows = []
+    paths = [
+        p for p in directory.rglob("*.tsv") if "scenarios" not in p.relative_to(directory).parts
+    ]
+    for path in sorted(paths):
+        table = pd.read_csv(path, sep="\t")
+        rows.append(
+            {
+                "job": path.relative_to(directory).with_suffix("").as_posix().replace("/", "_"),
+                "wall time (s)": round(float(table["s"].iloc[-1]), 2),
+                "max RSS (MB)": table.get("max_rss", pd.Series([float("nan")])).iloc[-1],
+                "measured (UTC)": datetime.fromtimestamp(path.stat().st_mtime, UTC).isoformat(
+                    timespec="seconds"
+                ),
+            }
+        )
+    return pd.DataFrame(rows)
