@@ -61,7 +61,7 @@ def _changes(driver, count: int) -> tuple[list[float], list[float]]:
     coarse, full = [], []
     for n in range(count):
         generation = 2 + n
-        t0 = driver.execute_script(SET_JS, "model.M2", round(0.301 + 0.001 * n, 3))
+        t0 = driver.execute_script(SET_JS, "model.M2", f"{0.301 + 0.001 * n:.3f}")
 
         def arrived(generation=generation):
             maps = driver.execute_script(MAPS_JS)

@@ -85,7 +85,7 @@ def settle(session, seconds=60.0):
 def test_a_change_shows_the_strokes_at_the_new_setting(shared):
     session = app.Session(shared, Document())
     settle(session)
-    session.widgets["model.M2"].value = 0.35
+    session.widgets["model.M2"].value = "0.35"
     settle(session)
     data = session.map_source.data
     assert data["level"] == ["full"] and data["generation"] == [2]
@@ -140,16 +140,16 @@ def test_a_value_out_of_bounds_is_refused_and_the_old_kept(shared):
     session = app.Session(shared, Document())
     settle(session)
     before = session.generation["all"]
-    session.widgets["model.M2"].value = -1.0
-    assert session.widgets["model.M2"].value == 0.3
-    assert "M2: -1.0 is outside" in session.error.text
+    session.widgets["model.M2"].value = "-1.0"
+    assert session.widgets["model.M2"].value == "0.3"
+    assert "M2: -1 is outside" in session.error.text and "kept 0.3" in session.error.text
     assert session.generation["all"] == before  # nothing recomputed
 
 
 def test_failed_strokes_show_as_failed_never_as_numbers(shared):
     session = app.Session(shared, Document())
     settle(session)
-    session.widgets["model.C1"].value = -25.0  # the elbow torque backwards
+    session.widgets["model.C1"].value = "-25"  # the elbow torque backwards
     settle(session)
     data = session.map_source.data
     failed = data["status"][0] != 0
@@ -167,11 +167,11 @@ def test_a_failing_stage_is_one_line_and_the_next_change_computes(shared, monkey
 
     with monkeypatch.context() as m:
         m.setattr(explorer, "fig9_curve", broken)
-        session.widgets["model.M2"].value = 0.4
+        session.widgets["model.M2"].value = "0.4"
         settle(session)
     assert session.error.text == "RuntimeError: the solver broke"
     assert session.map_source.data["level"] == ["coarse"]  # the stage before it was shown
-    session.widgets["model.M2"].value = 0.41
+    session.widgets["model.M2"].value = "0.41"
     settle(session)
     assert session.error.text == "" and session.map_source.data["level"] == ["full"]
 
@@ -190,7 +190,7 @@ def test_ten_rapid_changes_compute_the_last_and_pile_up_nothing(shared, monkeypa
     monkeypatch.setattr(explorer, "map_level", counted)
     threads = threading.active_count()
     for n in range(10):
-        session.widgets["model.M2"].value = 0.31 + 0.01 * n
+        session.widgets["model.M2"].value = f"{0.31 + 0.01 * n:.2f}"
     assert sum(session._queued.values()) <= 1  # one request waits, whatever the burst
     settle(session)
     assert threading.active_count() <= threads + 1
@@ -202,15 +202,15 @@ def test_ten_rapid_changes_compute_the_last_and_pile_up_nothing(shared, monkeypa
 def test_reset_returns_every_control_to_the_default_reading(shared):
     session = app.Session(shared, Document())
     settle(session)
-    session.widgets["model.M2"].value = 0.35
+    session.widgets["model.M2"].value = "0.35"
     session.widgets["model.inertia"].value = "paper_text"
     session.widgets["solver.rtol"].value = "1e-06"
     settle(session)
     session._reset()
     settle(session)
     for control in session.controls:
-        assert str(session.widgets[control.key].value) == str(
-            control.paper if control.choices else float(control.paper)
+        assert session.widgets[control.key].value == (
+            control.paper if control.choices else app.number_text(control.paper)
         )
     assert explorer.overrides(shared.config, session.values) == {}
 
@@ -234,7 +234,7 @@ def test_a_picked_point_plays_its_stroke(shared):
 def test_saving_the_settings_declares_a_scenario(shared):
     session = app.Session(shared, Document())
     settle(session)
-    session.widgets["model.M2"].value = 0.35
+    session.widgets["model.M2"].value = "0.35"
     session.scenario_name.value = "from_the_explorer"
     session._save()
     assert "saved scenario <code>from_the_explorer</code>" in session.saved.text
@@ -286,8 +286,11 @@ def test_a_value_the_widgets_do_not_offer_is_refused_on_the_server(shared):
     cases = [
         (choice, "1e-300", "is not one of"),
         (choice, "<img src=x onerror=alert(1)>", "&lt;img src=x onerror=alert(1)&gt;"),
-        (number, float("nan"), "is not a finite number"),  # Bokeh refuses a string itself
-        (number, -1.0, "is outside"),
+        (number, "nan", "is not a number"),
+        (number, "inf", "is not a number"),
+        (number, "1e400", "is not a finite number"),
+        (number, "-1", "is outside"),
+        (number, "<img src=x onerror=alert(1)>", "&lt;img src=x onerror=alert(1)&gt;"),
     ]
     for control, value, words in cases:
         kept = session.widgets[control.key].value
@@ -295,7 +298,7 @@ def test_a_value_the_widgets_do_not_offer_is_refused_on_the_server(shared):
         assert session.widgets[control.key].value == kept, (control.key, value)
         assert words in session.error.text and "<img" not in session.error.text, value
     assert session.generation["all"] == before  # nothing recomputed
-    session.widgets["model.M2"].value = 0.31
+    session.widgets["model.M2"].value = "0.31"
     assert session.error.text == ""
 
 
@@ -308,3 +311,74 @@ def test_text_from_a_user_is_escaped_in_the_page(shared, monkeypatch):
     assert "<script>" not in session.saved.text and "&lt;script&gt;" in session.saved.text
     session._show_error("ValueError: <b>bold</b>")
     assert session.error.text == "ValueError: &lt;b&gt;bold&lt;/b&gt;"
+
+
+@pytest.mark.parametrize(
+    "text, value",
+    [
+        ("4000", 4000.0),
+        (" 0.35 ", 0.35),
+        ("0,35", 0.35),
+        (".5", 0.5),
+        ("3.", 3.0),
+        ("1e-5", 1e-5),
+        ("2.5E3", 2500.0),
+        ("-10", -10.0),
+        ("\u221210.5", -10.5),
+        ("+7", 7.0),
+    ],
+)
+def test_a_number_is_read_as_a_person_types_it(text, value):
+    assert app.read_number(text) == value
+
+
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        ("", "no value"),
+        ("78004000x", "is not a number"),
+        ("0.3.5", "is not a number"),
+        ("1_000", "is not a number"),
+        ("7,800", "ambiguous"),
+        ("1,5,0", "is not a number"),
+        ("nan", "is not a number"),
+        ("1e999", "is not a finite number"),
+        ("0x10", "is not a number"),
+    ],
+)
+def test_what_is_not_a_number_is_named(text, words):
+    with pytest.raises(ValueError, match=words):
+        app.read_number(text)
+
+
+def test_a_field_computes_with_the_value_typed_and_never_rewrites_it(shared, monkeypatch):
+    """The field's text is what the server computes with: '0,35' computes at 0.35 and
+    the field keeps '0,35' (the page echoed each keystroke back reformatted, and
+    '78004000' was computed when '4000' was typed over a selection)."""
+    session = app.Session(shared, Document())
+    settle(session)
+    seen = []
+    real = explorer.map_level
+    monkeypatch.setattr(
+        explorer,
+        "map_level",
+        lambda config, *a, **k: seen.append(config["model"]["M2"]) or real(config, *a, **k),
+    )
+    session.widgets["model.M2"].value = "0,35"
+    settle(session)
+    assert session.widgets["model.M2"].value == "0,35" and session.values["model.M2"] == 0.35
+    assert set(seen) == {0.35} and session.error.text == ""
+    session.widgets["model.M2"].value = "0.3x"
+    assert session.widgets["model.M2"].value == "0.35" and "'0.3x' is not a number" in (
+        session.error.text
+    )
+
+
+def test_the_page_names_the_values_it_computed_with(shared):
+    session = app.Session(shared, Document())
+    settle(session)
+    assert session.setting.text == "computed with the paper's setting"
+    session.widgets["model.M2"].value = "0,35"
+    session.widgets["model.k_contact"].value = "4e3"
+    settle(session)
+    assert session.setting.text == "computed with M2 = 0.35 kg; k_contact = 4000 N/m"

@@ -17,6 +17,7 @@ from chromium import CHROMIUM, DRIVER, MISSING, POSITION_JS, chromium, wait_idle
 from conftest import ROOT
 
 from tennis_stroke.io.config_files import load_yaml
+from tennis_stroke.live import app
 from tennis_stroke.live import server as server_module
 from tennis_stroke.replication import explorer
 from tennis_stroke.solver.stroke import strike_batch
@@ -113,7 +114,7 @@ def page_map(driver) -> np.ndarray:
 def test_a_moved_control_shows_the_solver_s_strokes_at_the_new_setting(server, browser):
     folder, port = server
     open_page(browser, port)
-    browser.execute_script(SET_JS, "model.M2", 0.35)
+    browser.execute_script(SET_JS, "model.M2", "0.35")
     maps = wait_map(browser, 2)  # the session's first request is the page's own (1)
     assert [m["level"] for m in maps if m["generation"] == 2] == ["coarse", "full"]
     shown = page_map(browser)
@@ -270,31 +271,124 @@ def test_outside_a_checkout_the_explorer_says_where_to_run_it(tmp_path):
     )
 
 
-#: The text input of the spinner named arguments[0].
+#: The text input of the number field named arguments[0].
 INPUT_JS = """
 const m = Bokeh.documents[0].get_model_by_name(arguments[0]);
 const stack = [...Bokeh.index.roots];
 while (stack.length) {
   const v = stack.pop();
-  if (v.model === m) return v.shadow_el.querySelector("input");
+  if (v.model === m) {
+    v.el.scrollIntoView({block: "center"});
+    return v.shadow_el.querySelector("input");
+  }
   stack.push(...(v.child_views ?? []));
 }
 return null;
 """
+#: The text of the Div named arguments[0].
+TEXT_JS = "return Bokeh.documents[0].get_model_by_name(arguments[0]).text"
+
+
+def type_over(browser, name: str, text: str, end: str) -> None:
+    """Select the field's text as a person does (Ctrl+A) and type ``text``, then ``end``."""
+    from selenium.webdriver.common.action_chains import ActionChains
+    from selenium.webdriver.common.keys import Keys
+
+    field = browser.execute_script(INPUT_JS, name)
+    field.click()  # keys go to the focused field (an element's send_keys moves the caret)
+    keys = ActionChains(browser).key_down(Keys.CONTROL).send_keys("a").key_up(Keys.CONTROL)
+    for key in text:
+        keys.send_keys(key)
+    keys.perform()
+    assert field.get_attribute("value") == text, name  # never rewritten while typed
+    ActionChains(browser).send_keys(end).perform()
+
+
+def wait_text(browser, name: str, words: str, seconds: float = 60.0) -> str:
+    end = time.monotonic() + seconds
+    while time.monotonic() < end:
+        text = browser.execute_script(TEXT_JS, name)
+        if words in text:
+            return text
+        time.sleep(0.05)
+    raise AssertionError(f"{name} never said {words!r}: {text!r}")
+
+
+def typed_values(controls):
+    """For every number control, an in-bounds value near the paper's and the text a
+    person might type for it: an integer, a decimal, an exponent, a decimal comma, a minus
+    (typographic or not), in turn."""
+    out = []
+    for n, control in enumerate(c for c in controls if not c.choices):
+        paper = float(control.paper)
+        value = round(paper * 1.1, 6) if paper else 1.0
+        if control.high is not None and value > control.high:
+            value = round(paper * 0.9, 6)
+        kind = n % 5
+        if kind == 0:
+            value = float(round(value))
+            value = value + 1 if value == paper else value
+            text = f"{value:.0f}"
+        elif kind == 1:
+            text = f"{value:.6f}".rstrip("0")
+        elif kind == 2:
+            text = f"{value:.4e}"
+            value = float(text)
+        elif kind == 3:
+            text = f"{value:.6f}".rstrip("0").replace(".", ",")
+        else:
+            value = -value if control.low is None or control.low < -value else value
+            text = f"{value:.6f}".rstrip("0").replace("-", "\u2212")
+        assert control.low is None or value >= control.low, control.key
+        out.append((control, text, value))
+    return out
 
 
 @pytest.mark.browser
 @browser_needed
-def test_a_value_out_of_bounds_cannot_be_typed(server, browser):
+def test_every_number_field_computes_with_what_is_typed_over_its_text(server, browser):
+    """Typing '4000' over k_contact's selected 7800 left '78004000' in the field and
+    computed with it, and each keystroke came back reformatted: every number field takes
+    the text typed over its selection (an integer, a decimal, an exponent, a comma, a
+    minus), applied on Enter or on leaving the field, and the server computes with
+    exactly those values (the page's 'computed with' line, from the config it solved)."""
+    from selenium.webdriver.common.keys import Keys
+
+    folder, port = server
+    open_page(browser, port)
+    wait_map(browser, 1)
+    shared_controls = explorer.controls(load_yaml(folder / "config" / "config.yaml"), "fig2")
+    typed = typed_values(shared_controls)
+    assert len(typed) > 20
+    for n, (control, text, _) in enumerate(typed):
+        type_over(browser, control.key, text, Keys.ENTER if n % 2 else Keys.TAB)
+    said = wait_text(browser, "explore-setting", typed[-1][0].label + " = ")
+    for control, text, value in typed:
+        shown = browser.execute_script(INPUT_JS, control.key).get_attribute("value")
+        assert shown == text, (control.key, shown)  # what was typed stays as typed
+        unit = f" {control.unit}" if control.unit not in ("", "1") else ""
+        assert f"{control.label} = {app.number_text(value)}{unit}" in said, (control.key, said)
+    assert browser.execute_script(TEXT_JS, "explore-error") == ""
+
+
+@pytest.mark.browser
+@browser_needed
+def test_a_value_typed_wrongly_is_refused_and_the_field_restored(server, browser):
+    """Out of bounds (the spinner clamped it silently) or not a number: the error line
+    names it, the field shows the value in use again, nothing is recomputed."""
     from selenium.webdriver.common.keys import Keys
 
     _, port = server
     open_page(browser, port)
-    field = browser.execute_script(INPUT_JS, "model.restitution")
-    field.send_keys(Keys.END + Keys.BACKSPACE * 12 + "2" + Keys.ENTER)
-    time.sleep(1.0)
-    value = "return Bokeh.documents[0].get_model_by_name('model.restitution').value"
-    assert browser.execute_script(value) == 1  # the spinner's upper bound
+    wait_map(browser, 1)
+    for text, words in (("2", "2 is outside [0.01, 1]"), ("0.9.5", "'0.9.5' is not a number")):
+        type_over(browser, "model.restitution", text, Keys.ENTER)
+        wait_text(browser, "explore-error", words)
+        field = browser.execute_script(INPUT_JS, "model.restitution")
+        end = time.monotonic() + 10
+        while field.get_attribute("value") != "1" and time.monotonic() < end:
+            time.sleep(0.05)
+        assert field.get_attribute("value") == "1"
     assert not any(m["generation"] >= 2 for m in browser.execute_script(MAPS_JS))
 
 
@@ -309,17 +403,20 @@ while (stack.length) {
   const r = v.el.getBoundingClientRect();
   const box = [r.left, r.top, r.right, r.bottom];
   const root = v.shadow_el ?? v.el.shadowRoot ?? v.el;
-  if (["Spinner", "Select", "TextInput", "Button"].includes(type)) {
+  if (["Select", "TextInput", "Button"].includes(type)) {
     const label = root.querySelector("label");
     const cut = label ? label.scrollWidth > label.clientWidth + 1 : false;
     out.push({type, name: v.model.name, box, cut, text: label ? label.innerText : ""});
   } else if (type === "Figure" || type === "Plot") {
     out.push({type: "plot", name: v.model.name, box, cut: false, text: ""});
   } else if (type === "DataTable") {
-    const cut = [...root.querySelectorAll(".slick-header-column")].filter(
+    const headers = [...root.querySelectorAll(".slick-header-column")];
+    const cut = headers.filter(
       (c) => c.querySelector(".slick-column-name").scrollWidth > c.clientWidth + 1
     ).map((c) => c.innerText);
-    out.push({type, name: v.model.name, box, cut: cut.length > 0, text: cut.join(", ")});
+    const hidden = headers.filter((c) => c.getBoundingClientRect().right > r.right + 1)
+      .map((c) => c.innerText);
+    out.push({type, name: v.model.name, box, cut: cut.length > 0, text: cut.join(", "), hidden});
   }
   stack.push(...(v.child_views ?? []));
 }
@@ -347,7 +444,7 @@ def test_the_page_is_laid_out_for_a_person(server, width):
     finally:
         driver.quit()
     items = layout["items"]
-    widgets = [i for i in items if i["type"] in ("Spinner", "Select", "TextInput", "Button")]
+    widgets = [i for i in items if i["type"] in ("Select", "TextInput", "Button")]
     assert len(widgets) > 20
     visible = [w for w in widgets if w["box"][3] > w["box"][1]]
     for i, a in enumerate(visible):
@@ -358,5 +455,8 @@ def test_the_page_is_laid_out_for_a_person(server, width):
         assert plot["box"][2] <= layout["width"], plot["name"]
     (table,) = [i for i in items if i["type"] == "DataTable"]
     assert not table["cut"], table["text"]
+    assert table["box"][2] <= layout["width"]
+    # the values are in view (at 1280 px 'here' was cut); the descriptions say they scroll
+    assert all(h.startswith("quantity (the table scrolls") for h in table["hidden"]), table
     (save,) = [w for w in widgets if w["name"] == "explore-save"]
     assert 0 <= save["box"][1] and save["box"][3] <= layout["height"]

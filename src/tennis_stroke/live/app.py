@@ -22,6 +22,7 @@ saying so, and no session.
 from __future__ import annotations
 
 import html
+import re
 import threading
 import time
 from collections.abc import Callable, Mapping
@@ -41,7 +42,6 @@ from bokeh.models import (
     Div,
     NumberFormatter,
     Select,
-    Spinner,
     TableColumn,
     TextInput,
 )
@@ -174,6 +174,35 @@ def _first_line(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {text[0] if text else ''}"
 
 
+#: A number as a person types it: an optional sign, digits with a decimal point or a
+#: decimal comma, an optional exponent ("7800", "-0.5", "0,35", ".3", "1e-5", "2E3").
+_NUMBER = re.compile(r"[-+]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][-+]?\d+)?")
+#: A comma that may separate thousands ("7,800"): read neither way.
+_THOUSANDS = re.compile(r"[-+]?[1-9]\d{0,2},\d{3}")
+
+
+def read_number(text: str) -> float:
+    """The number a person typed in a field (surrounding spaces and a typographic minus
+    allowed, a decimal comma read as a point); a ValueError naming why for anything
+    else, and for a comma that may separate thousands ("7,800")."""
+    if not isinstance(text, str):
+        raise ValueError(f"{text!r} is not a number")
+    typed = text.strip().replace("\u2212", "-")
+    if not _NUMBER.fullmatch(typed):
+        raise ValueError(f"{text.strip()!r} is not a number" if typed else "no value")
+    if _THOUSANDS.fullmatch(typed):
+        raise ValueError(f"{typed!r} is ambiguous: write it without the comma or with a point")
+    value = float(typed.replace(",", "."))
+    if not np.isfinite(value):
+        raise ValueError(f"{typed!r} is not a finite number")
+    return value
+
+
+def number_text(value: float) -> str:
+    """A number control's text: the shortest that reads back as ``value``."""
+    return repr(float(value)).removesuffix(".0") if float(value).is_integer() else repr(value)
+
+
 def refusal(control: explorer.Control, value) -> str | None:
     """Why ``value`` cannot be ``control``'s (a one-line reason; "" for no value at all),
     or None: a choice must be one of the control's, a number finite and within its
@@ -189,7 +218,7 @@ def refusal(control: explorer.Control, value) -> str | None:
     if (control.low is not None and value < control.low) or (
         control.high is not None and value > control.high
     ):
-        return f"{value} is outside [{control.low}, {control.high}]"
+        return f"{number_text(value)} is outside [{control.low}, {control.high}]"
     return None
 
 
@@ -247,6 +276,9 @@ class Session:
         self.curve.width = CURVE_WIDTH
         views_width = MAP_WIDTH + CURVE_WIDTH
         self.status = Div(text="", name="explore-status", width=views_width)
+        self.setting = Div(
+            text="computed with the paper's setting", name="explore-setting", width=views_width
+        )
         self.error = Div(
             text="",
             name="explore-error",
@@ -258,7 +290,6 @@ class Session:
             source=self.claims_source,
             columns=[
                 TableColumn(field="id", title="claim"),
-                TableColumn(field="quantity", title="quantity"),
                 TableColumn(
                     field="paper_value", title="paper", formatter=NumberFormatter(format="0.0[000]")
                 ),
@@ -274,6 +305,8 @@ class Session:
                 ),
                 TableColumn(field="unit", title="unit"),
                 TableColumn(field="status", title="verdict"),
+                # last: the long descriptions scroll sideways, the values stay in view
+                TableColumn(field="quantity", title="quantity (the table scrolls sideways)"),
             ],
             width=views_width,
             autosize_mode="none",  # each column as wide as its text; a wide table scrolls
@@ -295,6 +328,7 @@ class Session:
         panel = self._controls()
         views = column(
             self.status,
+            self.setting,
             self.error,
             row(self.map, self.curve),
             self.claims_table,
@@ -316,16 +350,12 @@ class Session:
                 width=CONTROL_WIDTH,
                 name=control.key,
             )
-        else:
-            widget = Spinner(
+        else:  # a text field: its value changes on Enter or on leaving it, never per key
+            widget = TextInput(
                 title=title,
-                value=float(paper),
-                low=control.low,
-                high=control.high,
-                step=control.step or 0.01,
+                value=number_text(paper),
                 width=CONTROL_WIDTH,
                 name=control.key,
-                format="0[.]00000",
             )
         widget.description = control.note or None
         widget.on_change("value", partial(self._changed, control))
@@ -400,18 +430,30 @@ class Session:
             raise explorer.ExplorerError(str(exc).removeprefix("scenario 'explore': ")) from None
 
     def _changed(self, control: explorer.Control, attr, old, new) -> None:
-        if str(new) == str(self.values[control.key]):  # a value put back: nothing to do
-            return
-        problem = refusal(control, new)
+        """A control's value as the page sent it: a choice, or a number field's text
+        (sent on Enter or when the field loses focus).  A refused value is named in the
+        error line and the control shows its current value again; nothing is computed."""
+        value, problem = new, None
+        if not control.choices:
+            try:
+                value = read_number(new)
+            except ValueError as exc:
+                problem = str(exc)
+        if problem is None:
+            if value == self.values[control.key]:  # a value put back: nothing to do
+                return
+            problem = refusal(control, value)
         if problem is not None:  # checked here: a page can send any value
+            current = self.values[control.key]
+            kept = current if control.choices else number_text(current)
             if problem:
                 self.error.text = html.escape(
-                    f"{control.label}: {problem}; kept {old}", quote=False
+                    f"{control.label}: {problem}; kept {kept}", quote=False
                 )
-            self.widgets[control.key].value = old
+            self.widgets[control.key].value = kept
             return
         self.error.text = ""  # a refusal said before no longer holds
-        self.values[control.key] = new
+        self.values[control.key] = value
         if not self._resetting:
             self.request("all")
 
@@ -420,7 +462,7 @@ class Session:
         try:
             for control in self.controls:
                 widget = self.widgets[control.key]
-                widget.value = str(control.paper) if control.choices else float(control.paper)
+                widget.value = str(control.paper) if control.choices else number_text(control.paper)
         finally:
             self._resetting = False
         self.request("all")
@@ -476,6 +518,8 @@ class Session:
         started = time.perf_counter()
         try:
             config = self._config()
+            if kind == "all":
+                self._push(kind, generation, partial(self._show_setting, self._described(config)))
             for stage, compute in self._stages(kind, config, stale):
                 if stage in skip:
                     continue
@@ -513,6 +557,22 @@ class Session:
                 show()
 
         self.doc.add_next_tick_callback(guarded)
+
+    def _described(self, config: Mapping) -> str:
+        """The values ``config`` computes with where they are not the paper's, as the
+        controls name them: what the views show, whatever the fields hold meanwhile."""
+        changed = []
+        for control in self.controls:
+            value = explorer.config_value(config, control.key)
+            if str(value) == str(control.paper) or value == control.paper:
+                continue
+            text = value if control.choices else number_text(value)
+            unit = f" {control.unit}" if control.unit not in ("", "1") else ""
+            changed.append(f"{control.label} = {text}{unit}")
+        return "computed with " + ("; ".join(changed) or "the paper's setting")
+
+    def _show_setting(self, text: str) -> None:
+        self.setting.text = html.escape(text, quote=False)
 
     def _show_coarse(self, ds, generation, elapsed, level="coarse") -> None:
         self.error.text = ""

@@ -181,9 +181,9 @@ def overrides(config: Mapping, values: Mapping[str, object]) -> dict:
     for key, value in values.items():
         if key == "solver.rtol":
             value = float(value)
-        paper = _config_value(config, key)
+        paper = config_value(config, key)
         if _same(paper, value):
-            if key != "solver.rtol" or _same(_config_value(config, "solver.atol"), value):
+            if key != "solver.rtol" or _same(config_value(config, "solver.atol"), value):
                 continue
         parts = key.split(".")
         if parts[0] == "angle_maps" and parts[1] == "L1":  # a list: set whole
@@ -201,7 +201,9 @@ def overrides(config: Mapping, values: Mapping[str, object]) -> dict:
     return out
 
 
-def _config_value(config: Mapping, key: str):
+def config_value(config: Mapping, key: str):
+    """The value a configuration gives the control ``key`` (a model parameter's or
+    reading's default where the config leaves it out)."""
     section, _, name = key.partition(".")
     if section == "model":
         model = config.get("model") or {}
