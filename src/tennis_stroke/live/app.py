@@ -200,7 +200,7 @@ def read_number(text: str) -> float:
 
 def number_text(value: float) -> str:
     """A number control's text: the shortest that reads back as ``value``."""
-    return repr(float(value)).removesuffix(".0") if float(value).is_integer() else repr(value)
+    return repr(float(value)).removesuffix(".0")
 
 
 def refusal(control: explorer.Control, value) -> str | None:
