@@ -187,3 +187,44 @@ def test_every_figure_is_drawn_labelled_and_marked(tiny_run, name):
             _check_texts_inside_and_legends_clear(fig)
         finally:
             plt.close(fig)
+
+
+#: The figures whose files hold wall-clock measurements (variables marked ``timing``).
+TIMED = [
+    name
+    for name, figure in sorted(FIGURES.items())
+    if any(k in ("work_precision", "optimum_cost", "model_ladder") for k in figure.files)
+]
+
+
+#: Six machines from a thousand times faster to a hundred times slower (the sixth put the
+#: old drawing's legend, placed by measured times, over fixed.RK4's point).
+@pytest.mark.parametrize("factor", [1e-3 * 1.37**i for i in range(0, 36, 7)])
+@pytest.mark.parametrize("name", TIMED)
+def test_no_figure_is_laid_out_by_a_clock(tiny_run, tmp_path, name, factor):
+    """A machine a thousand times faster or slower, or one that measured another order of
+    points, draws the same checked figure: every wall-clock variable of its files (marked
+    ``timing``) is scaled by ``factor`` and each value moved by up to ten times, and the figure
+    still keeps its texts inside and its legends off every marked point. (Under load a
+    legend placed by measured times once landed on a point.)"""
+    figure = FIGURES[name]
+    inputs = []
+    for key in figure.files:
+        ds = load_result(tiny_run / RESULT_FILES[key]).load()
+        timed = [v for v in ds.data_vars if "timing" in ds[v].attrs]
+        rng = np.random.default_rng(int(factor * 1000))
+        for var in timed:  # all scaled, and each point moved by up to 10x either way
+            ds[var] = ds[var] * factor * 10 ** rng.uniform(-1, 1, ds[var].shape)
+        path = tmp_path / RESULT_FILES[key]
+        path.parent.mkdir(parents=True, exist_ok=True)
+        ds.to_netcdf(path)
+        inputs.append(path)
+    assert any(
+        "timing" in load_result(p)[v].attrs for p in inputs for v in load_result(p).data_vars
+    ), "no clock in the files: the test proves nothing"
+    marks = mark_values(figure, CLAIMS)
+    fig = drawn(figure, inputs, NOTE, marks=marks)
+    try:
+        _check_texts_inside_and_legends_clear(fig)
+    finally:
+        plt.close(fig)
