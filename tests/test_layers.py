@@ -143,6 +143,28 @@ def test_the_cycle_check_sees_a_lazy_cycle(package):
     assert _cycle(_graph()) == ["solver.a", "solver.b", "solver.a"]
 
 
+@pytest.mark.parametrize(
+    "by_name",
+    [
+        'importlib.import_module(".a", __package__)',
+        'import_module("tennis_stroke.solver.a")',
+        '__import__("tennis_stroke.solver.a")',
+    ],
+)
+def test_the_cycle_check_sees_an_import_by_name(package, by_name):
+    """An import by a module's name written out is an import: the solver's compile cache
+    once loaded its warm-up so, which imported the cache's callers back, a cycle the
+    static imports did not show."""
+    package(
+        {
+            "solver/__init__.py": "",
+            "solver/a.py": "from .b import x\n",
+            "solver/b.py": f"import importlib\n\ndef x():\n    return {by_name}\n",
+        }
+    )
+    assert _cycle(_graph()) == ["solver.a", "solver.b", "solver.a"]
+
+
 def test_a_subpackage_importing_its_own_modules_is_no_cycle(package):
     """A folder's ``__init__`` may import its modules: they do not import it back."""
     package({"solver/__init__.py": "from .a import x\n", "solver/a.py": "x = 1\n"})

@@ -42,6 +42,9 @@ def module_name(path: Path) -> str:
 #: that reads like one only adds a dependency, never hides one.
 _FROM = re.compile(r"^[ \t]*from[ \t]+([.\w]+)[ \t]+import[ \t]+(\([^)]*\)|[^\n#;]*)", re.M)
 _IMPORT = re.compile(r"^[ \t]*import[ \t]+([^\n#;]+)", re.M)
+#: An import by name of a module written out (``importlib.import_module(".warmup",
+#: __package__)``, ``__import__("tennis_stroke.x")``): an import as any other.
+_BY_NAME = re.compile(r"""\b(?:import_module|__import__)\(\s*(["'])([.\w]+)\1""")
 
 
 def _absolute(source: str, module: str, is_package: bool) -> str | None:
@@ -84,7 +87,8 @@ def imports_of_file(path: Path) -> frozenset[str]:
     subpackages they lie in (a package's ``__init__`` runs first).  The package's own
     ``__init__`` (start-up: the cache location and the lazy API) is left out: it runs in
     every process and changes no result.  Read as text (an import statement starts a
-    line), which is fast enough for the package's start-up."""
+    line; an import by a module's name written out counts too), which is fast enough for
+    the package's start-up."""
     inside = PACKAGE in path.resolve().parents
     module = module_name(path) if inside else ""
     is_package = path.name == "__init__.py"
@@ -104,6 +108,10 @@ def imports_of_file(path: Path) -> frozenset[str]:
                 found.add(sub)
             elif not target and alias in public_api():  # the lazy API: its module
                 found.add(public_api()[alias])
+    for _, source in _BY_NAME.findall(text):
+        target = _absolute(source, module, is_package) if inside or source[0] != "." else None
+        if target is not None:
+            found.add(target)
     for names in _IMPORT.findall(text):
         for alias in names.split(","):
             alias = alias.split(" as ")[0].strip()

@@ -131,7 +131,7 @@ def test_the_cache_subfolder_is_numbas():
 #: method (the stability study).
 RK4 = """
 from tennis_stroke.solver.rk4 import fixed_step_stroke
-from tennis_stroke.solver.stroke import refusing_compiles
+from tennis_stroke.solver.compiled import refusing_compiles
 from tennis_stroke.studies.stability import isolated_contact
 with refusing_compiles():
     for method in ("scipy.DOP853", "scipy.Radau", "scipy.LSODA"):

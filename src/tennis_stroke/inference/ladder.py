@@ -40,9 +40,9 @@ from scipy.sparse.csgraph import connected_components
 from ..experiments.specs import PAPER_RESULTS
 from ..io.netcdf import labelled, provenance
 from ..model.params import resolve_params
-from ..solver.compiled import ensure_compiled
 from ..solver.settings import SolverSettings
 from ..solver.stroke import rhs_evaluations
+from ..solver.warmup import ready
 from .claims import claim_files, difference, measure, within
 from .labels import attrs, claim_facts, variable
 from .ladder_plan import check_ladder, rung_model, rung_settings
@@ -87,8 +87,8 @@ def rung_files(
 ) -> tuple[dict[str, xr.Dataset], dict[str, float], dict[str, float]]:
     """The files the claims read under one rung, and per file the right-hand-side
     evaluations and the wall time (s) of its computation."""
-    ensure_compiled(f"batch:{settings.method}")  # compile outside the timings
-    ensure_compiled("reference")
+    ready(f"batch:{settings.method}")  # compile outside the timings
+    ready("reference")
     files, evaluations, seconds = {}, {}, {}
     curves = (config["figure_curves"],)
     for key in PAPER_RESULTS:

@@ -16,19 +16,25 @@ A group's cache is known to be complete by a marker file in ``NUMBA_CACHE_DIR`` 
 checkout's path and the compiled sources' modification times, the two things besides the
 sources' contents (already in the cache directory's name) that numba's cache index checks.
 ``TENNIS_STROKE_WARMUP=0`` turns the mechanism off (the process compiles in place).
+
+This module imports nothing of the solver: the module that owns a group's entry points
+passes the function that calls them (:func:`ensure_compiled`), and the compiling process
+runs :mod:`tennis_stroke.solver.warmup`, which imports those modules from above (nothing
+of the solver imports it).
 """
 
 from __future__ import annotations
 
 import fcntl
 import hashlib
-import importlib
 import os
 import shutil
 import subprocess
 import sys
 import time
 import traceback
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 from .._cache import compiled_sources
@@ -147,9 +153,11 @@ def _heal(group: str, marker: Path, why: str) -> None:
 SECONDS = [0.0]
 
 
-def ensure_compiled(group: str) -> None:
+def ensure_compiled(group: str, exercise: Callable[[], object]) -> None:
     """Make sure numba's cache holds the entry points of ``group`` (compiling them in a
-    subprocess if not), and load them in this process.
+    subprocess if not), and load them in this process by calling ``exercise`` (the caller's
+    function that calls them with the argument types the package passes; it may call back
+    here: the group then counts as loading).
 
     The load is checked: a cache file that cannot be read (truncated, emptied, garbage)
     or an entry point missing from a cache said complete (numba then compiles in this
@@ -167,7 +175,7 @@ def ensure_compiled(group: str) -> None:
     _compile(group, marker)
     _done.add(group)  # the loading calls below come back here
     try:
-        _load(group, marker)
+        _load(group, marker, exercise)
     except BaseException:
         _done.discard(group)
         raise
@@ -177,20 +185,35 @@ def ensure_compiled(group: str) -> None:
 
 class CompileInPlace(Exception):
     """numba was about to compile in this process: the cache lacks an entry point
-    (raised by :func:`tennis_stroke.solver.stroke.refusing_compiles`)."""
+    (raised by :func:`refusing_compiles`)."""
 
 
-def _load(group: str, marker: Path) -> None:
-    """Load ``group`` from the cache in this process by calling it once
-    (:func:`tennis_stroke.solver.warmup.load`); a cache file numba cannot read, or a
-    compile in place (refused before it starts), clears this checkout's cache and
-    compiles it again in a process of its own, then loads.
+@contextmanager
+def refusing_compiles() -> Iterator[None]:
+    """Inside the block numba may load compiled code from its cache but not compile:
+    a compile raises :class:`CompileInPlace` before it starts (numba's ``numba:compile``
+    event), so the process keeps only cached code."""
+    from numba.core import event
 
-    The warm-up module is imported by name: it imports the modules that call
-    :func:`ensure_compiled`, so a static import here would close a cycle."""
-    warmup = importlib.import_module(".warmup", __package__)
+    class Refuse(event.Listener):
+        def on_start(self, ev):
+            raise CompileInPlace()
+
+        def on_end(self, ev):
+            pass
+
+    with event.install_listener("numba:compile", Refuse()):
+        yield
+
+
+def _load(group: str, marker: Path, exercise: Callable[[], object]) -> None:
+    """Load ``group`` from the cache in this process by calling ``exercise`` with numba's
+    compiling refused; a cache file numba cannot read, or a compile in place (refused
+    before it starts), clears this checkout's cache and compiles it again in a process of
+    its own, then loads."""
     try:
-        warmup.load(group)
+        with refusing_compiles():
+            exercise()
         return
     except CompileInPlace:
         why = "lacked an entry point it was said to hold"
@@ -200,4 +223,5 @@ def _load(group: str, marker: Path) -> None:
         first = str(exc).splitlines()[0] if str(exc) else ""
         why = f"is damaged ({type(exc).__name__}: {first})"
     _heal(group, marker, why)
-    warmup.load(group)
+    with refusing_compiles():
+        exercise()

@@ -99,7 +99,7 @@ class ReferenceStroke:
 
 def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segments):
     """solve_ivp through the torque switches; returns (t, y, event_hit, nfev, ok)."""
-    ensure_compiled("reference")
+    ensure_compiled("reference", exercise_reference)
     nfev = 0
     while True:
         t_seg = next_switch(t, cf, t_stop)
@@ -300,3 +300,10 @@ def _follow(t, y, duration, cf, method, rtol, atol, res, ref) -> bool:
     )
     res["rhs_evals"] += nfev
     return ok
+
+
+def exercise_reference() -> None:
+    """The calls that compile (or load) scipy's reference path's right-hand sides
+    (:func:`tennis_stroke.solver.compiled.ensure_compiled`)."""
+    solve_stroke(120.0, 81.5, rtol=1e-6, atol=1e-6)
+    free_swing(120.0, 81.5, 0.05)

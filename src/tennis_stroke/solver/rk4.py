@@ -83,7 +83,7 @@ def fixed_phase(cf, t, y, t_stop, h, contact, event=None, max_steps=None):
     :func:`hermite` interpolant (Brent's method, to rounding), whose end derivative costs
     one evaluation more.
     """
-    ensure_compiled("rk4")
+    ensure_compiled("rk4", exercise_rk4)
     evals = steps = 0
     while t < t_stop:
         t_seg = next_switch(t, cf, t_stop)
@@ -161,3 +161,26 @@ def fixed_step_stroke(
         return out
     out["v_out_kmh"] = rebound_speed_kmh(t_s, y[A_BALL_W], cf)
     return out
+
+
+def exercise_rk4() -> None:
+    """The calls that compile (or load) what fixed-step RK4 and the solver studies call
+    from Python: the model functions, and scipy's Radau and LSODA on the angle layout
+    (their Jacobians pass states of another layout)
+    (:func:`tennis_stroke.solver.compiled.ensure_compiled`)."""
+    from scipy.integrate import solve_ivp
+
+    from ..model.dynamics import contact_duration, effective_mass, hit_offset, mechanical_energy
+
+    fixed_step_stroke(120.0, 81.5, {}, 1e-3)  # the work-precision study's strokes
+    cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
+    y0 = np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0])
+    trig = (math.sin(1.0), math.cos(1.0), math.sin(0.0), math.cos(0.0))
+    hit_offset(trig[0], trig[2], cf_row)  # the stability study's isolated contact
+    effective_mass(*trig, cf_row)
+    contact_duration(*trig, cf_row)
+    mechanical_energy(0.0, y0, cf_row, True)
+    contact_missed(cf_row, 0.0, y0, 1e-4, 0.01)
+    fixed_phase(cf_row, 0.0, y0, 0.01, 1e-4, True, compression_angles)
+    for method in ("Radau", "LSODA"):
+        solve_ivp(angle_rhs(cf_row, 0.0, True), (0.0, 1e-3), y0, method=method)

@@ -24,8 +24,9 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Iterator, Mapping
+from collections.abc import Mapping
 from concurrent.futures import ThreadPoolExecutor
+from functools import partial
 
 import numba
 import numpy as np
@@ -63,7 +64,7 @@ from ..model.dynamics import (
 from ..model.impact import instant_contact
 from ..model.params import ParameterError, real_array, resolve_params
 from ._kernels import N_STAGES_BY_ID, coefficient_tuple
-from .compiled import CompileInPlace, ensure_compiled
+from .compiled import ensure_compiled
 from .integrate import (
     HISTORY_COLS,
     N_STATS,
@@ -121,24 +122,6 @@ from .settings import (
     solver_settings,
     thread_count,
 )
-
-
-@contextlib.contextmanager
-def refusing_compiles() -> Iterator[None]:
-    """Inside the block numba may load compiled code from its cache but not compile:
-    a compile raises :class:`~tennis_stroke.solver.compiled.CompileInPlace` before it
-    starts (numba's ``numba:compile`` event), so the process keeps only cached code."""
-    from numba.core import event
-
-    class Refuse(event.Listener):
-        def on_start(self, ev):
-            raise CompileInPlace()
-
-        def on_end(self, ev):
-            pass
-
-    with event.install_listener("numba:compile", Refuse()):
-        yield
 
 
 @njit(**JIT)
@@ -373,7 +356,7 @@ def solve_coefficients(
     n_threads = (
         default_threads() if threads is None else min(thread_count(threads), default_threads())
     )
-    ensure_compiled(f"batch:{settings.method}")
+    ensure_compiled(f"batch:{settings.method}", partial(exercise_batch, settings.method))
     method = METHOD_IDS[settings.method]
     st = settings.as_array()
     cf_rows = np.ascontiguousarray(cf_rows, dtype=float)
@@ -479,7 +462,7 @@ def solve_contact(
         Whether the ball left before ``t_end``, the time reached (s) and the state there
         (angle layout).
     """
-    ensure_compiled(f"contact:{settings.method}")
+    ensure_compiled(f"contact:{settings.method}", partial(exercise_contact, settings.method))
     cf = coefficient_tuple(cf_row)
     y = to_trig(y_angles)
     st = settings.as_array()
@@ -489,3 +472,16 @@ def solve_contact(
     method = METHOD_IDS[settings.method]
     status, t, y, _ = specialised(run_phases, method, *args)(*args)
     return status == PHASE_EVENT, t, to_angles(y)
+
+
+def exercise_batch(method: str) -> None:
+    """The calls that compile (or load) the stroke batch's entry points for ``method``
+    (:func:`tennis_stroke.solver.compiled.ensure_compiled`)."""
+    strike_batch(np.array([90.0, 120.0]), 45.0, settings=SolverSettings(method=method), threads=1)
+
+
+def exercise_contact(method: str) -> None:
+    """The calls that compile (or load) the contact phase's entry point for ``method``."""
+    cf_row = coefficients(resolve_params({}), 120.0, 81.5)[0]
+    state = np.array([1.0, 0.0, 10.0, 30.0, 0.0, 20.0])
+    solve_contact(cf_row, state, 0.01, SolverSettings(method=method))

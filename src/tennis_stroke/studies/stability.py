@@ -30,10 +30,10 @@ from ..model.dynamics import (
     mechanical_energy,
 )
 from ..model.params import resolve_params
-from ..solver.compiled import ensure_compiled
 from ..solver.rk4 import contact_missed, fixed_phase
 from ..solver.settings import SolverSettings
 from ..solver.stroke import solve_contact
+from ..solver.warmup import ready
 from .methods import check_case
 from .sampling import REFERENCE
 
@@ -71,7 +71,7 @@ def isolated_contact(
     (s), ``energy_change`` (relative), ``expected_duration`` (s, two-body closed form).
     """
     family, name = check_case(method, setting)
-    ensure_compiled("rk4")  # the model functions called from Python below, from the cache
+    ready("rk4")  # the model functions called from Python below, from the cache
     cf, y0 = isolated_start(k)
     trig = (math.sin(THETA), math.cos(THETA), math.sin(PHI), math.cos(PHI))
     m = effective_mass(*trig, cf)
