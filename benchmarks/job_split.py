@@ -44,7 +44,8 @@ ORDER = ("simulation", "study", "gather", "inference", "claims", "figure", "repo
 
 
 def kind(job: str) -> str:
-    """The kind of a job from its log or benchmark path below its folder (``fig2/0-of-1``,
+    """The kind of a job from its log or benchmark path below its folder
+    (``angle_maps/fig2/0-of-1``, ``angle_maps/fig2_0-of-1``, ``strokes/fig4``,
     ``figure_fig02_angle_map``, ``gather_map/angle_maps/fig2``, ``claims``)."""
     rule = re.split(r"[/]", job)[0]
     if rule.startswith("figure_"):
@@ -53,7 +54,8 @@ def kind(job: str) -> str:
     for name in sorted(KINDS, key=len, reverse=True):  # claims_validation_fig7
         if rule == name or rule.startswith(f"{name}_"):
             return KINDS[name]
-    family = {e.rule: e.family for e in EXPERIMENTS.values()}.get(rule)
+    stem = re.sub(r"[_/]\d+-of-\d+$", "", job)  # a row's job: its file's stem
+    family = {e.stem: e.family for e in EXPERIMENTS.values()}.get(stem)
     if family is None:
         raise SystemExit(f"job_split: no kind for job {job!r}")
     return "study" if family == "study" else "simulation"

@@ -277,6 +277,33 @@ def planned_jobs(log: str) -> list[tuple[str, list[str], list[str]]]:
     return jobs
 
 
+#: The rules that write the files of the table's rows (one rule per kind of job).
+ROW_RULES = ("simulate", "simulate_chunk", "study")
+
+
+def job_kind(rule: str, outputs: list[str]) -> str:
+    """What a planned job is: for a job of a row of the table, the row's name (its
+    ``rule`` field: ``fig9``, ``delay_strokes``), from the file it writes (a scenario's
+    or a chunk's too); any other job, its rule."""
+    if rule not in ROW_RULES:
+        return rule
+    from tennis_stroke.experiments.specs import EXPERIMENTS
+
+    path = re.sub(r"^results/(scenarios/[^/]+/)?", "", outputs[0])
+    stem = re.sub(r"^chunks/(.*)/\d+-of-\d+\.nc$", r"\1", path).removesuffix(".nc")
+    (row,) = [e.rule for e in EXPERIMENTS.values() if e.stem == stem]
+    return row
+
+
+def planned_kinds(log: str) -> dict[str, int]:
+    """The jobs of a dry run's log counted by :func:`job_kind` (empty: nothing to do)."""
+    counts: dict[str, int] = {}
+    for rule, _, outputs in planned_jobs(log):
+        kind = job_kind(rule, outputs)
+        counts[kind] = counts.get(kind, 0) + 1
+    return counts
+
+
 @pytest.fixture(scope="session")
 def report_plan(tmp_path_factory) -> Plan:
     """A dry run of ``report`` on the shipped configuration in an empty working

@@ -4,7 +4,7 @@ import copy
 
 import pytest
 import yaml
-from conftest import ROOT, run_snakemake, workdir
+from conftest import ROOT, planned_kinds, run_snakemake, workdir
 
 from tennis_stroke.io.config_files import ConfigFileError, load_yaml
 from tennis_stroke.pipeline.config_check import (
@@ -322,10 +322,9 @@ def test_nested_command_line_overrides_work(tmp_path):
         "report", workdir(tmp_path, GOOD), "-n", "--config", "chunks={angle_map: 3}"
     )
     assert done.returncode == 0, (done.stdout + done.stderr)[-2000:]
-    stats = (done.stdout + done.stderr).split("Job stats:")[1].split("total")[0]
-    counts = dict(line.split() for line in stats.splitlines()[3:] if line.strip())
+    counts = planned_kinds(done.stdout + done.stderr)
     # 7 maps and the robustness analysis' claims x readings file are gathered
-    assert counts["fig2"] == counts["fig3"] == "3" and counts["gather_map"] == "8"
+    assert counts["fig2"] == counts["fig3"] == 3 and counts["gather_map"] == 8
 
 
 def test_every_reading_of_the_model_runs_the_ladder():

@@ -60,7 +60,7 @@ def test_a_job_log_ends_with_where_its_time_went(tmp_path):
 
     from tennis_stroke.pipeline.jobs import SPLIT_PARTS, SPLIT_PREFIX
 
-    log = tmp_path / "logs" / "fig2" / "0-of-1.log"
+    log = tmp_path / "logs" / "angle_maps" / "fig2" / "0-of-1.log"
     script = textwrap.dedent(
         f"""
         import time
@@ -81,7 +81,7 @@ def test_a_job_log_ends_with_where_its_time_went(tmp_path):
     assert values["compute"] >= 0.3 and values["writing"] > 0 and values["imports"] > 0
     assert values["start-up"] >= 0
 
-    bench = tmp_path / "benchmarks" / "workflow" / "fig2_0-of-1.tsv"
+    bench = tmp_path / "benchmarks" / "workflow" / "angle_maps" / "fig2_0-of-1.tsv"
     bench.parent.mkdir(parents=True)
     bench.write_text("s\th:m:s\tmax_rss\tcpu_time\n1.5\t0:00:01\t100\t1.2\n")
     sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))

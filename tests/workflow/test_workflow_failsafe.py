@@ -9,7 +9,6 @@ input is newer than its output whatever ``--rerun-triggers`` says)."""
 
 import json
 import os
-import re
 import shutil
 import signal
 import subprocess
@@ -19,7 +18,7 @@ from pathlib import Path
 
 import pytest
 import yaml
-from conftest import ROOT, run_snakemake, snakemake_command, workdir
+from conftest import ROOT, planned_kinds, run_snakemake, snakemake_command, workdir
 from tiny import TINY, TINY_READINGS
 
 from tennis_stroke.experiments.specs import EXPERIMENTS
@@ -105,14 +104,8 @@ def with_value(config, parts, value):
     return out
 
 
-def planned_jobs(output: str) -> dict[str, int]:
-    """The job counts of a dry run's "Job stats" (empty: nothing to be done)."""
-    if "Job stats:" not in output:
-        return {}
-    stats = output.split("Job stats:")[1].split("Reasons:")[0]
-    counts = dict(re.findall(r"^(\w+)\s+(\d+)\s*$", stats, flags=re.MULTILINE))
-    counts.pop("total", None)
-    return {rule: int(n) for rule, n in counts.items()}
+#: The jobs of a dry run counted by kind (a row's job by the row's name, others by rule).
+planned_jobs = planned_kinds
 
 
 def override(section, value) -> str:

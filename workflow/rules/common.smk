@@ -219,11 +219,6 @@ def simulation_code(experiment):
     )
 
 
-def simulation_params(experiment):
-    """A row's params in the paper's configuration (tennis_stroke.pipeline.params)."""
-    return job_params.simulation_params(experiment, config)
-
-
 def scenario_value(function):
     """A params function: ``function`` of the job's scenario's configuration."""
 
@@ -233,15 +228,22 @@ def scenario_value(function):
     return value
 
 
-def scenario_params(experiment):
-    """A row's params in a scenario: the same keys as the paper's, each a function of
-    the job's scenario (the ``scenario`` wildcard)."""
-    return {
-        key: scenario_value(
-            lambda c, k=key: job_params.simulation_params(experiment, c)[k]
+def row_code(wildcards):
+    """The code inputs of a row's job (:func:`simulation_code`)."""
+    return simulation_code(ROWS[wildcards.stem])
+
+
+def row_param(key):
+    """A params function: ``key`` of the row's params in its run's configuration
+    (tennis_stroke.pipeline.params.simulation_params; None where the row has no such
+    key: a row without the model has no ``common``)."""
+
+    def value(wildcards):
+        return job_params.simulation_params(ROWS[wildcards.stem], configuration(wildcards)).get(
+            key
         )
-        for key in simulation_params(experiment)
-    }
+
+    return value
 
 
 wildcard_constraints:
@@ -255,16 +257,24 @@ CHUNKED = {e.stem: e for e in EXPERIMENTS.values() if e.chunks}
 CHUNKED_MAPS = "|".join(re.escape(stem) for stem in [*CHUNKED, "robustness/claims"])
 
 
+def scenario_name(wildcards):
+    """The scenario of a job: its ``scenario`` wildcard, or the name in its ``run``
+    wildcard (``scenarios/NAME/``); None for the paper's configuration."""
+    if "scenario" in wildcards.keys():
+        return wildcards.scenario
+    run = wildcards.get("run") or ""
+    return run.split("/")[1] if run else None
+
+
 def configuration(wildcards):
-    """The configuration of a job: its scenario's (the ``scenario`` wildcard), else the
-    paper's."""
-    name = wildcards.get("scenario")
+    """The configuration of a job: its scenario's, else the paper's."""
+    name = scenario_name(wildcards)
     return config if name is None else SCENARIO_CONFIGS[name]
 
 
 def results_folder(wildcards):
     """The folder of a job's result files: ``results``, or its scenario's."""
-    name = wildcards.get("scenario")
+    name = scenario_name(wildcards)
     return "results" if name is None else scenario_folder(name)
 
 
@@ -297,37 +307,17 @@ def paper_experiments():
     return job_params.paper_experiments(config)
 
 
-#: Where a row's rule writes: the paper's folders, or a scenario's (the ``scenario``
-#: wildcard), with the rule's name and params.
-Where = namedtuple("Where", "name results logs benchmarks values")
+#: The table's rows by the stem of their file (the ``stem`` wildcard).
+ROWS = {e.stem: e for e in EXPERIMENTS.values()}
 
 
-def where_to_run(experiment):
-    """The rules of a row: the paper's; and, for a paper experiment, the scenarios'."""
-    out = [
-        Where(
-            experiment.rule,
-            "results",
-            "logs",
-            "benchmarks/workflow",
-            simulation_params(experiment),
-        )
-    ]
-    if experiment.family == "paper":
-        out.append(
-            Where(
-                f"scenario_{experiment.rule}",
-                scenario_folder("{scenario}"),
-                scenario_folder("{scenario}", "logs"),
-                scenario_folder("{scenario}", "benchmarks/workflow"),
-                scenario_params(experiment),
-            )
-        )
-    return out
-
-
-#: Every row's rules: (row, where) pairs.
-ROW_RULES = [(e, where) for e in EXPERIMENTS.values() for where in where_to_run(e)]
+def stems(chunked, family=None):
+    """A regex of the stems of the rows computed in chunks or not, of one family or all."""
+    return "|".join(
+        re.escape(e.stem)
+        for e in EXPERIMENTS.values()
+        if bool(e.chunks) == chunked and family in (None, e.family)
+    )
 
 
 #: The paper experiments' maps gathered from chunks in a scenario.
@@ -357,13 +347,12 @@ def refuse_unknown_scenario(wildcards):
     sys.exit(1)
 
 
-#: A declared scenario's name (none: nothing).
-DECLARED_SCENARIO = "|".join(re.escape(name) for name in SCENARIO_CONFIGS) or "(?!x)x"
-
-
-# A scenario wildcard matches a declared scenario's name only (none: nothing).
+# A scenario wildcard matches a declared scenario's name only (none: nothing); a run is
+# the paper's (empty: its files under results/) or a declared scenario's
+# (scenarios/NAME/: under results/scenarios/NAME/).
 wildcard_constraints:
     scenario=DECLARED_SCENARIO,
+    run=f"({SCENARIO_FOLDER}/({DECLARED_SCENARIO})/)?",
 
 
 def template_files(page):
@@ -374,8 +363,15 @@ def template_files(page):
 
 
 def figure_inputs(wildcards):
-    """The result files a figure is drawn from (the registry)."""
-    return FIGURES[wildcards.name].inputs
+    """The result files a figure is drawn from: the registry's for the paper's; for a
+    scenario's, its own where it changes them and the paper's elsewhere (and, once, what
+    of the scenario does not reach them)."""
+    name = scenario_name(wildcards)
+    if name is None:
+        return FIGURES[wildcards.name].inputs
+    say_unreached(name, FIGURES[wildcards.name].files)
+    files = scenario_files(name)
+    return [files[key] for key in FIGURES[wildcards.name].files]
 
 
 #: The registry of figures: not a code input of the figure jobs, each of which gets its
@@ -442,15 +438,31 @@ def scenario_files(name):
     return resolved_results(config, SCENARIO_CONFIGS[name], name)
 
 
-def scenario_claim_files(wildcards):
-    """A scenario's claims job's result files by key (its named inputs and a param)."""
-    return scenario_files(wildcards.scenario)
+def run_files(wildcards):
+    """The result files of a job's run by key (the claims job's named inputs and a
+    param): the paper's, or the scenario's (:func:`scenario_files`)."""
+    name = scenario_name(wildcards)
+    return dict(PAPER_RESULTS) if name is None else scenario_files(name)
+
+
+def claim_inputs(wildcards):
+    """The claims job's result files by key; for the paper's run, with its robustness
+    analysis (a scenario is an exploration, not graded)."""
+    files = run_files(wildcards)
+    if scenario_name(wildcards) is None:
+        files["robustness"] = RESULT_FILES["robustness"]
+    return files
+
+
+def run_record(wildcards):
+    """The scenario's record (:func:`scenario_record`), or None for the paper's run."""
+    return None if scenario_name(wildcards) is None else scenario_record(wildcards)
 
 
 def scenario_record(wildcards):
     """What a scenario is: its name, its overrides and every change of the paper's
     configuration they make (key, the paper's value, the scenario's)."""
-    name = wildcards.scenario
+    name = scenario_name(wildcards)
     return {
         "name": name,
         "overrides": SCENARIOS[name],
@@ -548,18 +560,12 @@ def say_unreached(name, files=None):
         )
 
 
-def scenario_figure_inputs(wildcards):
-    """The result files a scenario's figure is drawn from (and, once, what of the
-    scenario does not reach them)."""
-    say_unreached(wildcards.scenario, FIGURES[wildcards.name].files)
-    files = scenario_files(wildcards.scenario)
-    return [files[key] for key in FIGURES[wildcards.name].files]
-
-
-def scenario_figure_note(wildcards):
-    """A scenario figure's second title line: the scenario and what it changes of what
-    the figure's files read."""
-    name = wildcards.scenario
+def figure_note(wildcards):
+    """A figure's second title line: none for the paper's; for a scenario's, the
+    scenario and what it changes of what the figure's files read."""
+    name = scenario_name(wildcards)
+    if name is None:
+        return ""
     read = changes_read(FIGURES[wildcards.name].files, config, SCENARIO_CONFIGS[name])
     what = (
         "; ".join(describe(*change, FITTED, STATED) for change in read)

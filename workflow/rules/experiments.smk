@@ -1,14 +1,13 @@
-# Simulation rules: one rule per row of the table of experiments
-# (tennis_stroke.experiments.specs.EXPERIMENTS), one job per file (per chunk for the
-# maps), each writing one netCDF file.  A rule's params are the config values its row
-# reads (and the model and solver settings for a model row): changing any other key
-# reruns nothing of it.  Its code inputs are the modules its job imports.  Threads,
-# memory and runtime are resources: `--set-threads` or a profile (profiles/slurm)
-# changes them, never the science config.
-#
-# Each row of the paper's experiments has a second rule for the what-if scenarios
-# (config/scenarios.yaml): the same job under results/scenarios/{scenario}/, its params
-# those of the scenario's configuration (tennis_stroke.pipeline.scenarios).
+# Simulation rules: one job per file of a row of the table of experiments
+# (tennis_stroke.experiments.specs.EXPERIMENTS, the {stem} of its file), per chunk for
+# the maps, each writing one netCDF file, for the paper's configuration (run "": under
+# results/) or a what-if scenario's (run "scenarios/NAME/", config/scenarios.yaml: under
+# results/scenarios/NAME/, its params from the scenario's configuration,
+# tennis_stroke.pipeline.scenarios).  A job's params are the config values its row reads
+# (and the model and solver settings for a model row): changing any other key reruns
+# nothing of it.  Its code inputs are the modules its job imports.  Threads, memory and
+# runtime are resources: `--set-threads` or a profile (profiles/slurm) changes them,
+# never the science config.
 #
 # The robustness analysis is the report's longest chain of jobs (identification ->
 # screen -> chunks -> claims), so its jobs go first when they are ready, and the
@@ -18,44 +17,66 @@
 CHAIN_PRIORITY = 20
 
 
-for _experiment, _where in ROW_RULES:
-    if _experiment.chunks:
+rule simulate:
+    input:
+        code=row_code,
+    output:
+        "results/{run}{stem}.nc",
+    log:
+        "logs/{run}{stem}.log",
+    benchmark:
+        "benchmarks/workflow/{run}{stem}.tsv"
+    wildcard_constraints:
+        stem=stems(chunked=False, family="paper"),
+    threads: 1
+    params:
+        experiment=row_param("experiment"),
+        args=row_param("args"),
+        common=row_param("common"),
+    script:
+        "../scripts/simulate.py"
 
-        rule:
-            name:
-                _where.name
-            input:
-                code=simulation_code(_experiment),
-            output:
-                f"{_where.results}/chunks/{_experiment.stem}/{{chunk}}-of-{{chunks}}.nc",
-            log:
-                f"{_where.logs}/{_experiment.rule}/{{chunk}}-of-{{chunks}}.log",
-            benchmark:
-                f"{_where.benchmarks}/{_experiment.rule}_{{chunk}}-of-{{chunks}}.tsv"
-            threads: 1
-            params:
-                **_where.values,
-            script:
-                "../scripts/simulate.py"
 
-    else:
+# The solver studies: the paper's configuration only (a scenario changes the paper's
+# experiments), each one file.
+rule study:
+    input:
+        code=row_code,
+    output:
+        "results/{stem}.nc",
+    log:
+        "logs/{stem}.log",
+    benchmark:
+        "benchmarks/workflow/{stem}.tsv"
+    wildcard_constraints:
+        stem=stems(chunked=False, family="study"),
+    threads: 1
+    params:
+        experiment=row_param("experiment"),
+        args=row_param("args"),
+        common=row_param("common"),
+    script:
+        "../scripts/simulate.py"
 
-        rule:
-            name:
-                _where.name
-            input:
-                code=simulation_code(_experiment),
-            output:
-                f"{_where.results}/{_experiment.stem}.nc",
-            log:
-                f"{_where.logs}/{_experiment.rule}.log",
-            benchmark:
-                f"{_where.benchmarks}/{_experiment.rule}.tsv"
-            threads: 1
-            params:
-                **_where.values,
-            script:
-                "../scripts/simulate.py"
+
+rule simulate_chunk:
+    input:
+        code=row_code,
+    output:
+        "results/{run}chunks/{stem}/{chunk}-of-{chunks}.nc",
+    log:
+        "logs/{run}{stem}/{chunk}-of-{chunks}.log",
+    benchmark:
+        "benchmarks/workflow/{run}{stem}_{chunk}-of-{chunks}.tsv"
+    wildcard_constraints:
+        stem=stems(chunked=True),
+    threads: 1
+    params:
+        experiment=row_param("experiment"),
+        args=row_param("args"),
+        common=row_param("common"),
+    script:
+        "../scripts/simulate.py"
 
 
 rule gather_map:
@@ -63,34 +84,15 @@ rule gather_map:
         chunks=chunk_files,
         code=code_inputs("gather_map.py", labels=True),
     output:
-        "results/{map}.nc",
+        "results/{run}{map}.nc",
     log:
-        "logs/gather_map/{map}.log",
+        "logs/{run}gather_map/{map}.log",
     benchmark:
-        "benchmarks/workflow/gather_map/{map}.tsv"
+        "benchmarks/workflow/{run}gather_map/{map}.tsv"
     wildcard_constraints:
         map=CHUNKED_MAPS,
     params:
-        max_failure_share=config["max_failure_share"],
-        relabel=relabel_map,
-    script:
-        "../scripts/gather_map.py"
-
-
-rule scenario_gather_map:
-    input:
-        chunks=chunk_files,
-        code=code_inputs("gather_map.py", labels=True),
-    output:
-        "results/scenarios/{scenario}/{map}.nc",
-    log:
-        "logs/scenarios/{scenario}/gather_map/{map}.log",
-    benchmark:
-        scenario_folder("{scenario}", "benchmarks/workflow") + "/gather_map/{map}.tsv"
-    wildcard_constraints:
-        map=SCENARIO_MAPS,
-    params:
-        max_failure_share=scenario_value(itemgetter("max_failure_share")),
+        max_failure_share=lambda w: configuration(w)["max_failure_share"],
         relabel=relabel_map,
     script:
         "../scripts/gather_map.py"

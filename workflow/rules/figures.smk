@@ -3,48 +3,29 @@
 # editing one figure reruns that figure only.
 
 
+# A figure of the paper's run, or of a scenario's (one of the paper's figures: drawn from
+# the scenario's files where it changes them, from the paper's elsewhere; its title says
+# what the scenario changes).
 rule figure:
     input:
         figure_inputs,
         figure_code,
     output:
         report(
-            "results/figures/{name}.png",
+            "results/{run}figures/{name}.png",
             caption="../report/figure.rst",
             category="Figures",
         ),
     log:
-        "logs/figure_{name}.log",
+        "logs/{run}figure_{name}.log",
     benchmark:
-        "benchmarks/workflow/figure_{name}.tsv"
+        "benchmarks/workflow/{run}figure_{name}.tsv"
     wildcard_constraints:
         name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
     params:
         figure=figure_entry,
         marks=figure_marks,
-        note="",
-    script:
-        "../scripts/figure.py"
-
-
-# A scenario's figure (one of the paper's figures): drawn from the scenario's files where
-# it changes them, from the paper's elsewhere; its title says what the scenario changes.
-rule scenario_figure:
-    input:
-        scenario_figure_inputs,
-        figure_code,
-    output:
-        "results/scenarios/{scenario}/figures/{name}.png",
-    log:
-        "logs/scenarios/{scenario}/figure_{name}.log",
-    benchmark:
-        scenario_folder("{scenario}", "benchmarks/workflow") + "/figure_{name}.tsv"
-    wildcard_constraints:
-        name=PAPER_FIGURE_NAMES,
-    params:
-        figure=figure_entry,
-        marks=figure_marks,
-        note=scenario_figure_note,
+        note=figure_note,
     script:
         "../scripts/figure.py"
 
@@ -55,7 +36,7 @@ rule scenario_figure:
 rule scenario_comparison:
     input:
         paper=paper_figure_inputs,
-        scenario=scenario_figure_inputs,
+        scenario=figure_inputs,
         code=comparison_code,
     output:
         "results/scenarios/{scenario}/compare/{name}.png",
@@ -68,6 +49,6 @@ rule scenario_comparison:
     params:
         figure=figure_entry,
         marks=figure_marks,
-        note=scenario_figure_note,
+        note=figure_note,
     script:
         "../scripts/compare.py"

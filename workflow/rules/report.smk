@@ -1,28 +1,31 @@
-# Claims, assumption ledger and the HTML report; a scenario's claims and page.
+# Claims, the HTML report and the article, of the paper's run and of a scenario's.
 
 
+# The claims of a run: the paper's (with its robustness across the consistent readings)
+# or a scenario's (the same evaluation under its configuration, from its files where it
+# changes them and the paper's elsewhere; no robustness analysis: a scenario is an
+# exploration, not graded).
 rule claims:
     input:
-        **PAPER_RESULTS,
+        unpack(claim_inputs),
         claims="config/claims.yaml",
         readings="config/readings.yaml",
-        robustness=RESULT_FILES["robustness"],
         code=code_inputs("claims.py"),
     output:
         claims=report(
-            "results/claims.csv", caption="../report/claims.rst", category="Claims"
+            "results/{run}claims.csv", caption="../report/claims.rst", category="Claims"
         ),
-        configuration="results/configuration.yaml",
+        configuration="results/{run}configuration.yaml",
     log:
-        "logs/claims.log",
+        "logs/{run}claims.log",
     benchmark:
-        "benchmarks/workflow/claims.tsv"
+        "benchmarks/workflow/{run}claims.tsv"
     threads: 1
     params:
-        files=PAPER_RESULTS,
-        experiments=paper_experiments(),
-        common=common_params(),
-        scenario=None,
+        files=run_files,
+        experiments=lambda w: job_params.paper_experiments(configuration(w)),
+        common=lambda w: job_params.common_params(configuration(w)),
+        scenario=run_record,
     script:
         "../scripts/claims.py"
 
@@ -57,32 +60,6 @@ rule report_page:
         benchmarks="benchmarks/workflow",
     script:
         "../scripts/report.py"
-
-
-# A scenario's claims: the same evaluation under its configuration, from its files where
-# it changes them and the paper's elsewhere; no robustness analysis (a scenario is an
-# exploration, not graded).
-rule scenario_claims:
-    input:
-        unpack(scenario_claim_files),
-        claims="config/claims.yaml",
-        readings="config/readings.yaml",
-        code=code_inputs("claims.py"),
-    output:
-        claims="results/scenarios/{scenario}/claims.csv",
-        configuration="results/scenarios/{scenario}/configuration.yaml",
-    log:
-        "logs/scenarios/{scenario}/claims.log",
-    benchmark:
-        scenario_folder("{scenario}", "benchmarks/workflow") + "/claims.tsv"
-    threads: 1
-    params:
-        files=scenario_claim_files,
-        experiments=scenario_value(job_params.paper_experiments),
-        common=scenario_value(job_params.common_params),
-        scenario=scenario_record,
-    script:
-        "../scripts/claims.py"
 
 
 # A scenario's page: each of the paper's figures beside the scenario's where the
@@ -122,6 +99,12 @@ rule unknown_scenario:
         top="results|report",
         unknown=UNKNOWN_SCENARIO,
         path=".+",
+
+
+# Before the rules that make any file of a run: a scenario's path they do not make for a
+# scenario (a solver study, the robustness analysis) is refused in one line.
+ruleorder: unknown_scenario_file > gather_map
+ruleorder: unknown_scenario_file > figure
 
 
 # A path no rule makes under a declared scenario (a study figure, a misspelt name): one

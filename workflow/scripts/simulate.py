@@ -13,4 +13,5 @@ with logged(snakemake.log[0]):
     model = p.common["model"] if experiment.model else None
     solver = settings(p.common) if experiment.model else None
     ds = compute(experiment, p.args, model, solver, rows, snakemake.threads)
-    save(ds, snakemake.output[0], p, clock(), chunk_of=chunk)
+    row = {k: v for k, v in p.items() if v is not None}  # a row without the model: no common
+    save(ds, snakemake.output[0], row, clock(), chunk_of=chunk)
