@@ -74,6 +74,7 @@ def test_the_workflow_s_plan_loads_no_search_and_no_solver():
     assert len(code) > 10
     code += [  # and the checks of the config it runs before any job
         "from tennis_stroke.io.config_files import load_yaml",
+        "from tennis_stroke.pipeline.config_check import config_errors",
         f"config = load_yaml({str(ROOT / 'config' / 'config.yaml')!r})",
         f"assert config_errors(config, {str(SCHEMA)!r}) == []",
     ]

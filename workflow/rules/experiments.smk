@@ -19,7 +19,7 @@ CHAIN_PRIORITY = 20
 
 rule simulate:
     input:
-        code=row_code,
+        code=lambda w: CODE.simulation(ROWS[w.stem]),
     output:
         "results/{run}{stem}.nc",
     log:
@@ -30,9 +30,9 @@ rule simulate:
         stem=stems(chunked=False, family="paper"),
     threads: 1
     params:
-        experiment=row_param("experiment"),
-        args=row_param("args"),
-        common=row_param("common"),
+        experiment=RUNS.row_param("experiment"),
+        args=RUNS.row_param("args"),
+        common=RUNS.row_param("common"),
     script:
         "../scripts/simulate.py"
 
@@ -41,7 +41,7 @@ rule simulate:
 # experiments), each one file.
 rule study:
     input:
-        code=row_code,
+        code=lambda w: CODE.simulation(ROWS[w.stem]),
     output:
         "results/{stem}.nc",
     log:
@@ -52,16 +52,16 @@ rule study:
         stem=stems(chunked=False, family="study"),
     threads: 1
     params:
-        experiment=row_param("experiment"),
-        args=row_param("args"),
-        common=row_param("common"),
+        experiment=RUNS.row_param("experiment"),
+        args=RUNS.row_param("args"),
+        common=RUNS.row_param("common"),
     script:
         "../scripts/simulate.py"
 
 
 rule simulate_chunk:
     input:
-        code=row_code,
+        code=lambda w: CODE.simulation(ROWS[w.stem]),
     output:
         "results/{run}chunks/{stem}/{chunk}-of-{chunks}.nc",
     log:
@@ -72,17 +72,17 @@ rule simulate_chunk:
         stem=stems(chunked=True),
     threads: 1
     params:
-        experiment=row_param("experiment"),
-        args=row_param("args"),
-        common=row_param("common"),
+        experiment=RUNS.row_param("experiment"),
+        args=RUNS.row_param("args"),
+        common=RUNS.row_param("common"),
     script:
         "../scripts/simulate.py"
 
 
 rule gather_map:
     input:
-        chunks=chunk_files,
-        code=code_inputs("gather_map.py", labels=True),
+        chunks=RUNS.chunk_files,
+        code=CODE("gather_map.py", labels=True),
     output:
         "results/{run}{map}.nc",
     log:
@@ -92,15 +92,15 @@ rule gather_map:
     wildcard_constraints:
         map=CHUNKED_MAPS,
     params:
-        max_failure_share=lambda w: configuration(w)["max_failure_share"],
-        relabel=relabel_map,
+        max_failure_share=lambda w: RUNS.configuration(w)["max_failure_share"],
+        relabel=lambda w: w.map in CHUNKED,  # a map of the table: its labels again
     script:
         "../scripts/gather_map.py"
 
 
 rule identification:
     input:
-        code=code_inputs("identification.py"),
+        code=CODE("identification.py"),
         claims="config/claims.yaml",
         readings="config/readings.yaml",
     output:
@@ -113,14 +113,14 @@ rule identification:
     threads: 1
     params:
         **fit_set_arguments(config),
-        common=common_params(),
+        common=job_params.common_params(config),
     script:
         "../scripts/identification.py"
 
 
 rule robustness_screen:
     input:
-        code=code_inputs("robustness_screen.py"),
+        code=CODE("robustness_screen.py"),
         claims="config/claims.yaml",
         readings="config/readings.yaml",
         model_fits=IDENTIFICATION_FILES["model_fits"],
@@ -136,14 +136,14 @@ rule robustness_screen:
     threads: 1
     params:
         **fit_set_arguments(config),
-        common=common_params(),
+        common=job_params.common_params(config),
     script:
         "../scripts/robustness_screen.py"
 
 
 rule robustness_chunk:
     input:
-        code=code_inputs("robustness_chunk.py", *PAPER_MODULES),
+        code=CODE("robustness_chunk.py", *CODE.paper_modules),
         kept=RESULT_FILES["robustness_readings"],
         claims="config/claims.yaml",
         readings="config/readings.yaml",
@@ -156,15 +156,15 @@ rule robustness_chunk:
     priority: CHAIN_PRIORITY
     threads: 1
     params:
-        common=common_params(),
-        experiments=paper_experiments(),
+        common=job_params.common_params(config),
+        experiments=job_params.paper_experiments(config),
     script:
         "../scripts/robustness_chunk.py"
 
 
 rule claims_validation:
     input:
-        code=code_inputs("claims_validation.py"),
+        code=CODE("claims_validation.py"),
         kept=RESULT_FILES["robustness_readings"],
         claims="config/claims.yaml",
         readings="config/readings.yaml",
@@ -179,7 +179,7 @@ rule claims_validation:
     priority: CHAIN_PRIORITY // 2
     threads: 1
     params:
-        common=common_params(),
+        common=job_params.common_params(config),
         experiments=lambda w: job_params.group_config(config, w.group),
     script:
         "../scripts/claims_validation.py"
@@ -187,7 +187,7 @@ rule claims_validation:
 
 rule model_ladder:
     input:
-        code=code_inputs("model_ladder.py"),
+        code=CODE("model_ladder.py"),
         claims="config/claims.yaml",
         readings="config/readings.yaml",
     output:
@@ -198,8 +198,8 @@ rule model_ladder:
         "benchmarks/workflow/model_ladder.tsv"
     threads: 1
     params:
-        common=common_params(),
-        experiments=paper_experiments(),
+        common=job_params.common_params(config),
+        experiments=job_params.paper_experiments(config),
         figure_curves=config["figure_curves"],
         ladder=sorted_data(config["model_ladder"]),
     script:

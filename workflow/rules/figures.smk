@@ -8,8 +8,8 @@
 # what the scenario changes).
 rule figure:
     input:
-        figure_inputs,
-        figure_code,
+        RUNS.figure_inputs,
+        lambda w: CODE.drawing(FIGURES[w.name].draw),
     output:
         report(
             "results/{run}figures/{name}.png",
@@ -23,9 +23,9 @@ rule figure:
     wildcard_constraints:
         name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
     params:
-        figure=figure_entry,
-        marks=figure_marks,
-        note=figure_note,
+        figure=RUNS.figure_entry,
+        marks=RUNS.figure_marks,
+        note=RUNS.figure_note,
     script:
         "../scripts/figure.py"
 
@@ -35,20 +35,20 @@ rule figure:
 # one image for the scenario's page.
 rule scenario_comparison:
     input:
-        paper=paper_figure_inputs,
-        scenario=figure_inputs,
-        code=comparison_code,
+        paper=RUNS.paper_figure_inputs,
+        scenario=RUNS.figure_inputs,
+        code=lambda w: CODE.drawing(FIGURES[w.name].draw, "compare.py"),
     output:
         "results/scenarios/{scenario}/compare/{name}.png",
     log:
         "logs/scenarios/{scenario}/compare_{name}.log",
     benchmark:
-        scenario_folder("{scenario}", "benchmarks/workflow") + "/compare_{name}.tsv"
+        "benchmarks/workflow/scenarios/{scenario}/compare_{name}.tsv"
     wildcard_constraints:
-        name=PAPER_FIGURE_NAMES,
+        name="|".join(PAPER_FIGURES),
     params:
-        figure=figure_entry,
-        marks=figure_marks,
-        note=figure_note,
+        figure=RUNS.figure_entry,
+        marks=RUNS.figure_marks,
+        note=RUNS.figure_note,
     script:
         "../scripts/compare.py"

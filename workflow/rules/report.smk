@@ -7,10 +7,10 @@
 # exploration, not graded).
 rule claims:
     input:
-        unpack(claim_inputs),
+        unpack(RUNS.claim_inputs),
         claims="config/claims.yaml",
         readings="config/readings.yaml",
-        code=code_inputs("claims.py"),
+        code=CODE("claims.py"),
     output:
         claims=report(
             "results/{run}claims.csv", caption="../report/claims.rst", category="Claims"
@@ -22,10 +22,10 @@ rule claims:
         "benchmarks/workflow/{run}claims.tsv"
     threads: 1
     params:
-        files=run_files,
-        experiments=lambda w: job_params.paper_experiments(configuration(w)),
-        common=lambda w: job_params.common_params(configuration(w)),
-        scenario=run_record,
+        files=RUNS.files,
+        experiments=lambda w: job_params.paper_experiments(RUNS.configuration(w)),
+        common=lambda w: job_params.common_params(RUNS.configuration(w)),
+        scenario=RUNS.record,
     script:
         "../scripts/claims.py"
 
@@ -44,10 +44,10 @@ rule report_page:
         statements="config/claims.yaml",
         inference=list(INFERENCE_RESULTS.values()),
         results=list(PAPER_RESULTS.values()),
-        code=code_inputs("report.py"),
+        code=CODE("report.py"),
         # the page's template is code of the report too (not a module: no import edge)
-        template=template_files("report.html.j2"),
-        assumptions=checkout_path(Path(workflow.basedir) / "docs" / "assumptions.md"),
+        template=CODE.template("report.html.j2"),
+        assumptions=CODE.checkout_file("docs", "assumptions.md"),
         studies=list(STUDY_RESULTS.values()),
     output:
         "report/index.html",
@@ -68,21 +68,21 @@ rule report_page:
 # scenario never asks for the paper's whole run).
 rule scenario_report:
     input:
-        figures=scenario_report_figures,
+        figures=RUNS.report_figures,
         claims="results/scenarios/{scenario}/claims.csv",
         configuration="results/scenarios/{scenario}/configuration.yaml",
         statements="config/claims.yaml",
-        code=code_inputs("scenario_report.py"),
-        template=template_files("scenario.html.j2"),
+        code=CODE("scenario_report.py"),
+        template=CODE.template("scenario.html.j2"),
     output:
         "report/scenarios/{scenario}/index.html",
     log:
         "logs/scenarios/{scenario}/report.log",
     benchmark:
-        scenario_folder("{scenario}", "benchmarks/workflow") + "/report_page.tsv"
+        "benchmarks/workflow/scenarios/{scenario}/report_page.tsv"
     params:
-        scenario=scenario_record,
-        figures=scenario_figure_table,
+        scenario=RUNS.record,
+        figures=RUNS.figure_table,
     script:
         "../scripts/scenario_report.py"
 
@@ -92,12 +92,12 @@ rule scenario_report:
 # a traceback).
 rule unknown_scenario:
     input:
-        refuse_unknown_scenario,
+        RUNS.refuse_unknown,
     output:
         "{top}/scenarios/{unknown}/{path}",
     wildcard_constraints:
         top="results|report",
-        unknown=UNKNOWN_SCENARIO,
+        unknown=RUNS.unknown_pattern,
         path=".+",
 
 
@@ -111,12 +111,12 @@ ruleorder: unknown_scenario_file > figure
 # line naming what a scenario makes.
 rule unknown_scenario_file:
     input:
-        refuse_unknown_scenario_file,
+        RUNS.refuse_unknown_file,
     output:
         "{top}/scenarios/{declared}/{path}",
     wildcard_constraints:
         top="results|report",
-        declared=DECLARED_SCENARIO,
+        declared=RUNS.declared_names,
         path=UNKNOWN_SCENARIO_PATH,
 
 
@@ -128,11 +128,9 @@ rule article:
         claims="results/claims.csv",
         statements="config/claims.yaml",
         results=list(PAPER_RESULTS.values()),
-        code=code_inputs("article.py"),
-        template=checkout_path(
-            PACKAGE_DIR / "replication" / "templates" / "article.typ"
-        ),
-        lock=checkout_path(Path(workflow.basedir) / "requirements.lock"),
+        code=CODE("article.py"),
+        template=CODE.checkout_file("src/tennis_stroke/replication/templates/article.typ"),
+        lock=CODE.checkout_file("requirements.lock"),
     output:
         pdf="report/article.pdf",
         metadata="report/metadata.yaml",
@@ -150,20 +148,20 @@ rule article:
 # changes, the figures it changes against the paper's, every claim under both).
 rule scenario_article:
     input:
-        comparisons=scenario_comparisons,
+        comparisons=RUNS.comparisons,
         claims="results/scenarios/{scenario}/claims.csv",
         statements="config/claims.yaml",
-        code=code_inputs("scenario_article.py"),
-        template=checkout_path(
-            PACKAGE_DIR / "replication" / "templates" / "scenario_article.typ"
+        code=CODE("scenario_article.py"),
+        template=CODE.checkout_file(
+            "src/tennis_stroke/replication/templates/scenario_article.typ"
         ),
     output:
         "report/scenarios/{scenario}/article.pdf",
     log:
         "logs/scenarios/{scenario}/article.log",
     benchmark:
-        scenario_folder("{scenario}", "benchmarks/workflow") + "/article.tsv"
+        "benchmarks/workflow/scenarios/{scenario}/article.tsv"
     params:
-        scenario=scenario_record,
+        scenario=RUNS.record,
     script:
         "../scripts/scenario_article.py"
