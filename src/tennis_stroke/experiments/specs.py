@@ -5,9 +5,9 @@ Each :class:`Experiment` row names its result file, the function that computes i
 import path, so this table stays light: the Snakefile imports it without numba), the
 config keys each argument of the function reads, how the map splits into chunks, how
 many strokes it runs at once (the memory estimate before any job) and the variables of
-its file.  Everything that wires an experiment reads this table: the workflow generates
-one rule per row (``workflow/rules/experiments.smk``), the generic script runs the row
-(:func:`compute`), the config check estimates the memory of every row's largest job,
+its file.  Everything that wires an experiment reads this table: the workflow's rules
+read a row by its file's stem (``workflow/rules/experiments.smk``), the generic script
+runs the row (:func:`compute`), the config check estimates the memory of every row's largest job,
 the robustness analysis reruns the paper's rows under each reading
 (:func:`tennis_stroke.inference.multiverse.paper_results`), and the tests check every row
 end to end.  Adding an experiment takes a function, a row, its config section (with its
@@ -89,8 +89,8 @@ class Experiment:
     stroke of the first batch (its memory is estimated); ``samples``: the (stroke, time)
     points of its sampled curves, from its arguments (None: no curves); ``variables``: the
     file's data variables; ``label``: what a message calls it, ``section`` the config key it names;
-    ``rule``: the name of its workflow rule (default: the key); ``bounds``: argument
-    (``force.F0`` inside a mapping argument) -> the model parameter
+    ``rule``: the row's name in the workflow's plans and tests (default: the key);
+    ``bounds``: argument (``force.F0`` inside a mapping argument) -> the model parameter
     (:data:`tennis_stroke.model.params.PARAMETERS`) whose unit and bounds its values
     have, checked before any job; ``sets``: the model parameters the row's function sets
     itself at every stroke, each with the argument it takes it from (an axis or a value
