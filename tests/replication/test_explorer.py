@@ -167,6 +167,7 @@ def test_a_saved_scenario_is_declared_with_the_file_s_comments_kept(paper, tmp_p
     [
         ("heavy", {"model": {"M2": 0.4}}, "already declared"),
         ("bad name", {"model": {"M2": 0.4}}, "a letter, then letters"),
+        ("a" + "x" * 20, {"model": {"M2": 0.4}}, "repeated 20 times"),
         ("negative", {"model": {"M2": -1.0}}, "must be > 0"),
     ],
 )

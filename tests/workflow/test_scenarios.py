@@ -74,6 +74,9 @@ def test_a_change_of_the_base_stroke_moves_the_files_of_secs_5_6_only():
     [
         ("1st", {}, "scenario name '1st': a letter"),
         ("a/b", {}, "scenario name 'a/b'"),
+        # Snakemake's PeriodicWildcardError, once a 6-line traceback of rule scenario_article
+        ("a" + "x" * 20, {}, "ends in 'x' repeated 20 times"),
+        ("q" + "ab" * 21, {}, "ends in 'ab' repeated 21 times"),
         ("s", [1], "scenario 's': overrides must be a mapping"),
         ("s", {"solver_study": {"seed": 2}}, "may not override 'solver_study'"),
         ("s", {"model_ladder": {}}, "may not override 'model_ladder'"),
@@ -101,6 +104,12 @@ def test_a_bad_scenario_is_one_line_naming_it(name, overrides, message):
     with pytest.raises(ScenarioError) as info:
         scenario_config(BASE, name, overrides, SCHEMA)
     assert message in str(info.value) and "\n" not in str(info.value)
+
+
+def test_a_name_with_19_repeats_at_its_end_is_a_scenario():
+    """The refusal of a periodic name starts where Snakemake's does (20 repeats)."""
+    config = scenario_config(BASE, "a" + "x" * 19, {"model": {"M2": 0.35}}, SCHEMA)
+    assert config["model"]["M2"] == 0.35
 
 
 def test_scenarios_come_from_the_file_and_the_command_line(tmp_path):

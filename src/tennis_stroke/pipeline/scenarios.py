@@ -44,6 +44,9 @@ from .params import changed_results, reads
 
 #: A scenario's name: a folder name on every system, and a Snakemake wildcard value.
 NAME = re.compile(r"[A-Za-z][A-Za-z0-9_-]{0,63}")
+#: Snakemake refuses a wildcard value that ends in one substring repeated 20 times or more
+#: (its PeriodicWildcardError, taken for an infinite recursion): such a name is refused.
+PERIODIC = re.compile(r"(.+?)\1{19,}$")
 #: The folder of the scenarios' result files and pages, below ``results/`` and ``report/``.
 FOLDER = "scenarios"
 #: Config sections a scenario may not override: what runs only in the paper's
@@ -77,6 +80,14 @@ def _shape_errors(name: object, overrides: object) -> list[str]:
         return [
             f"scenario name {name!r}: a letter, then letters, digits, '_' or '-' "
             "(at most 64; it names a folder)"
+        ]
+    periodic = PERIODIC.search(name)
+    if periodic:
+        repeated = len(periodic.group(0)) // len(periodic.group(1))
+        return [
+            f"scenario name {name!r}: it ends in {periodic.group(1)!r} repeated {repeated} "
+            "times, which Snakemake refuses in a file name (it takes it for an endless "
+            "recursion); at most 19 repeats"
         ]
     if overrides is None:
         return []
