@@ -146,6 +146,13 @@ def test_bad_memory_sizes_are_refused(text):
         parse_size(text)
 
 
+@pytest.mark.parametrize("text", ["1e400G", "1e308T", float("inf")])
+def test_a_size_beyond_any_float_is_refused_as_not_finite(text):
+    """Once refused as "must be at least 1 byte", which is not what is wrong."""
+    with pytest.raises(ValueError, match="must be a finite number of bytes"):
+        parse_size(text)
+
+
 def test_memory_limit_precedence(monkeypatch):
     monkeypatch.delenv(MEMORY_ENV, raising=False)
     default, source = memory_limit(None, "--max-memory")

@@ -108,7 +108,11 @@ def parse_size(text: str | int | float) -> int:
             )
         value, unit = float(match.group(1)), match.group(2).upper()
     size = value * _UNITS[unit]
-    if not (math.isfinite(size) and size >= 1):
+    if math.isnan(size):
+        raise ValueError(f"memory size must be a number of bytes or like 8G, got {text!r}")
+    if math.isinf(size):  # 1e400G, inf: more than any machine has
+        raise ValueError(f"memory size must be a finite number of bytes, got {text!r}")
+    if size < 1:
         raise ValueError(f"memory size must be at least 1 byte, got {text!r}")
     return int(size)
 
