@@ -52,16 +52,9 @@ from ..replication import explorer
 from ..replication.marks import mark_values
 from ..replication.registry import FIGURES as REGISTRY
 from ..replication.registry import LIVE
-from ..replication.views import (
-    curve_data,
-    curve_view,
-    fit_columns,
-    map_data,
-    map_view,
-    stroke_view,
-    update_stroke_view,
-    value_range,
-)
+from ..replication.views.maps import curve_data, curve_view, map_data, map_view, value_range
+from ..replication.views.strokes import stroke_view, update_stroke_view
+from ..replication.views.tables import fit_columns
 
 #: The one worker of every session (see the module's docstring).
 _WORKER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tennis-stroke-explore")

@@ -514,7 +514,11 @@ def _interactive(
     """The page's interactive views (:mod:`tennis_stroke.replication.views`): BokehJS and
     the views' script for the page's head, and each view's div by name (a figure's name,
     ``strokes-<block>``, ``multiverse``); nothing for a view whose file is not given."""
-    from . import views  # Bokeh: only the report job draws views
+    # Bokeh: only the report job draws views
+    from .views.maps import figure_view
+    from .views.multiverse import multiverse_view
+    from .views.page import page_views
+    from .views.strokes import stroke_view
 
     by_key = {k: p for k, rel in PAPER_RESULTS.items() for p in results if p.endswith(rel)}
     declared = {c["id"]: c for c in load_claims(claims_yaml)} if claims_yaml else {}
@@ -527,20 +531,20 @@ def _interactive(
         data = [load_result(by_key[k]) for k in figure.files]
         marks = mark_values(figure, declared, ours) if declared else []
         title = figure.filled_title(data[0].attrs)
-        view = views.figure_view(figure, data, title, marks)
+        view = figure_view(figure, data, title, marks)
         if view is not None:
             made[name] = view
     for block, key in STROKE_VIEWS.items():
         if key in by_key:
             title = "Table I" if block == "Table I" else f"Fig. {int(block[3:])}"
-            made[f"strokes-{block}"] = views.stroke_view(
+            made[f"strokes-{block}"] = stroke_view(
                 load_result(by_key[key]), f"strokes-{_anchor(block)}", title
             )
     if "robustness" in inference:
-        made["multiverse"] = views.multiverse_view(load_result(inference["robustness"]), claims)
+        made["multiverse"] = multiverse_view(load_result(inference["robustness"]), claims)
     if not made:
         return Markup(""), {}
-    head, divs = views.page_views(made)
+    head, divs = page_views(made)
     return _safe(head), {k: _safe(v) for k, v in divs.items()}
 
 
