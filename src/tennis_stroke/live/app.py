@@ -3,7 +3,7 @@ views and the work that recomputes them.
 
 A change of a control recomputes, in this order, each stage pushed to the page as soon
 as it is done: the map at the coarse level, Fig. 9's curve, the map at the full level,
-the picked stroke, the claims (:mod:`tennis_stroke.replication.explorer` computes each).
+the picked stroke, the claims (:mod:`tennis_stroke.live.compute` computes each).
 Every server shares one worker thread (the solver's own threads use the cores): a
 session's request waits for it, and work for a setting that a newer one replaced is
 dropped between two stages or two row blocks of a map, so rapid changes pile up
@@ -48,13 +48,13 @@ from bokeh.models import (
 
 from ..inference.reading_space import claims_and_readings
 from ..pipeline.scenarios import ScenarioError, save_scenario, scenario_config
-from ..replication import explorer
 from ..replication.marks import mark_values
 from ..replication.registry import FIGURES as REGISTRY
 from ..replication.registry import LIVE
 from ..replication.views.maps import curve_data, curve_view, map_data, map_view, value_range
 from ..replication.views.strokes import stroke_view, update_stroke_view
 from ..replication.views.tables import fit_columns
+from . import compute, controls
 
 #: The one worker of every session (see the module's docstring).
 _WORKER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tennis-stroke-explore")
@@ -110,17 +110,17 @@ class Shared:
         with self._lock:
             if self._paper is None:
                 paper = {c.key: c.paper for c in self.controls()}
-                overrides = explorer.overrides(self.config, paper)  # as a session's first
+                overrides = controls.overrides(self.config, paper)  # as a session's first
                 config = scenario_config(self.config, "explore", overrides, self.schema)
                 self._paper = (
-                    explorer.map_level(config, self.figure, "coarse", threads=self.threads),
-                    explorer.fig9_curve(config, self.threads),
+                    compute.map_level(config, self.figure, "coarse", threads=self.threads),
+                    compute.fig9_curve(config, self.threads),
                 )
             return self._paper
 
     def controls(self) -> list:
         """The page's controls, each marked with where its default comes from."""
-        return explorer.controls(self.config, self.figure, self.fitted)
+        return controls.controls(self.config, self.figure, self.fitted)
 
     def open_session(self) -> bool:
         """Count a new session in, if fewer than :attr:`max_sessions` live."""
@@ -150,7 +150,7 @@ class Shared:
         declared = {c["id"]: c for c in claims}
         return cls(
             config,
-            explorer.view_claims(claims),
+            compute.view_claims(claims),
             declared,
             dict(space.fit_of_claim()),
             space.fitted(),
@@ -196,7 +196,7 @@ def number_text(value: float) -> str:
     return repr(float(value)).removesuffix(".0")
 
 
-def refusal(control: explorer.Control, value) -> str | None:
+def refusal(control: controls.Control, value) -> str | None:
     """Why ``value`` cannot be ``control``'s (a one-line reason; "" for no value at all),
     or None: a choice must be one of the control's, a number finite and within its
     bounds.  The page's widgets offer no other, but a page can send any value."""
@@ -228,7 +228,7 @@ class Session:
         self._resetting = False
         self.picked: tuple[float, float] | None = None
         self.stroke = None  # the picked stroke's view, once a point is picked
-        self.fig = explorer.FIGURES[shared.figure][0]
+        self.fig = compute.FIGURES[shared.figure][0]
         self._build(*shared.paper_views())
         self.status.text = "the paper's setting, coarse map; the full map once connected"
         doc.on_event("document_ready", self._connected)
@@ -331,7 +331,7 @@ class Session:
         self.doc.add_root(row(panel, views))
         self.doc.title = "tennis-stroke explore"
 
-    def _widget(self, control: explorer.Control):
+    def _widget(self, control: controls.Control):
         paper = control.paper
         unit = f" ({control.unit})" if control.unit not in ("", "1") else ""
         title = f"{control.label}{unit} · {control.origin} {paper}"
@@ -416,13 +416,13 @@ class Session:
 
     def _config(self) -> dict:
         """The configuration at the controls' values, checked as a scenario's is."""
-        overrides = explorer.overrides(self.shared.config, self.values)
+        overrides = controls.overrides(self.shared.config, self.values)
         try:
             return scenario_config(self.shared.config, "explore", overrides, self.shared.schema)
         except ScenarioError as exc:
-            raise explorer.ExplorerError(str(exc).removeprefix("scenario 'explore': ")) from None
+            raise controls.ExplorerError(str(exc).removeprefix("scenario 'explore': ")) from None
 
-    def _changed(self, control: explorer.Control, attr, old, new) -> None:
+    def _changed(self, control: controls.Control, attr, old, new) -> None:
         """A control's value as the page sent it: a choice, or a number field's text
         (sent on Enter or when the field loses focus).  A refused value is named in the
         error line and the control shows its current value again; nothing is computed."""
@@ -473,7 +473,7 @@ class Session:
 
     def _save(self) -> None:
         name = self.scenario_name.value.strip()
-        overrides = explorer.overrides(self.shared.config, self.values)
+        overrides = controls.overrides(self.shared.config, self.values)
         try:
             path = save_scenario(
                 self.shared.scenarios, name, overrides, self.shared.config, self.shared.schema
@@ -513,12 +513,12 @@ class Session:
             config = self._config()
             if kind == "all":
                 self._push(kind, generation, partial(self._show_setting, self._described(config)))
-            for stage, compute in self._stages(kind, config, stale):
+            for stage, run in self._stages(kind, config, stale):
                 if stage in skip:
                     continue
                 if stale():
                     return
-                result = compute()
+                result = run()
                 if result is None or stale():
                     return
                 shown = getattr(self, f"_show_{stage}")
@@ -530,18 +530,18 @@ class Session:
     def _stages(self, kind: str, config: Mapping, stale) -> list[tuple[str, Callable]]:
         figure, threads = self.shared.figure, self.shared.threads
         picked = self.picked
-        stroke = ("stroke", lambda: explorer.stroke_at(config, figure, *picked))
+        stroke = ("stroke", lambda: compute.stroke_at(config, figure, *picked))
         if kind == "stroke":
             return [stroke] if picked else []
         stages = [
-            ("coarse", lambda: explorer.map_level(config, figure, "coarse", stale, threads)),
-            ("fig9", lambda: explorer.fig9_curve(config, threads)),
-            ("full", lambda: explorer.map_level(config, figure, "full", stale, threads)),
+            ("coarse", lambda: compute.map_level(config, figure, "coarse", stale, threads)),
+            ("fig9", lambda: compute.fig9_curve(config, threads)),
+            ("full", lambda: compute.map_level(config, figure, "full", stale, threads)),
         ]
         if picked:
             stages.append(stroke)
         claims = self.shared.claims, self.shared.fit_of_claim
-        stages.append(("claims", lambda: explorer.claims_table(config, *claims, threads)))
+        stages.append(("claims", lambda: compute.claims_table(config, *claims, threads)))
         return stages
 
     def _push(self, kind: str, generation: int, show: Callable[[], None]) -> None:
@@ -556,7 +556,7 @@ class Session:
         controls name them: what the views show, whatever the fields hold meanwhile."""
         changed = []
         for control in self.controls:
-            value = explorer.config_value(config, control.key)
+            value = controls.config_value(config, control.key)
             if str(value) == str(control.paper) or value == control.paper:
                 continue
             text = value if control.choices else number_text(value)
