@@ -36,7 +36,7 @@ class Control:
     """One control: the dotted config ``key`` it sets, its label and unit, its value in
     the paper's configuration (``paper``) and where that value comes from (``origin``,
     :data:`tennis_stroke.model.listing.ORIGINS`: the paper, fitted, derived, ours), its
-    bounds (None: unbounded; a number control refuses what is outside) and step, or its
+    bounds (None: unbounded; a number control refuses what is outside), or its
     ``choices``."""
 
     key: str
@@ -45,14 +45,14 @@ class Control:
     paper: float | str
     low: float | None = None
     high: float | None = None
-    step: float | None = None
     choices: tuple[str, ...] = ()
     note: str = ""
     origin: str = "paper"
 
 
 def _control_step(value: float) -> float:
-    """A control's step: about a hundredth of the paper's value, a power of ten."""
+    """About a hundredth of ``value``, a power of ten (the margin above an exclusive
+    lower bound)."""
     return 10.0 ** np.floor(np.log10(abs(value)) - 2) if value else 0.01
 
 
@@ -90,7 +90,6 @@ def controls(config: Mapping, figure: str, fitted: Collection[str] = ()) -> list
                 spec.default,
                 low,
                 high,
-                _control_step(spec.default),
                 note=note or spec.description,
                 origin=origin(name, fitted),
             )
@@ -132,17 +131,16 @@ def controls(config: Mapping, figure: str, fitted: Collection[str] = ()) -> list
             l1.unit,
             value_at(config, f"angle_maps.L1.{index}"),
             *_bounds(l1),
-            0.01,
             note=l1.description,
         )
     )
-    for key, label, unit, low, high, step in (  # values the paper states (Sec. V)
-        ("torque_delay.L1", "L1 of Fig. 9", "m", *_bounds(l1), 0.01),
-        ("torque_delay.theta0", "theta0 of Fig. 9", "degree", 0.0, 180.0, 0.5),
-        ("torque_delay.base_stroke.delta0", "delta0 of Fig. 9", "degree", -90.0, 180.0, 0.5),
-        ("torque_delay.base_stroke.C2", "C2 of Fig. 9", "N m", None, None, 0.1),
+    for key, label, unit, low, high in (  # values the paper states (Sec. V)
+        ("torque_delay.L1", "L1 of Fig. 9", "m", *_bounds(l1)),
+        ("torque_delay.theta0", "theta0 of Fig. 9", "degree", 0.0, 180.0),
+        ("torque_delay.base_stroke.delta0", "delta0 of Fig. 9", "degree", -90.0, 180.0),
+        ("torque_delay.base_stroke.C2", "C2 of Fig. 9", "N m", None, None),
     ):
-        out.append(Control(key, label, unit, value_at(config, key), low, high, step))
+        out.append(Control(key, label, unit, value_at(config, key), low, high))
     return out
 
 
