@@ -115,56 +115,13 @@ def map_comparison(
         Range1d(*_union(*((d[lo][0], d[lo][0] + d[size][0]) for d in (first, second))))
         for lo, size in (("left", "dw"), ("bottom", "dh"))
     )
-    label, coords = short_label(paper[var]), (short_label(paper[x]), short_label(paper[y]))
     names = status_names(paper)
     sides = {"paper": (paper, first), "scenario": (scenario, second)}
     titles = {"paper": "the paper's configuration", "scenario": f"scenario {who}"}
-    status = "status" in first and "status" in second
-    layers, hovers = [], {}
     if same_grid(valid_values(paper, var), valid_values(scenario, var)):
-        grid = {k: v for k, v in first.items() if k not in ("image", "status", *extra)}
-        data = dict(grid)
-        for side, (_, own) in sides.items():
-            data[side] = own["image"]
-            data |= {f"{k}_{side}": own[k] for k in extra}
-            if status:
-                data[f"status_{side}"] = own["status"]
-        data["difference"] = [second["image"][0] - first["image"][0]]
-        source = ColumnDataSource(data, name=f"{name}-compare")
-        tips = [(coords[0], "@paper{x}"), (coords[1], "@paper{y}")]
-        tips += [(f"{label}, {SIDES[side]}", f"@{side}{{value}}") for side in sides]
-        tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
-        tips += [
-            (f"status, {SIDES[side]}", f"@status_{side}{{status}}") for side in sides if status
-        ]
-        tips += [
-            (f"{short_label(paper[k])}, {SIDES[side]}", f"@{k}_{side}{{0.00}}")
-            for k in extra
-            for side in sides
-        ]
-        fields = tuple(k for k in data if k not in grid)
-        reach = float(np.nanmax(np.abs(data["difference"][0]), initial=0.0)) or 1.0
-        colors = LinearColorMapper(
-            palette=DIFFERENCE_COLORS,
-            low=-reach,
-            high=reach,
-            nan_color="lightgray",
-            name=f"{name}-difference-colors",
-        )
-        for side, pick in zip(sides, marks, strict=True):
-            layers.append((side, source, side, mapper, label, pick))
-            hovers[side] = tips
-        layers.append(("difference", source, "difference", colors, f"{DIFFERENCE} ({label})", ()))
-        hovers["difference"] = tips
+        layers, hovers, fields = _linked_layers(sides, x, y, var, name, mapper, marks, extra)
     else:
-        fields = ("image", "status")
-        for (side, (ds, own)), pick in zip(sides.items(), marks, strict=True):
-            source = ColumnDataSource(own, name=f"{name}-{side}-map")
-            layers.append((side, source, "image", mapper, label, pick))
-            hovers[side] = [(coords[0], "@image{x}"), (coords[1], "@image{y}")]
-            hovers[side].append((f"{label}, {SIDES[side]}", "@image{value}"))
-            if "status" in ds:
-                hovers[side].append(("status", "@status{status}"))
+        layers, hovers, fields = _own_layers(sides, x, y, var, name, mapper, marks)
     plots, crosshair = [], _crosshair(name)
     for side, source, field, colors, bar, pick in layers:
         p = _panel(paper, x, y, titles.get(side, DIFFERENCE), f"{name}-{side}", ranges, MAP_PANEL)
@@ -181,6 +138,66 @@ def map_comparison(
     if len(plots) == 2:
         plots.append(Div(text=_NO_DIFFERENCE.format(var=var), width=MAP_PANEL[0]))
     return row(*plots, name=name)
+
+
+def _linked_layers(sides, x: str, y: str, var: str, name: str, mapper, marks, extra):
+    """The panels of a :func:`map_comparison` on one grid, ``(side, source, field,
+    colours, colour bar title, marks)`` each: both maps and their difference from one
+    source (``<name>-compare``); each panel's hover (all the same: every value of the
+    cell) and the source's fields the hover writes as values."""
+    paper, first = sides["paper"]
+    second = sides["scenario"][1]
+    label, coords = short_label(paper[var]), (short_label(paper[x]), short_label(paper[y]))
+    status = "status" in first and "status" in second
+    grid = {k: v for k, v in first.items() if k not in ("image", "status", *extra)}
+    data = dict(grid)
+    for side, (_, own) in sides.items():
+        data[side] = own["image"]
+        data |= {f"{k}_{side}": own[k] for k in extra}
+        if status:
+            data[f"status_{side}"] = own["status"]
+    data["difference"] = [second["image"][0] - first["image"][0]]
+    source = ColumnDataSource(data, name=f"{name}-compare")
+    tips = [(coords[0], "@paper{x}"), (coords[1], "@paper{y}")]
+    tips += [(f"{label}, {SIDES[side]}", f"@{side}{{value}}") for side in sides]
+    tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
+    tips += [(f"status, {SIDES[side]}", f"@status_{side}{{status}}") for side in sides if status]
+    tips += [
+        (f"{short_label(paper[k])}, {SIDES[side]}", f"@{k}_{side}{{0.00}}")
+        for k in extra
+        for side in sides
+    ]
+    fields = tuple(k for k in data if k not in grid)
+    reach = float(np.nanmax(np.abs(data["difference"][0]), initial=0.0)) or 1.0
+    colors = LinearColorMapper(
+        palette=DIFFERENCE_COLORS,
+        low=-reach,
+        high=reach,
+        nan_color="lightgray",
+        name=f"{name}-difference-colors",
+    )
+    layers = [
+        (side, source, side, mapper, label, pick) for side, pick in zip(sides, marks, strict=True)
+    ]
+    layers.append(("difference", source, "difference", colors, f"{DIFFERENCE} ({label})", ()))
+    return layers, dict.fromkeys((*sides, "difference"), tips), fields
+
+
+def _own_layers(sides, x: str, y: str, var: str, name: str, mapper, marks):
+    """The panels of a :func:`map_comparison` on two grids (as :func:`_linked_layers`):
+    each map from its own source (``<name>-paper-map``, ``<name>-scenario-map``) with its
+    own hover, no difference."""
+    paper = sides["paper"][0]
+    label, coords = short_label(paper[var]), (short_label(paper[x]), short_label(paper[y]))
+    layers, hovers = [], {}
+    for (side, (ds, own)), pick in zip(sides.items(), marks, strict=True):
+        source = ColumnDataSource(own, name=f"{name}-{side}-map")
+        layers.append((side, source, "image", mapper, label, pick))
+        hovers[side] = [(coords[0], "@image{x}"), (coords[1], "@image{y}")]
+        hovers[side].append((f"{label}, {SIDES[side]}", "@image{value}"))
+        if "status" in ds:
+            hovers[side].append(("status", "@status{status}"))
+    return layers, hovers, ("image", "status")
 
 
 _NO_DIFFERENCE = (
@@ -219,28 +236,7 @@ def curve_comparison(
         CURVE_PANEL,
     )
     one = same_grid(valid_values(paper, var), valid_values(scenario, var))
-    if one:
-        difference = second["v"] - first["v"]
-        source = ColumnDataSource(
-            {
-                "x": first["x"],
-                "paper": first["v"],
-                "scenario": second["v"],
-                "difference": difference,
-                "status_paper": first["status"],
-                "status_scenario": second["status"],
-                # where the mouse finds a sample: finite wherever a stroke failed
-                "near": np.where(np.isfinite(second["v"]), second["v"], first["v"]),
-                "near_difference": np.nan_to_num(difference, nan=0.0),
-            },
-            name=f"{name}-compare",
-        )
-        sides = [("paper", source, "paper"), ("scenario", source, "scenario")]
-    else:
-        sides = [
-            (side, ColumnDataSource(data, name=f"{name}-{side}-map"), "v")
-            for side, data in (("paper", first), ("scenario", second))
-        ]
+    sides = _curve_sources(first, second, name, one)
     for (side, source_, field), color, dash in zip(
         sides, ("gray", Category10_10[0]), ("solid", "solid"), strict=True
     ):
@@ -270,6 +266,44 @@ def curve_comparison(
         return row(
             p, Div(text=_NO_DIFFERENCE.format(var=var), width=CURVE_PANEL[0] // 2), name=name
         )
+    q = _difference_panel(p, sides[0][1], paper, x, var, name, x_range, crosshair)
+    return row(p, q, name=name)
+
+
+def _curve_sources(first: dict, second: dict, name: str, one: bool) -> list[tuple]:
+    """The curves of a :func:`curve_comparison`, ``(side, source, field)`` each: on one
+    grid (``one``), both from one source (``<name>-compare``) with their difference,
+    else each from its own (``<name>-paper-map``, ``<name>-scenario-map``)."""
+    if not one:
+        return [
+            (side, ColumnDataSource(data, name=f"{name}-{side}-map"), "v")
+            for side, data in (("paper", first), ("scenario", second))
+        ]
+    difference = second["v"] - first["v"]
+    source = ColumnDataSource(
+        {
+            "x": first["x"],
+            "paper": first["v"],
+            "scenario": second["v"],
+            "difference": difference,
+            "status_paper": first["status"],
+            "status_scenario": second["status"],
+            # where the mouse finds a sample: finite wherever a stroke failed
+            "near": np.where(np.isfinite(second["v"]), second["v"], first["v"]),
+            "near_difference": np.nan_to_num(difference, nan=0.0),
+        },
+        name=f"{name}-compare",
+    )
+    return [("paper", source, "paper"), ("scenario", source, "scenario")]
+
+
+def _difference_panel(
+    p, source, paper: xr.Dataset, x: str, var: str, name: str, x_range, crosshair
+):
+    """The hover of the curves ``p`` of a :func:`curve_comparison` on one grid (every
+    value at the sample nearest the mouse), and the panel of their difference beside
+    it, on the same x axis, with the same hover and crosshair."""
+    label = short_label(paper[var])
     tips = [(short_label(paper[x]), "@x{0.0000}")]
     tips += [(f"{label}, {SIDES[side]}", f"@{side}{{value}}") for side in SIDES]
     tips.append((f"{label}, {DIFFERENCE}", "@difference{signed}"))
@@ -281,7 +315,7 @@ def curve_comparison(
     q.add_layout(Span(location=0.0, dimension="width", line_color="gray", line_width=1))
     q.line("x", "difference", source=source, line_width=2, color=Category10_10[3])
     q.add_tools(_curve_hover(q, source, "near_difference", tips, fields), crosshair())
-    return row(p, q, name=name)
+    return q
 
 
 def _curve_hover(p, source: ColumnDataSource, field: str, tooltips, fields) -> HoverTool:
