@@ -241,6 +241,41 @@ class Session:
     # -- the page ---------------------------------------------------------------------
 
     def _build(self, ds, curve) -> None:
+        """The page: the map and Fig. 9's curve (``ds``, ``curve``), the status lines,
+        the claims table, the stroke's place, and the controls' panel beside them."""
+        self._build_map(ds)
+        self._build_curve(curve)
+        views_width = MAP_WIDTH + CURVE_WIDTH
+        self.status = Div(text="", name="explore-status", width=views_width)
+        self.setting = Div(
+            text="computed with the paper's setting", name="explore-setting", width=views_width
+        )
+        self.error = Div(
+            text="",
+            name="explore-error",
+            width=views_width,
+            styles={"color": "#b00020", "font-weight": "bold"},
+        )
+        self._build_claims_table(views_width)
+        self.stroke_status = Div(
+            text="<i>Click a point of the map to play its stroke.</i>", name="explore-stroke-status"
+        )
+        self.stroke_box = column(Div(), name="explore-stroke-box")
+        panel = self._controls()
+        views = column(
+            self.status,
+            self.setting,
+            self.error,
+            row(self.map, self.curve),
+            self.claims_table,
+            self.stroke_status,
+            self.stroke_box,
+        )
+        self.doc.add_root(row(panel, views))
+        self.doc.title = "tennis-stroke explore"
+
+    def _build_map(self, ds) -> None:
+        """The map of ``ds`` with the figure's marks; a tap on it picks a stroke."""
         registry = _registry_figure(self.fig)
         marks = mark_values(registry, self.shared.declared)
         title = f"{registry.title.split(':')[0]} live: v_out over (theta0, delta0)"
@@ -256,6 +291,9 @@ class Session:
         )
         self.map.on_event(Tap, self._tap)
         self.map.width = MAP_WIDTH
+
+    def _build_curve(self, curve) -> None:
+        """Fig. 9's curve with its marks."""
         fig9 = _registry_figure("fig9")
         self.curve = curve_view(
             curve,
@@ -267,17 +305,9 @@ class Session:
         )
         self.curve_source = self.curve.select_one({"name": "explore-fig9-map"})
         self.curve.width = CURVE_WIDTH
-        views_width = MAP_WIDTH + CURVE_WIDTH
-        self.status = Div(text="", name="explore-status", width=views_width)
-        self.setting = Div(
-            text="computed with the paper's setting", name="explore-setting", width=views_width
-        )
-        self.error = Div(
-            text="",
-            name="explore-error",
-            width=views_width,
-            styles={"color": "#b00020", "font-weight": "bold"},
-        )
+
+    def _build_claims_table(self, width: int) -> None:
+        """The claims the views test, their verdicts filled as they are computed."""
         self.claims_source = ColumnDataSource(self._claims_data(None), name="explore-claims")
         self.claims_table = DataTable(
             source=self.claims_source,
@@ -301,7 +331,7 @@ class Session:
                 # last: the long descriptions scroll sideways, the values stay in view
                 TableColumn(field="quantity", title="quantity (the table scrolls sideways)"),
             ],
-            width=views_width,
+            width=width,
             autosize_mode="none",  # each column as wide as its text; a wide table scrolls
             height=28 * (len(self.shared.claims) + 2),
             index_position=None,
@@ -314,22 +344,6 @@ class Session:
         self.claims_source.js_on_change(
             "data", CustomJS(args={"table": self.claims_table}, code="table.view.change.emit()")
         )
-        self.stroke_status = Div(
-            text="<i>Click a point of the map to play its stroke.</i>", name="explore-stroke-status"
-        )
-        self.stroke_box = column(Div(), name="explore-stroke-box")
-        panel = self._controls()
-        views = column(
-            self.status,
-            self.setting,
-            self.error,
-            row(self.map, self.curve),
-            self.claims_table,
-            self.stroke_status,
-            self.stroke_box,
-        )
-        self.doc.add_root(row(panel, views))
-        self.doc.title = "tennis-stroke explore"
 
     def _widget(self, control: controls.Control):
         paper = control.paper
