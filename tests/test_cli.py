@@ -716,21 +716,21 @@ def test_the_explorer_and_params_mark_each_default_from_one_declaration(capsys):
     """The explorer called fitted defaults "paper" (k_contact, ball_mass, the readings'
     defaults): every control now says what `tennis-stroke params` says of its default."""
     from tennis_stroke.inference.reading_space import load_reading_space
+    from tennis_stroke.live import controls
     from tennis_stroke.model.listing import origin
-    from tennis_stroke.replication import explorer
 
     config = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
     fitted = load_reading_space(ROOT / "config" / "readings.yaml").fitted()
-    controls = {c.key: c for c in explorer.controls(config, "fig2", fitted)}
-    for key, control in controls.items():
+    by_key = {c.key: c for c in controls.controls(config, "fig2", fitted)}
+    for key, control in by_key.items():
         section, _, name = key.partition(".")
         if section == "model":
             assert control.origin == origin(name, fitted), key
-    assert controls["model.k_contact"].origin == "fitted"
-    assert controls["model.ball_mass"].origin == "fitted"
-    assert controls["model.contact_lead_rule"].origin == "fitted"
-    assert controls["model.M2"].origin == "paper"
-    assert controls["solver.method"].origin == "ours"
+    assert by_key["model.k_contact"].origin == "fitted"
+    assert by_key["model.ball_mass"].origin == "fitted"
+    assert by_key["model.contact_lead_rule"].origin == "fitted"
+    assert by_key["model.M2"].origin == "paper"
+    assert by_key["solver.method"].origin == "ours"
     code, out, _ = _run(capsys, "params")
     assert "quarter_period [default, fitted]" in out and "half_period [paper]" in out
 

@@ -11,8 +11,7 @@ from conftest import ROOT
 
 from tennis_stroke.experiments.specs import merged
 from tennis_stroke.io.config_files import load_yaml
-from tennis_stroke.live import app
-from tennis_stroke.replication import explorer
+from tennis_stroke.live import app, compute, controls
 from tennis_stroke.solver.stroke import strike_batch
 
 
@@ -104,7 +103,7 @@ def test_a_page_load_computes_nothing_until_its_page_connects(shared, monkeypatc
     computed = []
     for name in ("map_level", "fig9_curve", "claims_table"):
         monkeypatch.setattr(
-            explorer, name, lambda *a, _name=name, **k: computed.append((_name, *a[2:3]))
+            compute, name, lambda *a, _name=name, **k: computed.append((_name, *a[2:3]))
         )
     sessions = [app.Session(shared, Document(connects=False)) for _ in range(3)]
     settle(sessions[-1])
@@ -166,7 +165,7 @@ def test_a_failing_stage_is_one_line_and_the_next_change_computes(shared, monkey
         raise RuntimeError("the solver broke\nsecond line")
 
     with monkeypatch.context() as m:
-        m.setattr(explorer, "fig9_curve", broken)
+        m.setattr(compute, "fig9_curve", broken)
         session.widgets["model.M2"].value = "0.4"
         settle(session)
     assert session.error.text == "RuntimeError: the solver broke"
@@ -180,14 +179,14 @@ def test_ten_rapid_changes_compute_the_last_and_pile_up_nothing(shared, monkeypa
     session = app.Session(shared, Document())
     settle(session)
     computed = []
-    real = explorer.map_level
+    real = compute.map_level
 
     def counted(config, figure, level, stale=lambda: False, threads=None):
         computed.append((config["model"]["M2"], level))
         time.sleep(0.05)  # slower than the changes arrive
         return real(config, figure, level, stale, threads)
 
-    monkeypatch.setattr(explorer, "map_level", counted)
+    monkeypatch.setattr(compute, "map_level", counted)
     threads = threading.active_count()
     for n in range(10):
         session.widgets["model.M2"].value = f"{0.31 + 0.01 * n:.2f}"
@@ -212,7 +211,7 @@ def test_reset_returns_every_control_to_the_default_reading(shared):
         assert session.widgets[control.key].value == (
             control.paper if control.choices else app.number_text(control.paper)
         )
-    assert explorer.overrides(shared.config, session.values) == {}
+    assert controls.overrides(shared.config, session.values) == {}
 
 
 def test_a_picked_point_plays_its_stroke(shared):
@@ -260,7 +259,7 @@ def test_a_second_pick_shows_its_stroke_in_the_same_view(shared):
     session._tap(Second)
     settle(session)
     assert session.stroke is view and session.stroke_box.children == [view]
-    expected = explorer.stroke_at(session._config(), "fig2", 112.0, 14.0)
+    expected = compute.stroke_at(session._config(), "fig2", 112.0, 14.0)
     now = view.select_one({"name": "explore-stroke-now"})
     assert now.data["label"] == ["theta0 112, delta0 14 deg"]
     info = view.select_one({"name": "explore-stroke-info"}).data
@@ -358,9 +357,9 @@ def test_a_field_computes_with_the_value_typed_and_never_rewrites_it(shared, mon
     session = app.Session(shared, Document())
     settle(session)
     seen = []
-    real = explorer.map_level
+    real = compute.map_level
     monkeypatch.setattr(
-        explorer,
+        compute,
         "map_level",
         lambda config, *a, **k: seen.append(config["model"]["M2"]) or real(config, *a, **k),
     )

@@ -17,9 +17,8 @@ from chromium import CHROMIUM, DRIVER, MISSING, POSITION_JS, chromium, wait_idle
 from conftest import ROOT
 
 from tennis_stroke.io.config_files import load_yaml
-from tennis_stroke.live import app
+from tennis_stroke.live import app, compute, controls
 from tennis_stroke.live import server as server_module
-from tennis_stroke.replication import explorer
 from tennis_stroke.solver.stroke import strike_batch
 
 EXPLORE = [sys.executable, "-m", "tennis_stroke.cli", "explore"]
@@ -119,7 +118,7 @@ def test_a_moved_control_shows_the_solver_s_strokes_at_the_new_setting(server, b
     assert [m["level"] for m in maps if m["generation"] == 2] == ["coarse", "full"]
     shown = page_map(browser)
     config = load_yaml(folder / "config" / "config.yaml")
-    theta, delta = explorer.map_axes(config, "fig2", "full")
+    theta, delta = compute.map_axes(config, "fig2", "full")
     expected = strike_batch(theta[:, None], delta[None, :], {"M2": 0.35, "L1": 0.3})
     assert shown.shape == (241, 201)
     np.testing.assert_array_equal(shown, expected["v_out_kmh"].astype(np.float32))
@@ -357,7 +356,7 @@ def test_every_number_field_computes_with_what_is_typed_over_its_text(server, br
     folder, port = server
     open_page(browser, port)
     wait_map(browser, 1)
-    shared_controls = explorer.controls(load_yaml(folder / "config" / "config.yaml"), "fig2")
+    shared_controls = controls.controls(load_yaml(folder / "config" / "config.yaml"), "fig2")
     typed = typed_values(shared_controls)
     assert len(typed) > 20
     for n, (control, text, _) in enumerate(typed):

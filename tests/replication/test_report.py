@@ -15,14 +15,9 @@ from conftest import ROOT, SCENARIO_PAGE, merged, record_configuration, run_snak
 
 from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS, STUDY_RESULTS
 from tennis_stroke.io.netcdf import load_result
+from tennis_stroke.replication.analyses import ladder_summary, studies_section
 from tennis_stroke.replication.registry import FIGURES
-from tennis_stroke.replication.report import (
-    _paper_place,
-    _studies,
-    build_report,
-    ladder_summary,
-    markdown_html,
-)
+from tennis_stroke.replication.report import _paper_place, build_report, markdown_html
 
 CLAIM_IDS = [c["id"] for c in yaml.safe_load((ROOT / "config/claims.yaml").read_text())["claims"]]
 #: Chromium as Debian installs it (.ci/run); the browser tests skip without it.
@@ -109,12 +104,14 @@ def test_the_studies_are_read_by_their_keys(tiny_run):
     """The model ladder's error from the ladder study's file, a table of each other study
     the page tabulates, in the page's order; nothing without their files."""
     files = {k: str(tiny_run / v) for k, v in STUDY_RESULTS.items()}
-    error, tables = _studies(files)
+    error, tables = studies_section(files)
     assert error == float(load_result(files["ladder"]).attrs["max_error_impact_kmh"])
     assert [t["title"].split(":")[0] for t in tables] == ["The optimum of Figs. 5-6", "Stability"]
     assert all("<table" in t["html"] for t in tables)
-    assert _studies({}) == (None, [])
-    assert [t["title"][:9] for t in _studies({"stability": files["stability"]})[1]] == ["Stability"]
+    assert studies_section({}) == (None, [])
+    assert [t["title"][:9] for t in studies_section({"stability": files["stability"]})[1]] == [
+        "Stability"
+    ]
 
 
 def test_text_from_files_is_escaped(tiny_run, tmp_path):
@@ -346,7 +343,8 @@ def test_a_count_a_file_does_not_record_is_a_dash_never_na(tmp_path):
     import xarray as xr
 
     from tennis_stroke.io.netcdf import write_netcdf
-    from tennis_stroke.replication.report import _failures, _table
+    from tennis_stroke.replication.formats import _table
+    from tennis_stroke.replication.report import _failures
 
     points = xr.Dataset(
         {

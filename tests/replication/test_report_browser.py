@@ -16,8 +16,9 @@ from tennis_stroke.experiments.specs import RESULT_FILES
 from tennis_stroke.inference.measures import valid_v_out
 from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.pipeline.scenarios import scenario_path
-from tennis_stroke.replication import views
 from tennis_stroke.replication.registry import FIGURES
+from tennis_stroke.replication.views.maps import map_view
+from tennis_stroke.replication.views.page import page_views
 
 pytestmark = [
     pytest.mark.browser,
@@ -94,8 +95,8 @@ def test_the_hover_check_fails_on_a_view_whose_data_disagree(browser, tiny_run, 
     changed["v_out"][2, 2] += 0.5
     theta0, delta0 = _cells(ds, [(2, 2)])[0]
     for data, equal in ((ds, True), (changed, False)):
-        view = views.map_view(data, "theta0", "delta0", "v_out", "t", "fig02_angle_map")
-        head, divs = views.page_views({"fig02_angle_map": view})
+        view = map_view(data, "theta0", "delta0", "v_out", "t", "fig02_angle_map")
+        head, divs = page_views({"fig02_angle_map": view})
         page = tmp_path / f"view-{equal}.html"
         page.write_text(
             f"<!DOCTYPE html><html><head>{head}</head><body>{divs['fig02_angle_map']}</body></html>"

@@ -12,9 +12,9 @@ from tennis_stroke.experiments.specs import RESULT_FILES
 from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.inference.measures import valid_v_out
 from tennis_stroke.io.netcdf import load_result
-from tennis_stroke.replication import views
 from tennis_stroke.replication.marks import mark_values
 from tennis_stroke.replication.registry import FIGURES, Figure, Mark
+from tennis_stroke.replication.views import comparison, maps, multiverse, page, strokes
 
 CLAIMS = {c["id"]: c for c in load_claims(ROOT / "config/claims.yaml")}
 
@@ -59,7 +59,7 @@ def test_a_mark_of_an_undeclared_claim_or_argument_is_named(mark, named):
 
 @pytest.mark.parametrize(("step", "decimals"), [(0.25, 2), (0.5, 1), (2.0, 0), (0.0025, 4)])
 def test_a_coordinate_is_written_with_the_decimals_its_step_needs(step, decimals):
-    assert views._decimals(step) == decimals
+    assert maps._decimals(step) == decimals
 
 
 def test_a_map_view_holds_every_cell_of_the_file(tiny_run):
@@ -67,7 +67,7 @@ def test_a_map_view_holds_every_cell_of_the_file(tiny_run):
     a changed value is seen."""
     ds = load_result(tiny_run / RESULT_FILES["fig2"])
     ds["status"][0, 0] = 5  # a failed stroke: no value, its status
-    p = views.map_view(ds, "theta0", "delta0", "v_out", "t", "fig02_angle_map")
+    p = maps.map_view(ds, "theta0", "delta0", "v_out", "t", "fig02_angle_map")
     data = _source(p, "fig02_angle_map-map").data
     expected = valid_v_out(ds).transpose("delta0", "theta0").values.astype(np.float32)
     np.testing.assert_array_equal(data["image"][0], expected)
@@ -75,7 +75,7 @@ def test_a_map_view_holds_every_cell_of_the_file(tiny_run):
     np.testing.assert_array_equal(data["status"][0], ds["status"].values.T)
     changed = ds.copy(deep=True)
     changed["v_out"][1, 1] += 0.01
-    other = views.map_view(changed, "theta0", "delta0", "v_out", "t", "x")
+    other = maps.map_view(changed, "theta0", "delta0", "v_out", "t", "x")
     assert not np.array_equal(_source(other, "x-map").data["image"][0], expected, equal_nan=True)
 
 
@@ -84,12 +84,12 @@ def test_a_map_over_an_uneven_axis_is_refused(tiny_run):
     theta = ds["theta0"].values.copy()
     theta[-1] += 0.1 * (theta[1] - theta[0])
     with pytest.raises(ValueError, match="theta0 is not uniform"):
-        views.map_view(ds.assign_coords(theta0=theta), "theta0", "delta0", "v_out", "t", "x")
+        maps.map_view(ds.assign_coords(theta0=theta), "theta0", "delta0", "v_out", "t", "x")
 
 
 def test_the_stroke_view_holds_the_files_positions(tiny_run):
     ds = load_result(tiny_run / RESULT_FILES["fig4"])
-    layout = views.stroke_view(ds, "s", "Fig. 4")
+    layout = strokes.stroke_view(ds, "s", "Fig. 4")
     curves = _source(layout, "s-curves").data
     now = _source(layout, "s-now").data
     for i in range(ds.sizes["stroke"]):
@@ -102,7 +102,7 @@ def test_the_stroke_view_holds_the_files_positions(tiny_run):
 def test_the_multiverse_view_holds_every_claim_under_every_reading(tiny_run):
     ds = load_result(tiny_run / RESULT_FILES["robustness"])
     claims = pd.read_csv(tiny_run / "results/claims.csv", keep_default_na=False)
-    layout = views.multiverse_view(ds, claims)
+    layout = multiverse.multiverse_view(ds, claims)
     (pick,) = {m for m in layout.select({"type": CustomJS}) if "data" in m.args}
     data = pick.args["data"]
     values = _source(layout, "multiverse-values").data
@@ -121,7 +121,7 @@ def test_the_multiverse_view_holds_every_claim_under_every_reading(tiny_run):
 
 def test_every_figure_with_a_view_gets_one(tiny_run):
     """The maps of Figs. 2-3, 5-9 and 13 (the issue's list) have views."""
-    with_views = [n for n, f in FIGURES.items() if f.draw in views.MAP_VIEWS]
+    with_views = [n for n, f in FIGURES.items() if f.draw in maps.MAP_VIEWS]
     assert [n[:5] for n in with_views] == [
         "fig02",
         "fig03",
@@ -135,7 +135,7 @@ def test_every_figure_with_a_view_gets_one(tiny_run):
     for name in with_views:
         figure = FIGURES[name]
         data = [xr.open_dataset(tiny_run / RESULT_FILES[k]) for k in figure.files]
-        view = views.figure_view(figure, data, "t", mark_values(figure, CLAIMS))
+        view = maps.figure_view(figure, data, "t", mark_values(figure, CLAIMS))
         assert _source(view, f"{name}-map").data
 
 
@@ -144,7 +144,7 @@ def test_text_in_a_view_is_escaped(tiny_run):
     ds = load_result(tiny_run / RESULT_FILES["fig4"])
     hostile = "</script><script>alert(1)</script>"
     ds = ds.assign_coords(label=("stroke", [hostile] * ds.sizes["stroke"]))
-    head, divs = views.page_views({"s": views.stroke_view(ds, "s", "t")})
+    head, divs = page.page_views({"s": strokes.stroke_view(ds, "s", "t")})
     assert hostile not in head and "alert(1)" in head
 
 
@@ -182,7 +182,7 @@ def test_a_comparison_holds_both_maps_and_their_difference_on_shared_scales():
     theta = np.arange(60.0, 121.0, 5.0)
     paper, scenario = _angle_map(theta), _angle_map(theta, tilt=0.4)
     scenario["status"][3, 2] = 5
-    view = views.map_comparison(paper, scenario, "theta0", "delta0", "v_out", "fig", "s")
+    view = comparison.map_comparison(paper, scenario, "theta0", "delta0", "v_out", "fig", "s")
     data = _source(view, "fig-compare").data
     first = valid_v_out(paper).transpose("delta0", "theta0").values.astype(np.float32)
     second = valid_v_out(scenario).transpose("delta0", "theta0").values.astype(np.float32)
@@ -223,7 +223,7 @@ def test_a_comparison_on_different_grids_draws_no_difference_and_says_why():
 
     paper = _angle_map(np.arange(60.0, 121.0, 5.0))
     scenario = _angle_map(np.arange(50.0, 131.0, 2.5), tilt=0.4)
-    view = views.map_comparison(paper, scenario, "theta0", "delta0", "v_out", "fig", "s")
+    view = comparison.map_comparison(paper, scenario, "theta0", "delta0", "v_out", "fig", "s")
     names = {m.name for m in _models(view, ColumnDataSource)}
     assert "fig-compare" not in names and {"fig-paper-map", "fig-scenario-map"} <= names
     (note,) = _models(view, Div)
@@ -252,7 +252,7 @@ def test_a_curve_comparison_holds_both_curves_and_their_difference():
 
     paper, scenario = curve(20.0), curve(30.0)
     scenario["status"][4] = 5  # a stroke that fails under the scenario only
-    view = views.curve_comparison(paper, scenario, "tau", "v_out", "fig", "s")
+    view = comparison.curve_comparison(paper, scenario, "tau", "v_out", "fig", "s")
     data = _source(view, "fig-compare").data
     expected = scenario["v_out"].values - paper["v_out"].values
     expected[4] = np.nan
@@ -282,7 +282,7 @@ def test_a_curve_comparison_on_different_grids_draws_no_difference():
         )
 
     paper, scenario = curve(np.linspace(0, 0.3, 31)), curve(np.linspace(0, 0.4, 81))
-    view = views.curve_comparison(paper, scenario, "tau", "v_out", "fig", "s")
+    view = comparison.curve_comparison(paper, scenario, "tau", "v_out", "fig", "s")
     names = {m.name for m in _models(view, ColumnDataSource)}
     assert "fig-compare" not in names and {"fig-paper-map", "fig-scenario-map"} <= names
     (plot,) = [c for c in view.children if isinstance(c, Plot)]
@@ -300,7 +300,7 @@ def test_a_map_comparison_draws_each_side_s_line_and_hovers_its_extras():
     for ds, shift in ((paper, 0.0), (scenario, 5.0)):
         ds["best_delta0"] = ("theta0", 20.0 + shift + 0 * theta, {"units": "degree"})
         ds["theta0_best"] = (("theta0", "delta0"), 0 * ds["v_out"].values + shift)
-    view = views.map_comparison(
+    view = comparison.map_comparison(
         paper,
         scenario,
         "theta0",
@@ -339,7 +339,7 @@ def test_a_mark_label_in_the_right_half_ends_at_its_line():
         }
         for c, x in (("left_one", 65.0), ("right_one", 118.0))
     ]
-    p = views.map_view(_angle_map(theta), "theta0", "delta0", "v_out", "t", "fig", marks)
+    p = maps.map_view(_angle_map(theta), "theta0", "delta0", "v_out", "t", "fig", marks)
     labels = {m.text: m for m in _models(p, Label)}
     assert labels["right_one (paper)"].text_align == "right"
     assert labels["left_one (paper)"].text_align == "left"

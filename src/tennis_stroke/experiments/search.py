@@ -101,20 +101,8 @@ def maximize(
     returning values in ``[lower, upper)``.  ``max_iterations``: the steps after which a
     search still moving is an error; None, the most it can take (:func:`step_bound`).
     """
-    lo, hi = np.asarray(lower, float), np.asarray(upper, float)
-    steps, tol = np.asarray(steps, float), np.asarray(tolerances, float)
+    lo, hi, steps, tol, wrap, period = _box(lower, upper, steps, tolerances, periods)
     dims = lo.size
-    if not (hi.size == steps.size == tol.size == dims):
-        raise ValueError("lower, upper, steps and tolerances need one value per axis")
-    if np.any(tol <= 0):
-        raise ValueError(f"search tolerances must be > 0, got {tol.tolist()}")
-    periods = list(periods) if periods is not None else [None] * dims
-    if len(periods) != dims:
-        raise ValueError("periods needs one value (None or a period) per axis")
-    wrap = np.array([p is not None for p in periods])
-    period = np.array([p if p is not None else np.inf for p in periods], float)
-    if np.any(wrap & ~np.isclose(hi - lo, np.where(wrap, period, 0.0))):
-        raise ValueError("a periodic axis must span exactly one period")
     axes = [coarse_axis(lo[k], hi[k], steps[k]) for k in range(dims)]
     axes = [a[:-1] if wrap[k] and a.size > 2 else a for k, a in enumerate(axes)]
     mesh = np.stack([m.ravel() for m in np.meshgrid(*axes, indexing="ij")], axis=-1)
@@ -132,9 +120,43 @@ def maximize(
         x[done, 0], v[done] = count[0], count[1]
         h[done] = 0.0  # the compass search takes the maxima on the edges only
         evaluations += count[2]
-    offsets = np.concatenate([np.eye(dims), -np.eye(dims)])  # (2 dims, dims)
     if max_iterations is None:  # the search's own bound: only a fault reaches it
         max_iterations = step_bound(np.where(wrap, period, hi - lo), 0.5 * spacing, tol)
+    box = (lo, hi, wrap, period)
+    evaluations += _compass(objective, x, v, h, box, tol, sign, max_iterations)
+    value = np.where(np.isfinite(v), sign * v, np.nan)
+    return Optimum(x, value, evaluations)
+
+
+def _box(lower, upper, steps, tolerances, periods):
+    """The search box of :func:`maximize` as arrays, checked: ``(lower, upper, steps,
+    tolerances, wrap, period)``, ``wrap`` whether an axis is periodic, ``period`` its
+    period (inf for the others)."""
+    lo, hi = np.asarray(lower, float), np.asarray(upper, float)
+    steps, tol = np.asarray(steps, float), np.asarray(tolerances, float)
+    dims = lo.size
+    if not (hi.size == steps.size == tol.size == dims):
+        raise ValueError("lower, upper, steps and tolerances need one value per axis")
+    if np.any(tol <= 0):
+        raise ValueError(f"search tolerances must be > 0, got {tol.tolist()}")
+    periods = list(periods) if periods is not None else [None] * dims
+    if len(periods) != dims:
+        raise ValueError("periods needs one value (None or a period) per axis")
+    wrap = np.array([p is not None for p in periods])
+    period = np.array([p if p is not None else np.inf for p in periods], float)
+    if np.any(wrap & ~np.isclose(hi - lo, np.where(wrap, period, 0.0))):
+        raise ValueError("a periodic axis must span exactly one period")
+    return lo, hi, steps, tol, wrap, period
+
+
+def _compass(objective, x, v, h, box, tol, sign, max_iterations) -> int:
+    """The compass search of :func:`maximize` from ``x`` (values ``v``, steps ``h``, one
+    row per problem, updated in place) in ``box`` (``lower, upper, wrap, period``) until
+    every step is at most ``tol``; the evaluations per problem it took (the most)."""
+    lo, hi, wrap, period = box
+    dims = x.shape[1]
+    offsets = np.concatenate([np.eye(dims), -np.eye(dims)])  # (2 dims, dims)
+    evaluations = 0
     for _ in range(max_iterations):
         active = np.flatnonzero(np.any(h > tol, axis=1) & np.isfinite(v))
         if active.size == 0:
@@ -153,10 +175,9 @@ def maximize(
         moving = int(np.sum(np.any(h > tol, axis=1) & np.isfinite(v)))
         raise RuntimeError(
             f"the compass search did not converge in {max_iterations} steps "
-            f"({moving} of {problems} searches still moving)"
+            f"({moving} of {x.shape[0]} searches still moving)"
         )
-    value = np.where(np.isfinite(v), sign * v, np.nan)
-    return Optimum(x, value, evaluations)
+    return evaluations
 
 
 def _bracketed(objective, grid, values, best, sign, tolerance):

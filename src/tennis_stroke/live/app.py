@@ -3,7 +3,7 @@ views and the work that recomputes them.
 
 A change of a control recomputes, in this order, each stage pushed to the page as soon
 as it is done: the map at the coarse level, Fig. 9's curve, the map at the full level,
-the picked stroke, the claims (:mod:`tennis_stroke.replication.explorer` computes each).
+the picked stroke, the claims (:mod:`tennis_stroke.live.compute` computes each).
 Every server shares one worker thread (the solver's own threads use the cores): a
 session's request waits for it, and work for a setting that a newer one replaced is
 dropped between two stages or two row blocks of a map, so rapid changes pile up
@@ -48,20 +48,13 @@ from bokeh.models import (
 
 from ..inference.reading_space import claims_and_readings
 from ..pipeline.scenarios import ScenarioError, save_scenario, scenario_config
-from ..replication import explorer
 from ..replication.marks import mark_values
 from ..replication.registry import FIGURES as REGISTRY
 from ..replication.registry import LIVE
-from ..replication.views import (
-    curve_data,
-    curve_view,
-    fit_columns,
-    map_data,
-    map_view,
-    stroke_view,
-    update_stroke_view,
-    value_range,
-)
+from ..replication.views.maps import curve_data, curve_view, map_data, map_view, value_range
+from ..replication.views.strokes import stroke_view, update_stroke_view
+from ..replication.views.tables import fit_columns
+from . import compute, controls
 
 #: The one worker of every session (see the module's docstring).
 _WORKER = ThreadPoolExecutor(max_workers=1, thread_name_prefix="tennis-stroke-explore")
@@ -117,17 +110,17 @@ class Shared:
         with self._lock:
             if self._paper is None:
                 paper = {c.key: c.paper for c in self.controls()}
-                overrides = explorer.overrides(self.config, paper)  # as a session's first
+                overrides = controls.overrides(self.config, paper)  # as a session's first
                 config = scenario_config(self.config, "explore", overrides, self.schema)
                 self._paper = (
-                    explorer.map_level(config, self.figure, "coarse", threads=self.threads),
-                    explorer.fig9_curve(config, self.threads),
+                    compute.map_level(config, self.figure, "coarse", threads=self.threads),
+                    compute.fig9_curve(config, self.threads),
                 )
             return self._paper
 
     def controls(self) -> list:
         """The page's controls, each marked with where its default comes from."""
-        return explorer.controls(self.config, self.figure, self.fitted)
+        return controls.controls(self.config, self.figure, self.fitted)
 
     def open_session(self) -> bool:
         """Count a new session in, if fewer than :attr:`max_sessions` live."""
@@ -157,7 +150,7 @@ class Shared:
         declared = {c["id"]: c for c in claims}
         return cls(
             config,
-            explorer.view_claims(claims),
+            compute.view_claims(claims),
             declared,
             dict(space.fit_of_claim()),
             space.fitted(),
@@ -203,7 +196,7 @@ def number_text(value: float) -> str:
     return repr(float(value)).removesuffix(".0")
 
 
-def refusal(control: explorer.Control, value) -> str | None:
+def refusal(control: controls.Control, value) -> str | None:
     """Why ``value`` cannot be ``control``'s (a one-line reason; "" for no value at all),
     or None: a choice must be one of the control's, a number finite and within its
     bounds.  The page's widgets offer no other, but a page can send any value."""
@@ -235,7 +228,7 @@ class Session:
         self._resetting = False
         self.picked: tuple[float, float] | None = None
         self.stroke = None  # the picked stroke's view, once a point is picked
-        self.fig = explorer.FIGURES[shared.figure][0]
+        self.fig = compute.FIGURES[shared.figure][0]
         self._build(*shared.paper_views())
         self.status.text = "the paper's setting, coarse map; the full map once connected"
         doc.on_event("document_ready", self._connected)
@@ -248,6 +241,41 @@ class Session:
     # -- the page ---------------------------------------------------------------------
 
     def _build(self, ds, curve) -> None:
+        """The page: the map and Fig. 9's curve (``ds``, ``curve``), the status lines,
+        the claims table, the stroke's place, and the controls' panel beside them."""
+        self._build_map(ds)
+        self._build_curve(curve)
+        views_width = MAP_WIDTH + CURVE_WIDTH
+        self.status = Div(text="", name="explore-status", width=views_width)
+        self.setting = Div(
+            text="computed with the paper's setting", name="explore-setting", width=views_width
+        )
+        self.error = Div(
+            text="",
+            name="explore-error",
+            width=views_width,
+            styles={"color": "#b00020", "font-weight": "bold"},
+        )
+        self._build_claims_table(views_width)
+        self.stroke_status = Div(
+            text="<i>Click a point of the map to play its stroke.</i>", name="explore-stroke-status"
+        )
+        self.stroke_box = column(Div(), name="explore-stroke-box")
+        panel = self._controls()
+        views = column(
+            self.status,
+            self.setting,
+            self.error,
+            row(self.map, self.curve),
+            self.claims_table,
+            self.stroke_status,
+            self.stroke_box,
+        )
+        self.doc.add_root(row(panel, views))
+        self.doc.title = "tennis-stroke explore"
+
+    def _build_map(self, ds) -> None:
+        """The map of ``ds`` with the figure's marks; a tap on it picks a stroke."""
         registry = _registry_figure(self.fig)
         marks = mark_values(registry, self.shared.declared)
         title = f"{registry.title.split(':')[0]} live: v_out over (theta0, delta0)"
@@ -263,6 +291,9 @@ class Session:
         )
         self.map.on_event(Tap, self._tap)
         self.map.width = MAP_WIDTH
+
+    def _build_curve(self, curve) -> None:
+        """Fig. 9's curve with its marks."""
         fig9 = _registry_figure("fig9")
         self.curve = curve_view(
             curve,
@@ -274,17 +305,9 @@ class Session:
         )
         self.curve_source = self.curve.select_one({"name": "explore-fig9-map"})
         self.curve.width = CURVE_WIDTH
-        views_width = MAP_WIDTH + CURVE_WIDTH
-        self.status = Div(text="", name="explore-status", width=views_width)
-        self.setting = Div(
-            text="computed with the paper's setting", name="explore-setting", width=views_width
-        )
-        self.error = Div(
-            text="",
-            name="explore-error",
-            width=views_width,
-            styles={"color": "#b00020", "font-weight": "bold"},
-        )
+
+    def _build_claims_table(self, width: int) -> None:
+        """The claims the views test, their verdicts filled as they are computed."""
         self.claims_source = ColumnDataSource(self._claims_data(None), name="explore-claims")
         self.claims_table = DataTable(
             source=self.claims_source,
@@ -308,7 +331,7 @@ class Session:
                 # last: the long descriptions scroll sideways, the values stay in view
                 TableColumn(field="quantity", title="quantity (the table scrolls sideways)"),
             ],
-            width=views_width,
+            width=width,
             autosize_mode="none",  # each column as wide as its text; a wide table scrolls
             height=28 * (len(self.shared.claims) + 2),
             index_position=None,
@@ -321,24 +344,8 @@ class Session:
         self.claims_source.js_on_change(
             "data", CustomJS(args={"table": self.claims_table}, code="table.view.change.emit()")
         )
-        self.stroke_status = Div(
-            text="<i>Click a point of the map to play its stroke.</i>", name="explore-stroke-status"
-        )
-        self.stroke_box = column(Div(), name="explore-stroke-box")
-        panel = self._controls()
-        views = column(
-            self.status,
-            self.setting,
-            self.error,
-            row(self.map, self.curve),
-            self.claims_table,
-            self.stroke_status,
-            self.stroke_box,
-        )
-        self.doc.add_root(row(panel, views))
-        self.doc.title = "tennis-stroke explore"
 
-    def _widget(self, control: explorer.Control):
+    def _widget(self, control: controls.Control):
         paper = control.paper
         unit = f" ({control.unit})" if control.unit not in ("", "1") else ""
         title = f"{control.label}{unit} · {control.origin} {paper}"
@@ -423,13 +430,13 @@ class Session:
 
     def _config(self) -> dict:
         """The configuration at the controls' values, checked as a scenario's is."""
-        overrides = explorer.overrides(self.shared.config, self.values)
+        overrides = controls.overrides(self.shared.config, self.values)
         try:
             return scenario_config(self.shared.config, "explore", overrides, self.shared.schema)
         except ScenarioError as exc:
-            raise explorer.ExplorerError(str(exc).removeprefix("scenario 'explore': ")) from None
+            raise controls.ExplorerError(str(exc).removeprefix("scenario 'explore': ")) from None
 
-    def _changed(self, control: explorer.Control, attr, old, new) -> None:
+    def _changed(self, control: controls.Control, attr, old, new) -> None:
         """A control's value as the page sent it: a choice, or a number field's text
         (sent on Enter or when the field loses focus).  A refused value is named in the
         error line and the control shows its current value again; nothing is computed."""
@@ -480,7 +487,7 @@ class Session:
 
     def _save(self) -> None:
         name = self.scenario_name.value.strip()
-        overrides = explorer.overrides(self.shared.config, self.values)
+        overrides = controls.overrides(self.shared.config, self.values)
         try:
             path = save_scenario(
                 self.shared.scenarios, name, overrides, self.shared.config, self.shared.schema
@@ -520,12 +527,12 @@ class Session:
             config = self._config()
             if kind == "all":
                 self._push(kind, generation, partial(self._show_setting, self._described(config)))
-            for stage, compute in self._stages(kind, config, stale):
+            for stage, run in self._stages(kind, config, stale):
                 if stage in skip:
                     continue
                 if stale():
                     return
-                result = compute()
+                result = run()
                 if result is None or stale():
                     return
                 shown = getattr(self, f"_show_{stage}")
@@ -537,18 +544,18 @@ class Session:
     def _stages(self, kind: str, config: Mapping, stale) -> list[tuple[str, Callable]]:
         figure, threads = self.shared.figure, self.shared.threads
         picked = self.picked
-        stroke = ("stroke", lambda: explorer.stroke_at(config, figure, *picked))
+        stroke = ("stroke", lambda: compute.stroke_at(config, figure, *picked))
         if kind == "stroke":
             return [stroke] if picked else []
         stages = [
-            ("coarse", lambda: explorer.map_level(config, figure, "coarse", stale, threads)),
-            ("fig9", lambda: explorer.fig9_curve(config, threads)),
-            ("full", lambda: explorer.map_level(config, figure, "full", stale, threads)),
+            ("coarse", lambda: compute.map_level(config, figure, "coarse", stale, threads)),
+            ("fig9", lambda: compute.fig9_curve(config, threads)),
+            ("full", lambda: compute.map_level(config, figure, "full", stale, threads)),
         ]
         if picked:
             stages.append(stroke)
         claims = self.shared.claims, self.shared.fit_of_claim
-        stages.append(("claims", lambda: explorer.claims_table(config, *claims, threads)))
+        stages.append(("claims", lambda: compute.claims_table(config, *claims, threads)))
         return stages
 
     def _push(self, kind: str, generation: int, show: Callable[[], None]) -> None:
@@ -563,7 +570,7 @@ class Session:
         controls name them: what the views show, whatever the fields hold meanwhile."""
         changed = []
         for control in self.controls:
-            value = explorer.config_value(config, control.key)
+            value = controls.config_value(config, control.key)
             if str(value) == str(control.paper) or value == control.paper:
                 continue
             text = value if control.choices else number_text(value)

@@ -172,6 +172,14 @@ def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int
     lockstep, the largest robustness job's), and the solver studies' searches."""
     threads = os.cpu_count() or 1
     history = SolverSettings().history
+    yield from _experiment_jobs(config, threads, history)
+    yield from _search_jobs(config, readings, threads, history)
+    yield from _study_jobs(config, threads, history)
+
+
+def _experiment_jobs(config: Mapping, threads: int, history: int) -> Iterator[tuple[str, str, int]]:
+    """The jobs of :func:`map_jobs` that the rows of the table of experiments run: the
+    sampled curves, the largest chunk job of a batch of strokes, a chunked map's gathering."""
     for e in EXPERIMENTS.values():
         if e.samples is None and e.strokes is None:
             continue
@@ -201,6 +209,13 @@ def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int
         if e.gathered:
             n = batches[0]
             yield e.section, f"gathering the {e.label} ({_n(n)} strokes)", 2 * result_bytes(n)
+
+
+def _search_jobs(
+    config: Mapping, readings: int, threads: int, history: int
+) -> Iterator[tuple[str, str, int]]:
+    """The first batch of every claim's search of :func:`map_jobs`, ``readings`` of them
+    in lockstep."""
     together = max(1, int(readings))
     for key in SEARCHED if "search" in config else ():  # else: checked once defaulted
         e, steps = EXPERIMENTS[key], BRACKET_KEYS[key]
@@ -215,6 +230,11 @@ def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int
             + (f" for each of {together} readings)" if together > 1 else ")"),
             batch_bytes(n * together, threads, history),
         )
+
+
+def _study_jobs(config: Mapping, threads: int, history: int) -> Iterator[tuple[str, str, int]]:
+    """The solver studies' jobs of :func:`map_jobs`: the optimum searches and the
+    stability map."""
 
     def job(n_strokes: int) -> int:
         return batch_bytes(n_strokes, threads, history)

@@ -1,6 +1,6 @@
 """What the report, the article and a scenario's page write alike: a number as text, a
-unit's short form, the per-job timings of a run, and the one-line error of an input the
-workflow did not write."""
+unit's short form, a table as HTML, the per-job timings of a run, and the one-line error
+of an input the workflow did not write."""
 
 from __future__ import annotations
 
@@ -8,6 +8,7 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import pandas as pd
+from markupsafe import Markup
 
 #: Units as the page prints them beside a number.
 UNIT_SHORT = {"degree": "deg", "1": ""}
@@ -23,6 +24,18 @@ def _number(value, digits: int = 4) -> str:
     except (TypeError, ValueError):
         return str(value)
     return f"{x:.{digits}g}" if pd.notna(x) else "-"
+
+
+def _safe(html: str) -> Markup:
+    """HTML the report's modules wrote (pandas tables, which escape their cells;
+    markdown-it-py output with raw HTML disabled; Bokeh's script and divs, whose data are
+    JSON with ``<`` escaped), inserted into the page as it is."""
+    return Markup(html)
+
+
+def _table(frame: pd.DataFrame, **kwargs) -> Markup:
+    """A pandas table as escaped HTML."""
+    return _safe(frame.to_html(escape=True, border=0, **kwargs))
 
 
 def _timings(directory: Path) -> pd.DataFrame:

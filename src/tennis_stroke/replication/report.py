@@ -9,9 +9,10 @@ the speed-against-accuracy studies, the assumption ledger (``docs/assumptions.md
 rendered with markdown-it-py), the configuration as YAML, provenance and per-job timings.
 
 The page is rendered by jinja2 with autoescape (``templates/report.html.j2``): every text
-from a file is escaped.  The only HTML inserted as it is comes from this module and is
-marked safe on purpose (:func:`_safe`): tables written by pandas (which escapes their
-cells) and the ledger rendered by markdown-it-py with raw HTML disabled.
+from a file is escaped.  The only HTML inserted as it is comes from this module and
+:mod:`~tennis_stroke.replication.analyses`, marked safe on purpose
+(:func:`~tennis_stroke.replication.formats._safe`): tables written by pandas (which
+escapes their cells) and the ledger rendered by markdown-it-py with raw HTML disabled.
 """
 
 from __future__ import annotations
@@ -24,7 +25,6 @@ from datetime import UTC, datetime
 from pathlib import Path
 
 import jinja2
-import numpy as np
 import pandas as pd
 import xarray as xr
 import yaml
@@ -41,12 +41,19 @@ from ..io.failures import failure_counts
 from ..io.netcdf import git_commit, load_result
 from ..model.listing import origin
 from ..model.params import PARAMETERS, READINGS
+from .analyses import (
+    fit_tables,
+    ladder_summary,
+    model_ladder_section,
+    robustness_section,
+    studies_section,
+    validation_section,
+)
 from .claims import STATUS_WORDS, ClaimsTableError, consistency_errors, read_table
-from .formats import UNIT_SHORT, ReportInputError, _number, _timings
-from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
+from .formats import UNIT_SHORT, ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
 from .registry import FIGURES, LIVE
-from .robustness import EVIDENCE_MEANING, ROBUSTNESS_MEANING, ROBUSTNESS_WORDS
+from .robustness import EVIDENCE_MEANING
 
 #: The page template, rendered with autoescape.
 ENVIRONMENT = jinja2.Environment(
@@ -55,18 +62,6 @@ ENVIRONMENT = jinja2.Environment(
     undefined=jinja2.StrictUndefined,
     trim_blocks=False,
 )
-
-
-def _safe(html: str) -> Markup:
-    """HTML this module wrote (pandas tables, which escape their cells; markdown-it-py
-    output with raw HTML disabled; Bokeh's script and divs, whose data are JSON with
-    ``<`` escaped), inserted into the page as it is."""
-    return Markup(html)
-
-
-def _table(frame: pd.DataFrame, **kwargs) -> Markup:
-    """A pandas table as escaped HTML."""
-    return _safe(frame.to_html(escape=True, border=0, **kwargs))
 
 
 def markdown_html(text: str) -> Markup:
@@ -257,133 +252,6 @@ def _deviation_groups(rows: list[dict]) -> list[dict]:
     return groups
 
 
-def _fit_tables(inference: Mapping[str, str], rows: int = 6) -> list[dict]:
-    """The best fits and the leave-one-out table of each fit set (``inference``: the
-    registry's keys ``{fit}_fits`` and ``{fit}_loo`` -> paths)."""
-    out = []
-    for key in sorted(k for k in inference if k.endswith("_fits")):
-        fits = load_result(inference[key])
-        loo = load_result(inference[key.removesuffix("_fits") + "_loo"])
-        columns = [v for v in fits.data_vars if fits[v].dims == ("combination",)]
-        table = fits[columns].to_dataframe().head(rows)
-        default = {
-            k.removeprefix("default_"): v for k, v in fits.attrs.items() if k.startswith("default_")
-        }
-        out.append(
-            {
-                "name": fits.attrs["fit_set"],
-                "claims": fits.attrs["fit_claims"],
-                "n": fits.sizes["combination"],
-                "default": ", ".join(f"{k} = {v}" for k, v in default.items()),
-                "table": _table(table.round(4), index=False),
-                "loo": _table(loo.to_dataframe().round(4)),
-            }
-        )
-    return out
-
-
-def _robustness(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
-    """The robustness section: the consistent set, the classes and the evidence."""
-    if "robustness" not in inference or "robustness" not in claims:
-        return {}
-    numeric = ("paper_value", "best_value", "best_residual", "objective_gap")
-    claims = claims.assign(
-        **{c: pd.to_numeric(claims[c], errors="coerce") for c in numeric if c in claims}
-    )
-    screen = load_result(inference["robustness_screen"])
-    kept = load_result(inference["robustness"])
-    combos = sorted(
-        {
-            ", ".join(
-                f"{k}={kept[k].values[i]}"
-                for k in kept.data_vars
-                if kept[k].dims == ("reading",) and kept[k].dtype.kind in "OUS"
-            )
-            for i in range(kept.sizes["reading"])
-        }
-    )
-    held = claims[claims["fit_set"] == ""]
-    counts = held["robustness"].value_counts()
-    deviations = claims[claims["evidence"] != ""]
-    return {
-        "candidates": screen.sizes["candidate"] * screen.sizes["combination"],
-        "n_candidates": screen.sizes["candidate"],
-        "n_combinations": screen.sizes["combination"],
-        "consistent": int(screen["consistent"].sum()),
-        "readings": kept.sizes["reading"],
-        "variants": kept.sizes["variant"],
-        "combos": combos,
-        "classes": [
-            {"word": ROBUSTNESS_WORDS[k], "n": int(counts[k]), "meaning": meaning}
-            for k, meaning in ROBUSTNESS_MEANING.items()
-            if k in counts
-        ],
-        "evidence": _table(
-            deviations[
-                [
-                    "id",
-                    "paper_value",
-                    "reproduced_value",
-                    "evidence",
-                    "best_value",
-                    "best_residual",
-                    "objective_gap",
-                ]
-            ],
-            index=False,
-            float_format=lambda x: f"{x:.4g}",
-            na_rep="-",
-        ),
-    }
-
-
-def validation_table(claims: pd.DataFrame, validation: xr.Dataset) -> pd.DataFrame:
-    """Per searched claim: the largest |targeted - map| (in tolerances) under the default
-    reading (``claims.csv``) and over the validation's readings, with how many of them
-    agree within the agreement, differ by no more than the map's grid step, or differ
-    unexplained."""
-    by_id = claims.set_index("id")
-    rows = []
-    for j, cid in enumerate(validation["claim"].values):
-        diff = validation["difference"].values[:, j]
-        causes = list(validation["cause"].values[:, j])
-        default = by_id.loc[cid] if cid in by_id.index else None
-        if default is not None:
-            causes.append(default["map_cause"])
-        rows.append(
-            {
-                "claim": cid,
-                "default: targeted": float(default["reproduced_value"])
-                if default is not None
-                else np.nan,
-                "default: map": float(default["map_value"]) if default is not None else np.nan,
-                "default: difference (tol)": float(default["map_difference"])
-                if default is not None
-                else np.nan,
-                "readings: largest difference (tol)": float(np.nanmax(diff)),
-                "agree": causes.count("agrees"),
-                "grid step": causes.count("grid_step"),
-                "unexplained": causes.count("unexplained"),
-            }
-        )
-    return pd.DataFrame(rows)
-
-
-def _validation(claims: pd.DataFrame, inference: Mapping[str, str]) -> dict:
-    """The validation of the targeted evaluation against the full maps."""
-    paths = [v for k, v in inference.items() if k.startswith("validation_")]
-    if not paths or "map_cause" not in claims:
-        return {}
-    ds = xr.concat([load_result(p) for p in paths], dim="claim", data_vars="all")
-    table = validation_table(claims, ds)
-    return {
-        "readings": ds.sizes["reading"],
-        "agreement": float(ds.attrs["agreement"]),
-        "unexplained": int(table["unexplained"].sum()),
-        "table": _table(table, index=False, float_format=lambda x: f"{x:.4g}", na_rep="-"),
-    }
-
-
 def _failures(results: Sequence[str]) -> pd.DataFrame:
     """Strokes, failed strokes and the failing statuses of every result file; "-" where a
     file records no count of a status (Figs. 5-6 count failed strokes per point only)."""
@@ -394,84 +262,6 @@ def _failures(results: Sequence[str]) -> pd.DataFrame:
             rows.append({"file": str(path), **counts})
     # integers stay integers; a count the file does not record is "-", never <NA>
     return pd.DataFrame(rows).convert_dtypes().astype(object).fillna("-")
-
-
-def ladder_summary(error: float | None, claims: pd.DataFrame) -> dict:
-    """The model ladder's largest v_out error (km/h) against the smallest tolerance of the
-    claims in km/h: ``error`` and ``tolerance`` as text, ``above`` whether it exceeds it."""
-    speeds = claims.loc[claims["unit"] == "km/h", "tolerance"].astype(float)
-    tolerance = float(speeds.min()) if len(speeds) else float("nan")
-    if error is None:
-        return {"error": "n/a", "tolerance": f"{tolerance:g}", "above": False}
-    return {"error": f"{error:.2f}", "tolerance": f"{tolerance:g}", "above": error > tolerance}
-
-
-def _optimum_table(ds: xr.Dataset) -> dict:
-    """The optimum-search study's table: each method's errors and time."""
-    return {
-        "title": "The optimum of Figs. 5-6: nested grids (coarse grid, fine grid, parabola) "
-        "and searches (bracket, compass search) against a finer reference grid",
-        "html": _table(ds.to_dataframe().round(4)),
-    }
-
-
-def _stability_table(ds: xr.Dataset) -> dict:
-    """The stability study's table: per case (method and setting), how many spring
-    constants end in each outcome."""
-    names = ds["outcome"].attrs["flag_meanings"].split()
-    counts = pd.DataFrame(
-        [[int((row == i).sum()) for i in range(len(names))] for row in ds["outcome"].values],
-        index=[str(c) for c in ds["case"].values],
-        columns=names,
-    )
-    return {
-        "title": "Stability: outcomes of the isolated contact over k = "
-        f"{float(ds.k_contact.min()):g} ... {float(ds.k_contact.max()):g} N/m",
-        "html": _table(counts),
-    }
-
-
-#: The studies' tables on the page, in its order: the study (its key in the table of
-#: experiments, :data:`~tennis_stroke.experiments.specs.STUDY_RESULTS`) and the function
-#: that makes its title and table.
-STUDY_TABLES = {"optimum_cost": _optimum_table, "stability": _stability_table}
-#: The study whose file gives the model ladder's largest v_out error (km/h), its
-#: attribute ``max_error_impact_kmh``.
-LADDER_STUDY = "ladder"
-
-
-def _studies(studies: Mapping[str, str]) -> tuple[float | None, list[dict]]:
-    """The model ladder's largest error (km/h; None without its file) and the tables of
-    the studies (:data:`STUDY_TABLES`) whose files are given (``studies``: the studies'
-    keys -> paths)."""
-    ladder_error = None
-    if LADDER_STUDY in studies:
-        ladder_error = float(load_result(studies[LADDER_STUDY]).attrs["max_error_impact_kmh"])
-    tables = [
-        tabulate(load_result(studies[key]))
-        for key, tabulate in STUDY_TABLES.items()
-        if key in studies
-    ]
-    return ladder_error, tables
-
-
-def _model_ladder(inference: Mapping[str, str]) -> dict:
-    """The model ladder section: the thesis tested, each rung's findings, the cheapest
-    rung per experiment and the claims-by-rungs table (empty without the ladder's file)."""
-    if "model_ladder" not in inference:
-        return {}
-    ds = load_result(inference["model_ladder"])
-    seconds = float(ds["seconds"].sel(rung=ds.attrs["reference_rung"]).sum())
-    return {
-        "verdict": verdict(ds),
-        "findings": findings(ds),
-        "reference": ds.attrs["reference_rung"],
-        "agreement": f"{float(ds.attrs['adoption_agreement']):g}",
-        "reference_seconds": f"{seconds:.2f}",
-        "rungs": ", ".join(str(r) for r in ds["rung"].values),
-        "experiments": _table(experiments_by_rung(ds).round(3), na_rep="-"),
-        "claims": _table(claims_by_rung(ds)),
-    }
 
 
 def _check_image(path: str) -> None:
@@ -514,7 +304,11 @@ def _interactive(
     """The page's interactive views (:mod:`tennis_stroke.replication.views`): BokehJS and
     the views' script for the page's head, and each view's div by name (a figure's name,
     ``strokes-<block>``, ``multiverse``); nothing for a view whose file is not given."""
-    from . import views  # Bokeh: only the report job draws views
+    # Bokeh: only the report job draws views
+    from .views.maps import figure_view
+    from .views.multiverse import multiverse_view
+    from .views.page import page_views
+    from .views.strokes import stroke_view
 
     by_key = {k: p for k, rel in PAPER_RESULTS.items() for p in results if p.endswith(rel)}
     declared = {c["id"]: c for c in load_claims(claims_yaml)} if claims_yaml else {}
@@ -527,20 +321,20 @@ def _interactive(
         data = [load_result(by_key[k]) for k in figure.files]
         marks = mark_values(figure, declared, ours) if declared else []
         title = figure.filled_title(data[0].attrs)
-        view = views.figure_view(figure, data, title, marks)
+        view = figure_view(figure, data, title, marks)
         if view is not None:
             made[name] = view
     for block, key in STROKE_VIEWS.items():
         if key in by_key:
             title = "Table I" if block == "Table I" else f"Fig. {int(block[3:])}"
-            made[f"strokes-{block}"] = views.stroke_view(
+            made[f"strokes-{block}"] = stroke_view(
                 load_result(by_key[key]), f"strokes-{_anchor(block)}", title
             )
     if "robustness" in inference:
-        made["multiverse"] = views.multiverse_view(load_result(inference["robustness"]), claims)
+        made["multiverse"] = multiverse_view(load_result(inference["robustness"]), claims)
     if not made:
         return Markup(""), {}
-    head, divs = views.page_views(made)
+    head, divs = page_views(made)
     return _safe(head), {k: _safe(v) for k, v in divs.items()}
 
 
@@ -679,7 +473,7 @@ def build_report(
     )
     views_head, views = _interactive(paper_figures, results, inference, claims, statements_yaml)
     _attach_views(page_sections, views)
-    ladder_error, study_tables = _studies(studies or {})
+    ladder_error, study_tables = studies_section(studies or {})
     html = ENVIRONMENT.get_template("report.html.j2").render(
         departures=departures,
         score=_score(claims),
@@ -687,10 +481,10 @@ def build_report(
         toc=_toc(page_sections),
         sections=page_sections,
         inference={"figures": _figures_of(entries, "inference")},
-        model_ladder={**_model_ladder(inference), "figures": _figures_of(entries, "ladder")},
-        fits=_fit_tables(inference),
-        robustness=_robustness(claims, inference),
-        validation=_validation(claims, inference),
+        model_ladder={**model_ladder_section(inference), "figures": _figures_of(entries, "ladder")},
+        fits=fit_tables(inference),
+        robustness=robustness_section(claims, inference),
+        validation=validation_section(claims, inference),
         views_head=views_head,
         multiverse=views.get("multiverse"),
         study_figures=_figures_of(entries, "study"),

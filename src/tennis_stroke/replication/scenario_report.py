@@ -111,11 +111,15 @@ def _scenario_views(
     who: str,
 ):
     """The interactive view of each shown figure: against the paper configuration's
-    (shared scales, the difference, linked hovers: :func:`views.comparison_view`) where
-    the paper's files exist (``linked`` of its entry), else the scenario's alone; each
-    with its marks at the paper's values and ours (the paper configuration's, the
-    scenario's).  The page's head and divs by name."""
-    from . import views  # Bokeh: only the page jobs draw views
+    (shared scales, the difference, linked hovers:
+    :func:`.views.comparison.comparison_view`) where the paper's files exist (``linked``
+    of its entry), else the scenario's alone; each with its marks at the paper's values
+    and ours (the paper configuration's, the scenario's).  The page's head and divs by
+    name."""
+    # Bokeh: only the page jobs draw views
+    from .views.comparison import comparison_view
+    from .views.maps import MAP_VIEWS, figure_view
+    from .views.page import page_views
 
     claims = {c["id"]: c for c in declared}
     ours = dict(zip(table["id"], table["reproduced_value"].astype(float), strict=True))
@@ -127,7 +131,7 @@ def _scenario_views(
     made = {}
     for f in shown:
         figure = FIGURES[f["name"]]
-        if figure.draw not in views.MAP_VIEWS or len(f["files"]) != len(figure.files):
+        if figure.draw not in MAP_VIEWS or len(f["files"]) != len(figure.files):
             continue
         data = [load_result(p) for p in f["files"]]
         marks = mark_values(figure, claims, ours)
@@ -135,13 +139,13 @@ def _scenario_views(
         if f["linked"]:
             first = [load_result(p) for p in f["paper_files"]]
             pair = (mark_values(figure, claims, base), marks)
-            made[f["name"]] = views.comparison_view(figure, first, data, who, pair)
+            made[f["name"]] = comparison_view(figure, first, data, who, pair)
         else:
             title = figure.filled_title(data[0].attrs)
-            made[f["name"]] = views.figure_view(figure, data, title, marks)
+            made[f["name"]] = figure_view(figure, data, title, marks)
     if not made:
         return Markup(""), {}
-    head, divs = views.page_views(made)
+    head, divs = page_views(made)
     return Markup(head), {k: Markup(v) for k, v in divs.items()}
 
 

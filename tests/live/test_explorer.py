@@ -1,5 +1,6 @@
-"""The live explorer's computations (tennis_stroke.replication.explorer): each view at a
-setting is what the solver and the claims job give at that setting."""
+"""The live explorer's computations (tennis_stroke.live.compute) and controls
+(tennis_stroke.live.controls): each view at a setting is what the solver and the claims
+job give at that setting."""
 
 import numpy as np
 import pandas as pd
@@ -11,6 +12,7 @@ from tennis_stroke.experiments.grids import axis
 from tennis_stroke.experiments.specs import merged
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.io.config_files import load_yaml
+from tennis_stroke.live import compute, controls
 from tennis_stroke.model.params import PARAMETERS, ParameterError, resolve_params
 from tennis_stroke.pipeline.scenarios import (
     ScenarioError,
@@ -18,7 +20,6 @@ from tennis_stroke.pipeline.scenarios import (
     save_scenario,
     scenario_config,
 )
-from tennis_stroke.replication import explorer
 from tennis_stroke.solver.settings import SolverSettings
 from tennis_stroke.solver.stroke import strike_batch
 
@@ -49,9 +50,9 @@ def small(paper):
 @pytest.mark.parametrize("figure", ["fig2", "fig3"])
 def test_a_map_level_is_each_stroke_at_its_grid_point(small, level, figure):
     values = {"model.M2": 0.35, "model.inertia": "paper_text", "angle_maps.L1.1": 0.45}
-    config = explorer.configuration(small, values)
-    ds = explorer.map_level(config, figure, level)
-    step_theta, step_delta = explorer.LEVELS[level]
+    config = controls.configuration(small, values)
+    ds = compute.map_level(config, figure, level)
+    step_theta, step_delta = compute.LEVELS[level]
     theta = np.arange(100.0, 102.0 + 1e-9, step_theta)
     delta = np.arange(20.0, 23.0 + 1e-9, step_delta)
     np.testing.assert_array_equal(ds["theta0"], theta)
@@ -62,12 +63,12 @@ def test_a_map_level_is_each_stroke_at_its_grid_point(small, level, figure):
     )
     np.testing.assert_array_equal(ds["v_out"].values, expected["v_out_kmh"])
     np.testing.assert_array_equal(ds["status"].values, expected["status"])
-    assert explorer.map_shape(config, figure, level) == (theta.size, delta.size)
+    assert compute.map_shape(config, figure, level) == (theta.size, delta.size)
 
 
 def test_the_paper_maps_are_121_by_101_and_241_by_201(paper):
-    assert explorer.map_shape(paper, "fig2", "coarse") == (121, 101)
-    assert explorer.map_shape(paper, "fig2", "full") == (241, 201)
+    assert compute.map_shape(paper, "fig2", "coarse") == (121, 101)
+    assert compute.map_shape(paper, "fig2", "full") == (241, 201)
 
 
 def test_a_stale_map_stops_between_blocks(small):
@@ -77,13 +78,13 @@ def test_a_stale_map_stops_between_blocks(small):
         calls.append(1)
         return len(calls) > 1  # a newer setting arrives after the first block
 
-    assert explorer.map_level(small, "fig2", "full", stale) is None
+    assert compute.map_level(small, "fig2", "full", stale) is None
     assert len(calls) == 2
 
 
 def test_the_fig9_curve_is_each_delay_s_stroke(small):
-    config = explorer.configuration(small, {"torque_delay.base_stroke.C2": 6.0, "model.M2": 0.4})
-    ds = explorer.fig9_curve(config)
+    config = controls.configuration(small, {"torque_delay.base_stroke.C2": 6.0, "model.M2": 0.4})
+    ds = compute.fig9_curve(config)
     tau = axis(small["torque_delay"]["fig9"]["tau"])
     expected = strike_batch(90.0, 52.5, {"M2": 0.4, "L1": 0.4, "C2": 6.0, "tau": tau})
     np.testing.assert_array_equal(ds["tau"], tau)
@@ -91,8 +92,8 @@ def test_the_fig9_curve_is_each_delay_s_stroke(small):
 
 
 def test_a_picked_stroke_has_the_stroke_s_numbers(small):
-    config = explorer.configuration(small, {"model.M2": 0.35})
-    ds = explorer.stroke_at(config, "fig2", 101.0, 21.5)
+    config = controls.configuration(small, {"model.M2": 0.35})
+    ds = compute.stroke_at(config, "fig2", 101.0, 21.5)
     expected = strike_batch(101.0, 21.5, {"M2": 0.35, "L1": 0.3})
     assert ds.sizes["stroke"] == 1
     assert ds["v_out"].values[0] == expected["v_out_kmh"]
@@ -100,10 +101,10 @@ def test_a_picked_stroke_has_the_stroke_s_numbers(small):
 
 
 def test_the_overrides_hold_only_what_differs_from_the_paper(paper):
-    values = {c.key: c.paper for c in explorer.controls(paper, "fig3")}
-    assert explorer.overrides(paper, values) == {}
+    values = {c.key: c.paper for c in controls.controls(paper, "fig3")}
+    assert controls.overrides(paper, values) == {}
     values |= {"model.M2": 0.35, "solver.rtol": "1e-06", "angle_maps.L1.1": 0.5}
-    assert explorer.overrides(paper, values) == {
+    assert controls.overrides(paper, values) == {
         "model": {"M2": 0.35},
         "solver": {"rtol": 1e-6, "atol": 1e-6},
         "angle_maps": {"L1": [0.3, 0.5]},
@@ -111,13 +112,13 @@ def test_the_overrides_hold_only_what_differs_from_the_paper(paper):
 
 
 def test_every_model_parameter_has_a_control_with_its_bounds(paper):
-    controls = {c.key: c for c in explorer.controls(paper, "fig2")}
+    by_key = {c.key: c for c in controls.controls(paper, "fig2")}
     for name, spec in PARAMETERS.items():
         if spec.derived:
-            assert f"model.{name}" not in controls  # derived: the reading sets it
+            assert f"model.{name}" not in by_key  # derived: the reading sets it
             continue
         key = "angle_maps.L1.0" if name == "L1" else f"model.{name}"
-        control = controls[key]
+        control = by_key[key]
         assert control.paper == spec.default or name == "L1"
         if spec.lower is not None:
             assert control.low >= spec.lower
@@ -128,9 +129,9 @@ def test_every_model_parameter_has_a_control_with_its_bounds(paper):
                     resolve_params({name: spec.lower})
         if spec.upper is not None:
             assert control.high == spec.upper
-    assert controls["model.inertia"].choices == ("uniform_rod", "paper_text")
-    assert set(controls["solver.method"].choices) == {"DOP853", "DP54"}
-    for tolerance in controls["solver.rtol"].choices:
+    assert by_key["model.inertia"].choices == ("uniform_rod", "paper_text")
+    assert set(by_key["solver.method"].choices) == {"DOP853", "DP54"}
+    for tolerance in by_key["solver.rtol"].choices:
         SolverSettings(rtol=float(tolerance), atol=float(tolerance))
 
 
@@ -141,9 +142,9 @@ def test_the_claims_are_the_claims_job_s_at_the_same_configuration(tiny_run):
     claims, space = claims_and_readings(
         tiny_run / "config" / "claims.yaml", tiny_run / "config" / "readings.yaml"
     )
-    shown = explorer.view_claims(claims)
+    shown = compute.view_claims(claims)
     assert {c["id"] for c in shown} >= {"fig2_best_delta0_at_120", "fig9_v_H", "fig9_tau_H"}
-    table = explorer.claims_table(config, shown, space.fit_of_claim())
+    table = compute.claims_table(config, shown, space.fit_of_claim())
     job = pd.read_csv(tiny_run / "results" / "claims.csv").set_index("id")
     for row in table.itertuples():
         assert row.reproduced_value == pytest.approx(job.loc[row.id, "reproduced_value"])
@@ -247,7 +248,7 @@ def test_two_savers_of_one_name_at_once_save_it_once(paper, tmp_path):
 def test_the_report_links_each_figure_the_explorer_recomputes():
     from tennis_stroke.replication.registry import FIGURES, LIVE
 
-    assert set(LIVE.values()) == set(explorer.FIGURES)
+    assert set(LIVE.values()) == set(compute.FIGURES)
     assert all(name in FIGURES for name in LIVE)
 
 
@@ -256,4 +257,4 @@ def test_the_command_line_offers_each_figure_the_explorer_recomputes():
 
     explore = build_parser()._subparsers._group_actions[0].choices["explore"]
     figure = next(a for a in explore._actions if a.dest == "figure")
-    assert set(figure.choices) == set(explorer.FIGURES)
+    assert set(figure.choices) == set(compute.FIGURES)
