@@ -31,6 +31,24 @@ terminal event (free swing: ``phi`` falls through 0; contact: the compression fa
 through 0) is located by root finding (Illinois) on the dense output, and ``y`` is the
 dense output there.  Discontinuities never occur inside a
 phase: the caller ends a phase at every switch and starts a new one.
+
+:func:`integrate_phase` takes, besides, ``method`` (``METHOD_DP54`` or
+``METHOD_DOP853``, a compile-time literal: ``literally``) and ``contact`` (the phase
+kind: free swing, 8 components in the error norm, the ball's state carried over, event
+``phi = 0``; or contact, 10 components, event separation) first.  The arguments:
+``t`` the start time (s); ``y, f`` tuples of 10 floats, the state and ``rhs_trig(t,
+y)``; ``t_end`` the end of the phase (s); ``h, h_max`` the proposed and the largest step
+magnitude (s); ``cf`` the stroke's coefficients; ``c2`` the wrist torque during the
+phase (N m); ``rtol, atol`` the tolerances of the scaled RMS error norm; ``max_steps``
+the largest total number of accepted steps (``stats[ST_NSTEP]``); ``event_on`` whether
+to stop at the phase's event; ``stats`` (shape ``(N_STATS,)``) the counters
+(evaluations, steps, rejections, running max of omega2), updated; ``history`` (shape
+``(capacity + 1, HISTORY_COLS)``) the ring of accepted step starts
+(:func:`history_find`; capacity 0 records none).  It returns ``status, t, y, f, h``:
+``PHASE_END``, ``PHASE_EVENT`` or ``PHASE_FAIL``, the time reached, the state there, the
+derivative at the end of the last step (at an event not the event's: the state is
+interpolated, the derivative is not; every caller evaluates its own at a phase start,
+``tests/solver/test_integrate.py``) and the proposed next step.
 """
 
 from __future__ import annotations
@@ -304,6 +322,18 @@ def locate_event(method, contact, y, z, cf):
     return hi
 
 
+@njit(inline="always", **JIT_INNER)
+def record_step(history, count, capacity, t, dt, w2max, y, f):
+    """Record an accepted step's start (time, step, running max of omega2, state and
+    derivative) in the ring ``history`` at ``count``; returns the count after it."""
+    r = count % capacity
+    history[r, 0], history[r, 1], history[r, 2] = t, dt, w2max
+    for i in range(N_CONTACT):
+        history[r, 3 + i] = y[i]
+        history[r, 3 + N_CONTACT + i] = f[i]
+    return count + 1
+
+
 @njit(**JIT)
 def integrate_phase(
     method,
@@ -323,46 +353,8 @@ def integrate_phase(
     stats,
     history,
 ):
-    """Advance ``(t, y, f)`` towards ``t_end`` within one phase; see the module contract.
-
-    Parameters
-    ----------
-    method : int
-        ``METHOD_DP54`` or ``METHOD_DOP853``, a compile-time literal (``literally``).
-    contact : bool
-        Phase kind: free swing (8 components in the error norm, the ball's state carried
-        over; event ``phi = 0``) or contact (10 components, event separation).
-    t : float
-        Start time (s).
-    y, f : tuple of 10 float
-        State and ``rhs_trig(t, y)``.
-    t_end : float
-        End of the phase (s).
-    h, h_max : float
-        Proposed and largest step magnitude (s).
-    cf : tuple
-        Stroke coefficients.
-    c2 : float
-        Wrist torque during the phase (N m).
-    rtol, atol : float
-        Tolerances of the scaled RMS error norm.
-    max_steps : float
-        Largest total number of accepted steps (``stats[ST_NSTEP]``).
-    event_on : bool
-        Stop at the phase's event.
-    stats : ndarray, shape (N_STATS,)
-        Counters (evaluations, steps, rejections, running max of omega2), updated.
-    history : ndarray, shape (capacity + 1, HISTORY_COLS)
-        Ring of accepted step starts (see :func:`history_find`); capacity 0 records none.
-
-    Returns
-    -------
-    status, t, y, f, h
-        ``PHASE_END``/``PHASE_EVENT``/``PHASE_FAIL``, time reached, state there, the
-        derivative at the end of the last step (at an event not the event's: the state is
-        interpolated, the derivative is not; every caller evaluates its own at a phase
-        start, ``tests/solver/test_integrate.py``), proposed next step.
-    """
+    """Advance ``(t, y, f)`` towards ``t_end`` within one phase: the module's contract
+    says its arguments and what it returns."""
     n_stages = _kernels.N_STAGES_BY_ID[literally(method)]
     n_extra = _kernels.N_EXTRA_BY_ID[method]
     exponent = -1.0 / (_kernels.ERROR_ORDER_BY_ID[method] + 1)
@@ -400,12 +392,7 @@ def integrate_phase(
         h_next = min(abs(dt) * (min(1.0, factor) if rejected else factor), h_max)
         rejected = False
         if capacity > 0:
-            r = count % capacity
-            history[r, 0], history[r, 1], history[r, 2] = t, dt, w2max
-            for i in range(N_CONTACT):
-                history[r, 3 + i] = y[i]
-                history[r, 3 + N_CONTACT + i] = f[i]
-            count += 1
+            count = record_step(history, count, capacity, t, dt, w2max, y, f)
         nstep += 1
         if event_on and event_crossed(contact, y, y_new, cf):
             z = method_dense(method, contact, t, y, f, dt, cf, c2, y_new, f_new)
@@ -422,12 +409,8 @@ def integrate_phase(
         y, f = y_new, f_new
         t = t_end if last else t + dt
         h = h_next
-    stats[ST_NFEV], stats[ST_NSTEP], stats[ST_NREJECT], stats[ST_W2MAX] = (
-        nfev,
-        nstep,
-        nreject,
-        w2max,
-    )
+    stats[ST_NFEV], stats[ST_NSTEP] = nfev, nstep
+    stats[ST_NREJECT], stats[ST_W2MAX] = nreject, w2max
     if capacity > 0:
         history[capacity, 0] = count
     return status, t, y, f, h
