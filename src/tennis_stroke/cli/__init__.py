@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from ._version import __version__
+from .._version import __version__
 
 EXIT_USAGE = 2
 #: Exit status after SIGTERM (128 + SIGTERM, as a shell reports it).
@@ -105,7 +105,7 @@ def _fail(message: str) -> None:
 
 
 def _parse_set(items: Sequence[str]) -> dict[str, object]:
-    from .model.params import parse_value
+    from ..model.params import parse_value
 
     out: dict[str, object] = {}
     for item in items:
@@ -138,7 +138,7 @@ class GridRange:
         (:func:`tennis_stroke.experiments.grids.grid`) for a step."""
         if self.step is None:
             return np.linspace(self.start, self.stop, self.num)
-        from .experiments.grids import grid
+        from ..experiments.grids import grid
 
         return grid(self.start, self.stop, self.step)
 
@@ -186,7 +186,7 @@ def _range_number(option: str, part: str, text: str) -> float:
 
 def _step_range(option: str, start: float, stop: float, step: float) -> GridRange:
     """``START:STOP/STEP``, by the rules the workflow applies to a configured range."""
-    from .experiments.grids import grid_size, lands_on_stop
+    from ..experiments.grids import grid_size, lands_on_stop
 
     if step <= 0:
         raise ValueError(f"{option} STEP must be > 0, got {step:g}")
@@ -225,7 +225,7 @@ def _description() -> str:
 def _angle_help(name: str, also: str = "") -> str:
     """An angle option's help: its long name and unit from the one table of units and
     long names, and the sign convention."""
-    from .io.units import VARIABLES
+    from ..io.units import VARIABLES
 
     unit, long_name = VARIABLES[name]
     return f"{long_name}, {_ANGLE_SIGN} ({unit}){also}"
@@ -251,7 +251,7 @@ def build_parser() -> argparse.ArgumentParser:
 
 def _add_model_options(p: argparse.ArgumentParser) -> None:
     """``--set`` and the solver's options; choices and defaults from the solver's settings."""
-    from .solver.settings import MAX_ATOL, MAX_RTOL, METHOD_IDS, SolverSettings
+    from ..solver.settings import MAX_ATOL, MAX_RTOL, METHOD_IDS, SolverSettings
 
     p.add_argument(
         "--set",
@@ -455,7 +455,7 @@ def _add_explore(sub) -> None:
 
 
 def _settings(args: argparse.Namespace):
-    from .solver.settings import SolverSettings
+    from ..solver.settings import SolverSettings
 
     kwargs = {"method": args.method}
     if args.rtol is not None:
@@ -466,8 +466,8 @@ def _settings(args: argparse.Namespace):
 
 
 def _strike(args: argparse.Namespace) -> int:
-    from .model.params import resolve_params, scalar_params
-    from .solver.stroke import strike
+    from ..model.params import resolve_params, scalar_params
+    from ..solver.stroke import strike
 
     overrides = _parse_set(args.set)
     params = resolve_params(overrides)
@@ -489,8 +489,8 @@ def _strike(args: argparse.Namespace) -> int:
         }
         print(json.dumps(payload, indent=2))
         return 0
-    from .io.units import VARIABLES
-    from .solver.results import COUNT_FIELDS, FILE_NAMES, RESULT_FIELDS
+    from ..io.units import VARIABLES
+    from ..solver.results import COUNT_FIELDS, FILE_NAMES, RESULT_FIELDS
 
     print(
         f"stroke theta0 = {args.theta0:g} deg, delta0 = {args.delta0:g} deg: "
@@ -508,7 +508,7 @@ def _strike(args: argparse.Namespace) -> int:
 def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress):
     """``strike_batch`` over the grid ``theta0 x delta0`` in blocks of ``block`` strokes
     (Ctrl-C is handled between blocks); the result fields on the grid."""
-    from .solver.stroke import strike_batch
+    from ..solver.stroke import strike_batch
 
     nd, n = delta0.size, theta0.size * delta0.size
     results: dict[str, np.ndarray] = {}
@@ -534,11 +534,11 @@ def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress)
 
 
 def _sweep(args: argparse.Namespace) -> int:
-    from .io.netcdf import check_writable, result_dataset, write_netcdf
-    from .model.params import resolve_params
-    from .pipeline.memory import batch_bytes, check_memory, memory_limit, result_bytes
-    from .solver.results import OK
-    from .solver.stroke import default_threads
+    from ..io.netcdf import check_writable, result_dataset, write_netcdf
+    from ..model.params import resolve_params
+    from ..pipeline.memory import batch_bytes, check_memory, memory_limit, result_bytes
+    from ..solver.results import OK
+    from ..solver.stroke import default_threads
 
     theta_range = range_spec(args.theta0, "theta0")
     delta_range = range_spec(args.delta0, "delta0")
@@ -610,8 +610,8 @@ def text_table(
 def _params(args: argparse.Namespace) -> int:
     import shutil
 
-    from .inference.reading_space import ReadingSpaceError, load_reading_space
-    from .model.listing import CHOICE_COLUMNS, PARAMETER_COLUMNS, choice_rows, parameter_rows
+    from ..inference.reading_space import ReadingSpaceError, load_reading_space
+    from ..model.listing import CHOICE_COLUMNS, PARAMETER_COLUMNS, choice_rows, parameter_rows
 
     try:  # the fitted defaults, as config/readings.yaml declares them
         fitted = load_reading_space(args.readings).fitted()
@@ -631,7 +631,7 @@ def _params(args: argparse.Namespace) -> int:
 def _claims_table(table) -> str:
     """Every claim of a claims table (checked) as one aligned line: id, status (in the
     report's words), the paper's value, ours, unit and tolerance."""
-    from .replication.claims import STATUS_WORDS
+    from ..replication.claims import STATUS_WORDS
 
     rows = [
         (
@@ -653,9 +653,9 @@ def _claims(args: argparse.Namespace) -> int:
     from contextlib import redirect_stdout
     from pathlib import Path
 
-    from .inference.claims import ClaimError, load_claims
-    from .inference.paper_config import describe_departures, read_record
-    from .replication.claims import check, read_table
+    from ..inference.claims import ClaimError, load_claims
+    from ..inference.paper_config import describe_departures, read_record
+    from ..replication.claims import check, read_table
 
     try:
         declared = load_claims(args.claims)
@@ -688,7 +688,7 @@ def _claims(args: argparse.Namespace) -> int:
     print(_claims_table(read_table(args.csv)))
     print(verdict.getvalue(), end="")
     if args.junit:
-        from .replication.junit import write_junit
+        from ..replication.junit import write_junit
 
         write_junit(read_table(args.csv), args.junit)
         print(f"wrote {args.junit}")
@@ -698,12 +698,12 @@ def _claims(args: argparse.Namespace) -> int:
 def _identify(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    from .experiments.specs import fit_set_arguments
-    from .inference.claims import load_claims
-    from .inference.identification import run_identification, summary
-    from .inference.reading_space import load_reading_space
-    from .io.config_files import ConfigKeyError, load_yaml
-    from .model.params import resolve_params
+    from ..experiments.specs import fit_set_arguments
+    from ..inference.claims import load_claims
+    from ..inference.identification import run_identification, summary
+    from ..inference.reading_space import load_reading_space
+    from ..io.config_files import ConfigKeyError, load_yaml
+    from ..model.params import resolve_params
 
     if args.rows < 1:
         raise ValueError(f"--rows must be >= 1, got {args.rows}")
@@ -730,9 +730,9 @@ def _identify(args: argparse.Namespace) -> int:
 
 
 def _config(args: argparse.Namespace) -> int:
-    from .inference.claims import ClaimError, load_claims
-    from .io.config_files import ConfigFileError, load_yaml
-    from .pipeline.explain import UnknownKeyError, explain, markdown, text
+    from ..inference.claims import ClaimError, load_claims
+    from ..io.config_files import ConfigFileError, load_yaml
+    from ..pipeline.explain import UnknownKeyError, explain, markdown, text
 
     try:
         config, claims = load_yaml(args.config), load_claims(args.claims)
@@ -756,10 +756,10 @@ def _whatif(args: argparse.Namespace) -> int:
 
     import yaml
 
-    from .io.config_files import ConfigFileError
-    from .io.interrupts import run_forwarding
-    from .pipeline.config_check import load_schema
-    from .pipeline.scenarios import (
+    from ..io.config_files import ConfigFileError
+    from ..io.interrupts import run_forwarding
+    from ..pipeline.config_check import load_schema
+    from ..pipeline.scenarios import (
         SCHEMA_FILE,
         ScenarioError,
         folder,
@@ -767,7 +767,7 @@ def _whatif(args: argparse.Namespace) -> int:
         override_from,
         scenario_reach,
     )
-    from .replication.registry import paper_figure
+    from ..replication.registry import paper_figure
 
     if not Path("Snakefile").is_file():
         raise ValueError(f"no Snakefile in {Path.cwd()}: run whatif from the project's folder")
@@ -827,7 +827,7 @@ def _whatif(args: argparse.Namespace) -> int:
 
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the ``tennis-stroke`` console script."""
-    from .io.interrupts import terminate_raises
+    from ..io.interrupts import terminate_raises
 
     with terminate_raises():
         return _main(argv)
@@ -842,19 +842,19 @@ def _explore(args: argparse.Namespace) -> int:
         raise ValueError(f"--port {args.port}: a port is 1 to 65535")
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"--threads {args.threads}: at least 1")
-    from .live.server import serve
+    from ..live.server import serve
 
     return serve(Path.cwd(), args.figure, args.host, args.port, args.threads)
 
 
 def _main(argv: Sequence[str] | None) -> int:
-    from .io.interrupts import Terminated
+    from ..io.interrupts import Terminated
 
     try:
         args = build_parser().parse_args(argv)
-        from .io.errors import OutputError, ResultError
-        from .model.params import ParameterError
-        from .solver.compiled import CompileCacheError
+        from ..io.errors import OutputError, ResultError
+        from ..model.params import ParameterError
+        from ..solver.compiled import CompileCacheError
 
         commands = {
             "strike": _strike,
@@ -884,7 +884,3 @@ def _main(argv: Sequence[str] | None) -> int:
         os.dup2(os.open(os.devnull, os.O_WRONLY), sys.stdout.fileno())
         return 1
     return EXIT_USAGE
-
-
-if __name__ == "__main__":
-    sys.exit(main())
