@@ -80,7 +80,7 @@ class _HelpFormatter(argparse.HelpFormatter):
         )
 
 
-class _Parser(argparse.ArgumentParser):
+class Parser(argparse.ArgumentParser):
     """argparse with a one-line error (no usage dump), exit status 2, help wrapped at
     spaces, and negative numbers accepted after an option (``--delta0 -1``,
     ``--theta0 -30:10:5``)."""
@@ -94,17 +94,17 @@ class _Parser(argparse.ArgumentParser):
         return super().parse_known_args(_join_negative_values(list(args)), namespace)
 
     def error(self, message: str) -> None:  # noqa: D102
-        _fail(message)
+        fail(message)
 
 
-def _fail(message: str) -> None:
+def fail(message: str) -> None:
     """One line on stderr (whatever ``message`` holds), then exit status 2."""
     line = " ".join(message.split())
     sys.stderr.write(f"tennis-stroke: error: {line}\n")
     raise SystemExit(EXIT_USAGE)
 
 
-def _parse_set(items: Sequence[str]) -> dict[str, object]:
+def parse_set(items: Sequence[str]) -> dict[str, object]:
     from ..model.params import parse_value
 
     out: dict[str, object] = {}
@@ -222,7 +222,7 @@ def _description() -> str:
     return " ".join(__doc__.split("\n\n")[0].split())
 
 
-def _angle_help(name: str, also: str = "") -> str:
+def angle_help(name: str, also: str = "") -> str:
     """An angle option's help: its long name and unit from the one table of units and
     long names, and the sign convention."""
     from ..io.units import VARIABLES
@@ -232,9 +232,9 @@ def _angle_help(name: str, also: str = "") -> str:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    parser = _Parser(prog="tennis-stroke", description=_description(), epilog=_EPILOG)
+    parser = Parser(prog="tennis-stroke", description=_description(), epilog=_EPILOG)
     parser.add_argument("--version", action="version", version=f"%(prog)s {__version__}")
-    sub = parser.add_subparsers(dest="command", required=True, parser_class=_Parser)
+    sub = parser.add_subparsers(dest="command", required=True, parser_class=Parser)
     for add in (
         _add_strike,
         _add_sweep,
@@ -249,7 +249,7 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
-def _add_model_options(p: argparse.ArgumentParser) -> None:
+def add_model_options(p: argparse.ArgumentParser) -> None:
     """``--set`` and the solver's options; choices and defaults from the solver's settings."""
     from ..solver.settings import MAX_ATOL, MAX_RTOL, METHOD_IDS, SolverSettings
 
@@ -286,17 +286,17 @@ def _add_strike(sub) -> None:
         description="Simulate one stroke: every result field with its unit and meaning.",
     )
     strike.add_argument(
-        "--theta0", type=angle, required=True, metavar="DEG", help=_angle_help("theta0")
+        "--theta0", type=angle, required=True, metavar="DEG", help=angle_help("theta0")
     )
     strike.add_argument(
-        "--delta0", type=angle, required=True, metavar="DEG", help=_angle_help("delta0")
+        "--delta0", type=angle, required=True, metavar="DEG", help=angle_help("delta0")
     )
     strike.add_argument(
         "--json",
         action="store_true",
         help="print one JSON object: the resolved parameters, solver settings and result",
     )
-    _add_model_options(strike)
+    add_model_options(strike)
 
 
 def _add_sweep(sub) -> None:
@@ -308,7 +308,7 @@ def _add_sweep(sub) -> None:
     )
     for name in ("theta0", "delta0"):
         sweep.add_argument(
-            f"--{name}", required=True, metavar="RANGE", help=_angle_help(name, ": a RANGE")
+            f"--{name}", required=True, metavar="RANGE", help=angle_help(name, ": a RANGE")
         )
     sweep.add_argument(
         "--out",
@@ -325,7 +325,7 @@ def _add_sweep(sub) -> None:
         help="refuse a grid needing more memory (e.g. 8G; default: "
         "$TENNIS_STROKE_MAX_MEMORY, else half the machine's memory)",
     )
-    _add_model_options(sweep)
+    add_model_options(sweep)
 
 
 def _add_params(sub) -> None:
@@ -390,7 +390,7 @@ def _add_identify(sub) -> None:
 
 def _add_config(sub) -> None:
     config = sub.add_parser("config", help="what the workflow's config keys drive")
-    config_sub = config.add_subparsers(dest="action", required=True, parser_class=_Parser)
+    config_sub = config.add_subparsers(dest="action", required=True, parser_class=Parser)
     explain = config_sub.add_parser(
         "explain", help="the result files, figures and claims a config key changes"
     )
@@ -454,7 +454,7 @@ def _add_explore(sub) -> None:
     )
 
 
-def _settings(args: argparse.Namespace):
+def solver_settings(args: argparse.Namespace):
     from ..solver.settings import SolverSettings
 
     kwargs = {"method": args.method}
@@ -469,9 +469,9 @@ def _strike(args: argparse.Namespace) -> int:
     from ..model.params import resolve_params, scalar_params
     from ..solver.stroke import strike
 
-    overrides = _parse_set(args.set)
+    overrides = parse_set(args.set)
     params = resolve_params(overrides)
-    settings = _settings(args)
+    settings = solver_settings(args)
     result = strike(args.theta0, args.delta0, overrides, settings)
     if args.json:
         fields = {"status": result["status_name"], "status_code": result["status"]}
@@ -542,9 +542,9 @@ def _sweep(args: argparse.Namespace) -> int:
 
     theta_range = range_spec(args.theta0, "theta0")
     delta_range = range_spec(args.delta0, "delta0")
-    overrides = _parse_set(args.set)
+    overrides = parse_set(args.set)
     params = resolve_params(overrides)
-    settings = _settings(args)
+    settings = solver_settings(args)
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"--threads must be >= 1, got {args.threads}")
     threads = min(args.threads or default_threads(), default_threads())
@@ -869,9 +869,9 @@ def _main(argv: Sequence[str] | None) -> int:
         try:
             return commands[args.command](args)
         except (ParameterError, OutputError, ResultError, CompileCacheError, ValueError) as exc:
-            _fail(str(exc))
+            fail(str(exc))
         except MemoryError:
-            _fail("out of memory (give sweep a lower --max-memory or TENNIS_STROKE_MAX_MEMORY)")
+            fail("out of memory (give sweep a lower --max-memory or TENNIS_STROKE_MAX_MEMORY)")
     except KeyboardInterrupt:
         sys.stderr.write("tennis-stroke: interrupted\n")
         return EXIT_INTERRUPTED
