@@ -328,9 +328,9 @@ def test_negative_ranges_after_an_option_are_values(tmp_path, capsys):
 def test_sweep_in_blocks_is_bit_for_bit_one_batch(tmp_path, capsys, monkeypatch):
     """The sweep runs in blocks (to stop on Ctrl-C between them): the same numbers as one
     strike_batch over the grid, with blocks that end mid-row."""
-    import tennis_stroke.cli as cli
+    from tennis_stroke.cli import sweep
 
-    monkeypatch.setattr(cli, "SWEEP_BLOCK_PER_THREAD", 7)
+    monkeypatch.setattr(sweep, "SWEEP_BLOCK_PER_THREAD", 7)
     out = tmp_path / "blocks.nc"
     code, _, err = _run(
         capsys,
@@ -564,7 +564,7 @@ def test_strike_prints_counts_as_integers(capsys):
     ],
 )
 def test_a_range_is_a_count_of_points_or_a_step(text, expected):
-    from tennis_stroke.cli import parse_range
+    from tennis_stroke.cli.ranges import parse_range
 
     np.testing.assert_allclose(parse_range(text, "theta0"), expected, rtol=0, atol=1e-12)
 
@@ -572,7 +572,7 @@ def test_a_range_is_a_count_of_points_or_a_step(text, expected):
 def test_the_step_form_is_the_workflows_axis():
     """``START:STOP/STEP`` gives the very axis a configured ``{start, stop, step}`` gives
     (Fig. 3's theta0: 241 points), and its count is known before the axis is made."""
-    from tennis_stroke.cli import range_spec
+    from tennis_stroke.cli.ranges import range_spec
     from tennis_stroke.experiments.grids import axis
 
     spec = range_spec("60:120/0.25", "theta0")
@@ -798,7 +798,7 @@ def test_claims_prints_every_claim_as_a_table_then_the_counts(tmp_path, capsys):
 
 
 def test_a_table_wraps_its_last_column_to_the_width_under_itself():
-    from tennis_stroke.cli import text_table
+    from tennis_stroke.cli.tables import text_table
 
     rows = [("a", "1.5", "one two three four five six seven eight nine ten")]
     text = text_table(("name", "value", "meaning"), rows, width=40, right=(1,))

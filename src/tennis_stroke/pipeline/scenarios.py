@@ -238,6 +238,8 @@ def unreached(base: Mapping, config: Mapping, files=None) -> list[str]:
 
 #: The workflow config and its schema, relative to a project's folder.
 CONFIG_FILE, SCHEMA_FILE = "config/config.yaml", "workflow/schemas/config.schema.yaml"
+#: The declared scenarios, relative to a project's folder.
+SCENARIOS_FILE = "config/scenarios.yaml"
 
 
 def scenario_reach(

@@ -1,0 +1,52 @@
+"""run a what-if scenario beside the paper (snakemake): its page or figures"""
+
+# What the run asks of the workflow (the checks, the targets, Snakemake's command line)
+# is planned by tennis_stroke.pipeline.whatif; this command prints and runs the plan.
+
+from __future__ import annotations
+
+import argparse
+import sys
+
+
+def add_arguments(parser: argparse.ArgumentParser) -> None:
+    parser.add_argument("name", help="the scenario (declared in config/scenarios.yaml, or new)")
+    parser.add_argument(
+        "--set",
+        action="append",
+        default=[],
+        metavar="KEY=VALUE",
+        help="an override of a new scenario: a model parameter, reading or option "
+        "(M2=0.35; 'tennis-stroke params' lists them) or a dotted config key "
+        "(torque_delay.base_stroke.C2=8); a declared scenario is changed in "
+        "config/scenarios.yaml",
+    )
+    parser.add_argument(
+        "--figure",
+        action="append",
+        default=[],
+        metavar="FIG",
+        help="only this figure of the paper (fig2, fig09, fig09_v_tau); default: the page "
+        "and its article",
+    )
+    parser.add_argument("-j", "--cores", type=int, default=2, help="snakemake --cores (2)")
+    parser.add_argument("-n", "--dry-run", action="store_true", help="plan only (snakemake -n)")
+
+
+def run(args: argparse.Namespace) -> int:
+    import shlex
+    from pathlib import Path
+
+    from ..io.interrupts import run_forwarding
+    from ..pipeline.whatif import plan_whatif
+
+    if not Path("Snakefile").is_file():
+        raise ValueError(f"no Snakefile in {Path.cwd()}: run whatif from the project's folder")
+    plan = plan_whatif(args.name, args.set, args.figure)  # a refusal: one line
+    snakemake = plan.snakemake_args(args.cores, args.dry_run)
+    print("$ " + shlex.join(["snakemake", *snakemake]), flush=True)  # what reruns it
+    # Ctrl-C: Snakemake removes its locks, then we stop
+    code = run_forwarding([sys.executable, "-m", "snakemake", *snakemake])
+    if code == 0 and not args.dry_run:
+        print("\n".join(plan.targets))
+    return code
