@@ -32,6 +32,7 @@ from .checkout import installed_difference, runs_no_code
 from .config_check import config_errors, numbers_from_strings, rows_per_job
 from .scenarios import (
     FOLDER,
+    SCENARIOS_FILE,
     ScenarioError,
     changes,
     changes_read,
@@ -166,7 +167,7 @@ class Runs:
             raise PlanningError("claims", str(exc)) from None
         errors: dict = {}
         try:
-            scenarios = load_scenarios("config/scenarios.yaml", adhoc, errors)
+            scenarios = load_scenarios(SCENARIOS_FILE, adhoc, errors)
         except ScenarioError as exc:
             scenarios, errors[None] = {}, str(exc)
         configs = {}
