@@ -597,6 +597,8 @@ def test_whatif_stopped_by_a_signal_leaves_no_lock(tmp_path, signum, status, lin
         [*command, "--set", "M2=0.35", "--figure", "fig2", "--cores", "1"],
         cwd=checkout,
         start_new_session=True,  # its own process group, as a terminal's foreground job
+        # with a closed terminal's default: a run under nohup ignores SIGHUP, and passes that on
+        preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_DFL),
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
