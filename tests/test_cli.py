@@ -791,6 +791,20 @@ def test_claims_prints_every_claim_as_a_table_then_the_counts(tmp_path, capsys):
     assert lines[2].split() == ["angle", "deviates", "76", "232.4", "degree", "5"]
     assert lines[3] == "claims: 2 (1 reproduces, 1 deviates)"
     assert "{" not in out
+    # with the robustness analysis: each claim across the readings, with its bound
+    robust = ",robustness,pass_share,readings,pass_share_low,pass_share_high,class_bound,"
+    robust += "class_sure\n"
+    table.write_text(
+        header.replace("\n", robust)
+        + rows[0].replace("\n", ",robust,1.0,300,0.988,1.0,0.00994,True\n")
+        + rows[1].replace("\n", ",reading_dependent,0.5,60,0.37,0.63,,True\n")
+    )
+    code, out, err = _run(capsys, "claims", str(table), "--claims", str(declared))
+    lines = out.splitlines()
+    assert code == 0 and lines[0].split()[-2:] == ["across", "readings"], (out, err)
+    assert lines[1].endswith("all 300, fails <= 0.99 %")
+    assert lines[2].endswith("50 % (37 %-63 %)")
+    assert lines[3].startswith("across readings: the consistent readings it passes under")
     # a table the check refuses prints nothing but the one error line
     table.write_text(header + rows[0].replace(",pass,", ",fail,") + rows[1])
     code, out, err = _run(capsys, "claims", str(table), "--claims", str(declared))

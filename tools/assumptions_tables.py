@@ -8,6 +8,8 @@ from pathlib import Path
 import pandas as pd
 import xarray as xr
 
+from tennis_stroke.replication.robustness import CONFIDENCE, MARGIN, across_short
+
 
 def _row(cells) -> str:
     return "| " + " | ".join(str(c) for c in cells) + " |"
@@ -109,12 +111,23 @@ def robustness_tables(results: Path) -> str:
         + ", ".join(f"{k} {v}" for k, v in counts.items())
         + f" (of {len(held)}; {len(claims) - len(held)} used for fit).\n"
     )
-    out.append(_row(["claim", "default status", "robustness", "pass share", "deciding unknown"]))
+    robust = held[held["robustness"] == "robust"]
+    if len(robust) and "class_bound" in robust:
+        out.append(
+            f"Each robust claim passes under all {int(robust['readings'].iloc[0])} readings: "
+            f"its failure share is at most {100 * float(robust['class_bound'].max()):.2g} % "
+            f"({100 * CONFIDENCE:.0f} %, exact).\n"
+        )
+    header = f"pass share (across readings, {100 * CONFIDENCE:.0f} % exact)"
+    out.append(_row(["claim", "default status", "robustness", header, "deciding unknown"]))
     out.append(_row(["--"] * 5))
     for _, r in held[held["robustness"] != "robust"].iterrows():
-        share = f"{float(r['pass_share']):.2f}"
+        share = across_short(r.to_dict())
         out.append(_row([r["id"], r["status"], r["robustness"], share, r["deciding"] or "-"]))
-    out.append("")
+    out.append(
+        f"\n`*`: the readings are too few to decide the class at a share of "
+        f'{100 * MARGIN:.0f} % ([inference.md](inference.md), "How sure each class is").\n'
+    )
     out.append(
         _row(
             [

@@ -33,9 +33,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 def _claims_table(table) -> str:
     """Every claim of a claims table (checked) as one aligned line: id, status (in the
-    report's words), the paper's value, ours, unit and tolerance."""
+    report's words), the paper's value, ours, unit and tolerance, and where the table has
+    the robustness analysis, the claim across the consistent readings with its bound."""
     from ..replication.claims import STATUS_WORDS
+    from ..replication.robustness import CONFIDENCE, MARGIN, across_short
 
+    records = table.to_dict("records")
+    across = "robustness" in table.columns
     rows = [
         (
             row["id"],
@@ -45,10 +49,18 @@ def _claims_table(table) -> str:
             row["unit"],
             f"{float(row['tolerance']):g}",
         )
-        for row in table.to_dict("records")
+        + ((across_short(row),) if across else ())
+        for row in records
     ]
     columns = ("claim", "status", "paper", "ours", "unit", "tolerance")
-    return text_table(columns, rows, right=(2, 3, 5))
+    text = text_table(columns + (("across readings",) if across else ()), rows, right=(2, 3, 5))
+    if across:
+        text += (
+            f"\nacross readings: the consistent readings it passes under, with a "
+            f"{100 * CONFIDENCE:.0f} % bound or interval (exact, over the readings); * the "
+            f"readings are too few to decide its class at {100 * MARGIN:.0f} %"
+        )
+    return text
 
 
 def run(args: argparse.Namespace) -> int:

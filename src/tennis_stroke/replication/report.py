@@ -53,7 +53,7 @@ from .claims import STATUS_WORDS, ClaimsTableError, consistency_errors, read_tab
 from .formats import UNIT_SHORT, ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
 from .registry import FIGURES, LIVE
-from .robustness import EVIDENCE_MEANING
+from .robustness import EVIDENCE_MEANING, across_text
 
 #: The page template, rendered with autoescape.
 ENVIRONMENT = jinja2.Environment(
@@ -85,21 +85,7 @@ def _claim_row(claim: Mapping) -> dict:
         tolerance = (
             f"\u00b1{_number(claim['tolerance'])} {UNIT_SHORT.get(claim['unit'], claim['unit'])}"
         )
-    robustness = claim.get("robustness", "")
-    share = claim.get("pass_share", "")
-    if robustness == "used_for_fit":
-        across = "used for fit"
-    elif robustness == "robust":
-        across = "robust: passes under every reading"
-    elif robustness == "reading_dependent":
-        across = f"reading-dependent: passes in {100 * float(share):.0f} %"
-    elif robustness == "not_reproduced":
-        best = claim.get("best_value", "")
-        across = "not reproduced under any reading" + (
-            f"; best {_number(best)}" if str(best) not in ("", "nan") else ""
-        )
-    else:
-        across = "-"
+    across = across_text(claim) if claim.get("robustness", "") else "-"
     cause = ""
     if claim["status"] in ("known_deviation", "fail"):
         cause = claim.get("evidence") or ("fail" if claim["status"] == "fail" else "other")

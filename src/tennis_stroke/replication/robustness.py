@@ -49,10 +49,20 @@ EVIDENCE_MEANING = {
     "irreducible": "fails under every consistent reading (the best value reached is shown)",
 }
 EVIDENCE = tuple(EVIDENCE_MEANING)
+#: The confidence of every interval and bound on a pass share, and the share below which
+#: a claim counts as passing (or failing) under practically no consistent reading.
+#: Declared 2026-12-06 (issue 55) before any interval was computed.
+CONFIDENCE = 0.95
+MARGIN = 0.01
 #: Columns :func:`annotate` adds to the claims table.
 COLUMNS = (
     "robustness",
     "pass_share",
+    "readings",
+    "pass_share_low",
+    "pass_share_high",
+    "class_bound",
+    "class_sure",
     "deciding",
     "best_value",
     "best_residual",
@@ -92,6 +102,126 @@ def _deciding(ok: np.ndarray, ds: xr.Dataset, space: ReadingSpace) -> str:
     return text
 
 
+def share_interval(ok: np.ndarray) -> tuple[float, float, float, float]:
+    """The pass share of one claim over (reading, variant) cells ``ok`` with its
+    uncertainty from the sample of readings: ``(low, high, fail_bound, pass_bound)``.
+
+    The readings are a sample of the consistent set; the claim-level variants are all
+    enumerated, each with equal weight.  For each variant the claim passes under ``k`` of
+    the ``n`` readings; its exact (Clopper-Pearson) interval at :data:`CONFIDENCE` is
+    :func:`scipy.stats.binomtest`'s ``proportion_ci(method="exact")``, and the claim's is
+    the mean over the variants of theirs (the pass share is that mean): exact when the
+    claim does not depend on the variant, wider than needed when the variants' passes
+    are not the same readings.  ``fail_bound`` is the one-sided upper bound of the share
+    under which it fails, ``pass_bound`` of the share under which it passes (both at
+    :data:`CONFIDENCE`)."""
+    from scipy.stats import binomtest
+
+    n = ok.shape[0]
+    if n == 0:
+        return (float("nan"),) * 4
+    cis, above, below = [], [], []
+    for k in ok.sum(axis=0).astype(int):
+        cis.append(binomtest(int(k), n).proportion_ci(CONFIDENCE, method="exact"))
+        above.append(binomtest(int(k), n, alternative="greater").proportion_ci(CONFIDENCE).low)
+        below.append(binomtest(int(k), n, alternative="less").proportion_ci(CONFIDENCE).high)
+    return (
+        float(np.mean([c.low for c in cis])),
+        float(np.mean([c.high for c in cis])),
+        1.0 - float(np.mean(above)),
+        float(np.mean(below)),
+    )
+
+
+def class_bound(cls: str, low: float, high: float, fail_bound: float, pass_bound: float):
+    """The bound that states a robustness class, and whether the sample decides the class
+    at :data:`MARGIN`: ``robust`` with the upper bound of its failure share (sure when
+    below the margin), ``not_reproduced`` with the upper bound of its pass share (the
+    same), ``reading_dependent`` with its interval (sure when the interval keeps clear of
+    both margins: it passes, and fails, under more than 1 % of the readings)."""
+    if cls == "robust":
+        return fail_bound, bool(fail_bound <= MARGIN)
+    if cls == "not_reproduced":
+        return pass_bound, bool(pass_bound <= MARGIN)
+    if cls == "reading_dependent":
+        return float("nan"), bool(low >= MARGIN and high <= 1.0 - MARGIN)
+    return float("nan"), True
+
+
+def _percent(x) -> str:
+    """A share as a percentage with the digits it needs (0.0487 -> '4.9 %')."""
+    value = 100 * float(x)
+    return f"{value:.0f} %" if value >= 10 or value == 0 else f"{value:.2g} %"
+
+
+def _number_or_nan(row: Mapping, key: str) -> float:
+    try:
+        return float(row.get(key, "nan"))
+    except (TypeError, ValueError):
+        return float("nan")
+
+
+def across_text(row: Mapping) -> str:
+    """A claim's robustness in words, with its confidence (a row of the claims table):
+    what the report, the article and ``tennis-stroke claims`` say of it."""
+    cls = str(row.get("robustness", "") or "")
+    n = _number_or_nan(row, "readings")
+    bound = _number_or_nan(row, "class_bound")
+    of = f"{n:.0f} readings" if np.isfinite(n) else "the readings"
+    level = f"{100 * CONFIDENCE:.0f} %"
+    sure = str(row.get("class_sure", "True")) in ("True", "true", "1", "1.0")
+    unsure = "" if sure else f"; too few readings to bound it below {_percent(MARGIN)}"
+    if cls == "used_for_fit":
+        return "used for fit"
+    if cls == "robust":
+        if not np.isfinite(bound):
+            return "robust: passes under every reading"
+        return (
+            f"robust: passes under all {of}; fails under at most "
+            f"{_percent(bound)} ({level}){unsure}"
+        )
+    if cls == "reading_dependent":
+        low, high = _number_or_nan(row, "pass_share_low"), _number_or_nan(row, "pass_share_high")
+        text = f"reading-dependent: passes in {_percent(row.get('pass_share'))}"
+        if np.isfinite(low) and np.isfinite(high):
+            text += f" ({_percent(low)}-{_percent(high)}, {level}, {of})"
+        if not sure:
+            near = "robust" if high > 1.0 - MARGIN else "not reproduced"
+            unsure = f"; too few readings to tell it from {near} at {_percent(MARGIN)}"
+        return text + unsure
+    if cls == "not_reproduced":
+        text = "not reproduced under any reading"
+        if np.isfinite(bound):
+            text = (
+                f"not reproduced under any of {of}; passes under at most "
+                f"{_percent(bound)} ({level}){unsure}"
+            )
+        best = _number_or_nan(row, "best_value")
+        return text + (f"; best {best:.4g}" if np.isfinite(best) else "")
+    return "-"
+
+
+def across_short(row: Mapping) -> str:
+    """:func:`across_text` in a table cell: ``all 60, fails <= 4.9 %``, ``50 % (37-63 %)``,
+    ``none of 60, passes <= 4.9 %``, ``fit``; ``*`` when the sample cannot decide the
+    class at :data:`MARGIN`."""
+    cls = str(row.get("robustness", "") or "")
+    n = _number_or_nan(row, "readings")
+    bound = _number_or_nan(row, "class_bound")
+    sure = str(row.get("class_sure", "True")) in ("True", "true", "1", "1.0")
+    star = "" if sure else " *"
+    if cls == "used_for_fit":
+        return "fit"
+    if cls == "robust" and np.isfinite(bound):
+        return f"all {n:.0f}, fails <= {_percent(bound)}{star}"
+    if cls == "not_reproduced" and np.isfinite(bound):
+        return f"none of {n:.0f}, passes <= {_percent(bound)}{star}"
+    if cls == "reading_dependent":
+        low, high = _number_or_nan(row, "pass_share_low"), _number_or_nan(row, "pass_share_high")
+        return f"{_percent(row.get('pass_share'))} ({_percent(low)}-{_percent(high)}){star}"
+    return "-"
+
+
 def classify(ds: xr.Dataset, space: ReadingSpace, claims: Sequence[Mapping]) -> pd.DataFrame:
     """Robustness class of every claim over the consistent readings (all kept readings x
     all claim-level variants): share passing, the deciding unknown of a
@@ -119,11 +249,20 @@ def classify(ds: xr.Dataset, space: ReadingSpace, claims: Sequence[Mapping]) -> 
         else:
             cls = "not_reproduced"
         deciding = _deciding(ok, ds, space) if cls == "reading_dependent" else ""
+        low, high, fail_bound, pass_bound = (
+            share_interval(ok) if cls != "used_for_fit" else (float("nan"),) * 4
+        )
+        bound, sure = class_bound(cls, low, high, fail_bound, pass_bound)
         rows.append(
             {
                 "id": c["id"],
                 "robustness": cls,
                 "pass_share": share,
+                "readings": int(ok.shape[0]),
+                "pass_share_low": low,
+                "pass_share_high": high,
+                "class_bound": bound,
+                "class_sure": sure,
                 "deciding": deciding,
                 "best_value": best_value,
                 "best_residual": best_residual,
