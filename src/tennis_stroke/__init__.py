@@ -3,7 +3,11 @@
 Public API
 ----------
 :func:`strike`, :func:`strike_batch`
-    One stroke or many (compiled path, parallel).
+    One stroke or many (compiled path, parallel): the result fields.
+:func:`solve_stroke`, :func:`stroke_dataset`
+    One stroke over time (the independent scipy path, dense output) and its trajectory in
+    the lab frame as an ``xarray.Dataset`` with units: the angles and rates, the elbow,
+    the racket's hitting point and the ball.
 :class:`SolverSettings`
     Method and tolerances of the compiled solver.
 :func:`resolve_params`, :data:`PARAMETERS`, :data:`READINGS`, :data:`MODEL_OPTIONS`
@@ -11,6 +15,9 @@ Public API
     options (the rungs of the model ladder: ``contact_model``).
 :mod:`tennis_stroke.solver.reference`
     The independent scipy ``solve_ivp`` path on the same equations.
+
+The API reference of these names and of the modules they come from is built by ``make
+api`` into ``docs/api/`` (``tools/api_reference.py``).
 """
 
 import time
@@ -36,6 +43,8 @@ _API = {
     "resolve_params": ".model.params",
     "STATUS_NAMES": ".solver.results",
     "SolverSettings": ".solver.settings",
+    "solve_stroke": ".solver.reference",
+    "stroke_dataset": ".io.trajectory",
     "strike": ".solver.stroke",
     "strike_batch": ".solver.stroke",
 }
@@ -62,6 +71,8 @@ __all__ = [
     "SolverSettings",
     "__version__",
     "resolve_params",
+    "solve_stroke",
     "strike",
     "strike_batch",
+    "stroke_dataset",
 ]
