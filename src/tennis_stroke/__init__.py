@@ -16,8 +16,8 @@ Public API
 :mod:`tennis_stroke.solver.reference`
     The independent scipy ``solve_ivp`` path on the same equations.
 
-The API reference of these names and of the modules they come from is built by ``make
-api`` into ``docs/api/`` (``tools/api_reference.py``).
+The API reference of these names and of the modules they come from is built by
+``make api`` into ``docs/api/`` (``tools/api_reference.py``).
 """
 
 import time

@@ -53,7 +53,7 @@ def sample_times(stroke: ReferenceStroke, samples: int = DEFAULT_SAMPLES) -> np.
 
 def _checked_times(times: object) -> np.ndarray:
     """``times`` as a 1-D array of finite floats in increasing order, or
-    :class:`~tennis_stroke.model.params.ParameterError` saying what is wrong."""
+    :class:`tennis_stroke.model.params.ParameterError` saying what is wrong."""
     arr = real_array("the sample times", times)
     if arr.ndim > 1:
         raise ParameterError(f"the sample times must be one-dimensional, got shape {arr.shape}")
@@ -78,12 +78,12 @@ def stroke_dataset(stroke: ReferenceStroke, times: object = None) -> xr.Dataset:
     Returns
     -------
     xarray.Dataset
-        On ``t``: ``theta, phi`` (degree, from ``-y``, counter-clockwise), ``omega1,
-        omega2`` (rad/s, clockwise), the elbow's, the wrist's, the racket end's and the
+        On ``t``: ``theta, phi`` (degree, from ``-y``, counter-clockwise),
+        ``omega1, omega2`` (rad/s, clockwise), the elbow's, the wrist's, the racket end's and the
         hitting point's positions (``x_*, y_*``, m) and velocities (``vx_*, vy_*``, m/s),
         the hitting point's speed ``speed_hit`` (m/s), and the ball's ``x_ball`` (m) and
         ``vx_ball`` (m/s) along x, NaN outside the simulated stroke
-        (:meth:`~tennis_stroke.solver.reference.ReferenceStroke.lab_frame`).  Scalars:
+        (:meth:`tennis_stroke.solver.reference.ReferenceStroke.lab_frame`).  Scalars:
         the result fields (``v_out`` in km/h, ``t_contact_start`` and ``t_separation``
         in s, ...; ``status`` with its ``flag_meanings``).  Global attributes: the
         parameters, the readings and the integrator (as in the result files).

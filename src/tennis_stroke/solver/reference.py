@@ -1,7 +1,7 @@
 """The independent path: the same stroke with :func:`scipy.integrate.solve_ivp`.
 
 It shares only the model with the compiled path (:mod:`tennis_stroke.model.dynamics`:
-the equations through :func:`~tennis_stroke.model.dynamics.rhs_angles`, the torque
+the equations through :func:`tennis_stroke.model.dynamics.rhs_angles`, the torque
 schedule, the events, the ball at the contact start and the rebound speed), never the
 compiled driver; state layout (angles
 instead of sines and cosines), integrator, event location and restart at the contact
@@ -147,8 +147,8 @@ class ReferenceStroke:
             ``x_elbow, y_elbow`` (m), ``vx_elbow, vy_elbow`` (m/s); the positions
             ``x_P, y_P`` (m) and velocities ``vx_P, vy_P`` (m/s) of the wrist, the
             racket's end and the hitting point (``P`` = ``wrist``, ``racket``, ``hit``;
-            :func:`~tennis_stroke.model.dynamics.rod_points`,
-            :func:`~tennis_stroke.model.dynamics.rod_velocities`) and the hitting point's
+            :func:`tennis_stroke.model.dynamics.rod_points`,
+            :func:`tennis_stroke.model.dynamics.rod_velocities`) and the hitting point's
             speed ``speed_hit`` (m/s); the ball's position ``x_ball`` (m) and velocity
             ``vx_ball`` (m/s) along x (the model's ball moves along x only).
 
@@ -156,7 +156,7 @@ class ReferenceStroke:
         -----
         In the contact the ball is the integrated state.  Outside it the ball flies free
         (the model has no gravity): towards ``+x`` at ``ball_speed`` until the contact
-        start, where :func:`~tennis_stroke.model.dynamics.incoming_ball` puts it at the
+        start, where :func:`tennis_stroke.model.dynamics.incoming_ball` puts it at the
         hitting point, and from separation on at its velocity then, which is
         ``-v_out_kmh`` (the instantaneous rungs of the model ladder: the ball leaves the
         hitting point at ``t0`` with ``-v_out_kmh``).  The outgoing ball is given only
@@ -204,8 +204,8 @@ class ReferenceStroke:
 
 def _elbow(times: np.ndarray, cf: np.ndarray, simulated: np.ndarray) -> dict[str, np.ndarray]:
     """The elbow's position (m) and velocity (m/s) at ``times`` (s), NaN where the stroke
-    is not ``simulated`` (:func:`~tennis_stroke.model.dynamics.elbow_position`,
-    :func:`~tennis_stroke.model.dynamics.elbow_velocity`)."""
+    is not ``simulated`` (:func:`tennis_stroke.model.dynamics.elbow_position`,
+    :func:`tennis_stroke.model.dynamics.elbow_velocity`)."""
     names = ("x_elbow", "y_elbow", "vx_elbow", "vy_elbow")
     rows = [(*elbow_position(t, cf), *elbow_velocity(t, cf)) for t in times.ravel()]
     table = np.array(rows, dtype=float).reshape(-1, 4)
