@@ -157,10 +157,10 @@ class ReferenceStroke:
         In the contact the ball is the integrated state.  Outside it the ball flies free
         (the model has no gravity): towards ``+x`` at ``ball_speed`` until the contact
         start, where :func:`tennis_stroke.model.dynamics.incoming_ball` puts it at the
-        hitting point, and from separation on at its velocity then, which is
-        ``-v_out_kmh`` (the instantaneous rungs of the model ladder: the ball leaves the
-        hitting point at ``t0`` with ``-v_out_kmh``).  The outgoing ball is given only
-        for a stroke whose status is ``ok``.
+        hitting point, and from separation on at its velocity then, the rebound speed
+        towards ``-x`` (``-v_out_kmh / 3.6`` m/s; the instantaneous rungs of the model
+        ladder: the ball leaves the hitting point at ``t0``).  The outgoing ball is
+        given only for a stroke whose status is ``ok``.
         """
         times = np.asarray(times, dtype=float)
         cf = self.cf
