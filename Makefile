@@ -10,7 +10,7 @@ LOCK   := requirements.lock
 UV     := uv==0.13.9
 LOCKER := .venv-lock
 
-.PHONY: install lock report test check lint bench kernels clean
+.PHONY: install lock report test check lint api bench kernels clean
 
 install: $(STAMP)
 
@@ -57,9 +57,14 @@ check: $(STAMP)
 
 lint: $(STAMP)
 	$(BIN)/check-jsonschema --builtin-schema vendor.github-workflows .github/workflows/replication.yml
-	$(BIN)/ruff check src tests tools benchmarks workflow/scripts
+	$(BIN)/ruff check src tests tools benchmarks examples workflow/scripts
 	$(BIN)/snakefmt --check Snakefile workflow/rules
 	$(BIN)/python tools/generate_kernels.py --check
+
+## The API reference of the public modules, from their docstrings (pdoc), into
+## docs/api/ (generated, not in git); fails on a broken cross-reference or a pdoc warning.
+api: $(STAMP)
+	$(BIN)/python tools/api_reference.py docs/api
 
 ## Speed and accuracy against solve_ivp (see benchmarks/bench_sweep.py).
 bench: $(STAMP)
@@ -70,4 +75,4 @@ kernels: $(STAMP)
 	$(BIN)/python tools/generate_kernels.py
 
 clean:
-	rm -rf results report logs benchmarks/workflow .snakemake
+	rm -rf results report logs benchmarks/workflow .snakemake docs/api

@@ -1,16 +1,21 @@
 """tennis-stroke: Youn's double-pendulum tennis stroke with a ball collision, fast and verified.
 
-Public API
-----------
-:func:`strike`, :func:`strike_batch`
-    One stroke or many (compiled path, parallel).
-:class:`SolverSettings`
-    Method and tolerances of the compiled solver.
-:func:`resolve_params`, :data:`PARAMETERS`, :data:`READINGS`, :data:`MODEL_OPTIONS`
-    Model parameters with units, the readings of the paper's ambiguities, and the model
-    options (the rungs of the model ladder: ``contact_model``).
-:mod:`tennis_stroke.solver.reference`
-    The independent scipy ``solve_ivp`` path on the same equations.
+The public API:
+
+* :func:`strike`, :func:`strike_batch`: one stroke or many (the compiled path, parallel),
+  their result fields.
+* :func:`solve_stroke`, :func:`stroke_dataset`: one stroke over time (the independent
+  scipy path, dense output) and its trajectory in the lab frame as an ``xarray.Dataset``
+  with units: the angles and rates, the elbow, the racket's hitting point and the ball.
+* :class:`SolverSettings`: the method and tolerances of the compiled solver.
+* :func:`resolve_params`, :data:`PARAMETERS`, :data:`READINGS`, :data:`MODEL_OPTIONS`:
+  the model's parameters with units, the readings of the paper's ambiguities, and the
+  model options (the rungs of the model ladder: ``contact_model``).
+* :mod:`tennis_stroke.solver.reference`: the independent scipy ``solve_ivp`` path on the
+  same equations.
+
+The API reference of these names and of the modules they come from is built by
+``make api`` into ``docs/api/`` (``tools/api_reference.py``).
 """
 
 import time
@@ -36,6 +41,8 @@ _API = {
     "resolve_params": ".model.params",
     "STATUS_NAMES": ".solver.results",
     "SolverSettings": ".solver.settings",
+    "solve_stroke": ".solver.reference",
+    "stroke_dataset": ".io.trajectory",
     "strike": ".solver.stroke",
     "strike_batch": ".solver.stroke",
 }
@@ -62,6 +69,8 @@ __all__ = [
     "SolverSettings",
     "__version__",
     "resolve_params",
+    "solve_stroke",
     "strike",
     "strike_batch",
+    "stroke_dataset",
 ]

@@ -118,8 +118,12 @@ def installed_commit() -> str:
     return f"{commit} (installed)" if commit else "unknown"
 
 
-def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[str, object]:
-    """Global attributes: parameters (``param_*`` with units), readings, solver, versions."""
+def provenance(
+    params: Mapping[str, object], settings: SolverSettings | Mapping[str, object]
+) -> dict[str, object]:
+    """Global attributes: parameters (``param_*`` with units), readings, solver, versions.
+    ``settings``: the compiled solver's, or the options of another path as a mapping
+    (:attr:`tennis_stroke.solver.reference.ReferenceStroke.solver`)."""
     attrs: dict[str, object] = {
         "Conventions": "CF-1.10",
         "title": "Youn double-pendulum tennis stroke with ball collision",
@@ -143,7 +147,8 @@ def provenance(params: Mapping[str, object], settings: SolverSettings) -> dict[s
         else:
             attrs[f"param_{name}"] = float(value)
             attrs[f"param_{name}_units"] = PARAMETERS[name].unit
-    for name, value in settings.as_dict().items():
+    options = settings if isinstance(settings, Mapping) else settings.as_dict()
+    for name, value in options.items():
         attrs[f"solver_{name}"] = value
     return attrs
 
@@ -152,7 +157,7 @@ def result_dataset(
     results: Mapping[str, np.ndarray],
     coords: Mapping[str, np.ndarray],
     params: Mapping[str, object],
-    settings: SolverSettings,
+    settings: SolverSettings | Mapping[str, object],
     extra_attrs: Mapping[str, object] | None = None,
 ) -> xr.Dataset:
     """A dataset of stroke results on named grid axes, with CF metadata and provenance.
@@ -165,7 +170,8 @@ def result_dataset(
         Grid axes in order, each named in :data:`tennis_stroke.io.units.VARIABLES`.
     params : mapping
         Resolved parameters (scalars become attributes).
-    settings : SolverSettings
+    settings : SolverSettings or mapping
+        The solver's settings (:func:`provenance`).
     extra_attrs : mapping, optional
         More global attributes (e.g. wall time).
     """

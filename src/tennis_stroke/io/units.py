@@ -74,6 +74,18 @@ OTHER_VARIABLES: dict[str, tuple[str, str]] = {
     "x_hit": ("m", "hitting point x position"),
     "y_hit": ("m", "hitting point y position"),
     "kinetic_energy": ("J", "kinetic energy of the two rods (lab frame)"),
+    # a stroke in the lab frame (tennis_stroke.stroke_dataset)
+    "vx_elbow": ("m/s", "elbow x velocity"),
+    "vy_elbow": ("m/s", "elbow y velocity"),
+    "vx_wrist": ("m/s", "wrist x velocity (end of rod 1)"),
+    "vy_wrist": ("m/s", "wrist y velocity (end of rod 1)"),
+    "vx_racket": ("m/s", "racket end x velocity (end of rod 2)"),
+    "vy_racket": ("m/s", "racket end y velocity (end of rod 2)"),
+    "vx_hit": ("m/s", "hitting point x velocity"),
+    "vy_hit": ("m/s", "hitting point y velocity"),
+    "speed_hit": ("m/s", "hitting point speed (lab frame)"),
+    "x_ball": ("m", "ball x position (the ball moves along x)"),
+    "vx_ball": ("m/s", "ball x velocity"),
     # speed-against-accuracy studies
     "method": ("1", "integrator"),
     "setting": ("1", "tolerance rtol = atol, or RK4 step (s)"),

@@ -290,6 +290,33 @@ def rod_points(theta, phi, x_elbow, y_elbow, cf) -> dict[str, np.ndarray]:
     }
 
 
+def rod_velocities(theta, phi, omega1, omega2, vx_elbow, vy_elbow, cf) -> dict[str, np.ndarray]:
+    """Lab-frame velocities (m/s) of the points of :func:`rod_points`: the time
+    derivatives of their positions, with ``dtheta/dt = -omega1`` and ``dphi/dt = -omega2``
+    (rad/s, clockwise positive) and the elbow's velocity (:func:`elbow_velocity`); numpy
+    arrays broadcast.  Along x the hitting point's velocity relative to the elbow is the
+    ``-(L1 omega1 cos(theta) + (h2 + h_H) omega2 cos(phi))`` of :func:`approach_rate`."""
+    st, ct, sp, cp = np.sin(theta), np.cos(theta), np.sin(phi), np.cos(phi)
+    l1, l2 = cf[CF_L1], 2.0 * cf[CF_H2]
+    # d/dt of (L sin(a), -L cos(a)) is L (cos(a), sin(a)) da/dt, with da/dt = -omega
+    vx_w, vy_w = vx_elbow - l1 * omega1 * ct, vy_elbow - l1 * omega1 * st
+    return {
+        "vx_wrist": vx_w,
+        "vy_wrist": vy_w,
+        "vx_racket": vx_w - l2 * omega2 * cp,
+        "vy_racket": vy_w - l2 * omega2 * sp,
+        "vx_hit": vx_w - cf[CF_LH] * omega2 * cp,
+        "vy_hit": vy_w - cf[CF_LH] * omega2 * sp,
+    }
+
+
+def ball_in_lab(s, w, x_elbow, vx_elbow):
+    """The ball's position ``x_b`` (m) and velocity ``v_b`` (m/s) along x in the lab frame
+    from its state relative to the elbow, ``s = x_b - x_E`` and ``w = v_b - V_x^E``, and
+    the elbow's ``x_E``, ``V_x^E``; numpy arrays broadcast."""
+    return x_elbow + s, vx_elbow + w
+
+
 @njit(**JIT)
 def next_switch(t, cf, t_limit):
     """First switch of the wrist torque (``tau`` or ``C2_off``) after ``t`` (s), or

@@ -1,7 +1,7 @@
 """The independent path: the same stroke with :func:`scipy.integrate.solve_ivp`.
 
 It shares only the model with the compiled path (:mod:`tennis_stroke.model.dynamics`:
-the equations through :func:`~tennis_stroke.model.dynamics.rhs_angles`, the torque
+the equations through :func:`tennis_stroke.model.dynamics.rhs_angles`, the torque
 schedule, the events, the ball at the contact start and the rebound speed), never the
 compiled driver; state layout (angles
 instead of sines and cosines), integrator, event location and restart at the contact
@@ -20,6 +20,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 from ..model.dynamics import (
+    A_BALL_S,
     A_BALL_W,
     A_OMEGA1,
     A_OMEGA2,
@@ -29,14 +30,21 @@ from ..model.dynamics import (
     CF_LEAD,
     CF_PHI0,
     CF_THETA0,
+    MS_TO_KMH,
+    N_CF,
     angle_rhs,
     approach_rate,
+    ball_in_lab,
     coefficients,
     compression_angles,
     contact_duration,
+    elbow_position,
+    elbow_velocity,
     incoming_ball,
     next_switch,
     rebound_speed_kmh,
+    rod_points,
+    rod_velocities,
     to_trig,
     wrist_torque,
 )
@@ -70,31 +78,141 @@ class Segment:
 
 @dataclass
 class ReferenceStroke:
-    """Result of :func:`solve_stroke`: the result fields and the phases for plotting."""
+    """Result of :func:`solve_stroke` (or :func:`free_swing`): the result fields, the
+    phases, and what the stroke was computed from.
+
+    Attributes
+    ----------
+    result : dict
+        The result fields (those of the compiled path,
+        :data:`tennis_stroke.solver.results.RESULT_FIELDS`, plus ``status_name``).
+    segments : list of Segment
+        The integrated phases in time order, each with scipy's dense solution.
+    cf : ndarray, shape (N_CF,)
+        The stroke's coefficients (:func:`tennis_stroke.model.dynamics.coefficients`).
+    params : dict
+        The resolved parameters (:func:`tennis_stroke.model.params.resolve_params`).
+    solver : dict
+        The integrator: ``path``, ``method``, ``rtol``, ``atol``, ``follow_through``.
+    """
 
     result: dict[str, float]
     segments: list[Segment] = field(default_factory=list)
+    cf: np.ndarray = field(default_factory=lambda: np.full(N_CF, np.nan))
+    params: dict[str, object] = field(default_factory=dict)
+    solver: dict[str, object] = field(default_factory=dict)
+
+    def states(self, times: np.ndarray) -> np.ndarray:
+        """The state in the angle layout, shape ``(6, *times.shape)``: ``theta, phi`` (rad),
+        ``omega1, omega2`` (rad/s), the ball's ``s`` (m) and ``w`` (m/s) relative to the
+        elbow (:mod:`tennis_stroke.model.dynamics`).
+
+        NaN outside the actual stroke (the swing until the contact start, the contact
+        until separation, then the follow-through if simulated), and for the ball outside
+        the contact.  At a phase boundary the later phase's value is given.
+        """
+        times = np.asarray(times, dtype=float)
+        out = np.full((6, *times.shape), np.nan)
+        for seg in self.segments:
+            mask = (times >= seg.t0) & (times <= seg.t1)
+            if np.any(mask):
+                y = seg.sol(times[mask])
+                out[:, mask] = np.nan
+                out[: y.shape[0], mask] = y
+        return out
 
     def sample(self, times: np.ndarray) -> dict[str, np.ndarray]:
         """``theta, phi`` (rad), ``omega1, omega2`` (rad/s) of the actual stroke at ``times``.
 
         The actual stroke is the swing until the contact start, the contact until
-        separation, then the follow-through (if simulated); NaN outside.
+        separation, then the follow-through (if simulated); NaN outside.  A stroke that
+        failed before its contact is the swing computed until it failed.
+        """
+        y = self.states(times)
+        return {
+            "theta": y[A_THETA],
+            "phi": y[A_PHI],
+            "omega1": y[A_OMEGA1],
+            "omega2": y[A_OMEGA2],
+        }
+
+    def lab_frame(self, times: np.ndarray) -> dict[str, np.ndarray]:
+        """The stroke at ``times`` (s) in the lab frame, every quantity from the model's
+        functions (:mod:`tennis_stroke.model.dynamics`), NaN outside the actual stroke.
+
+        Returns
+        -------
+        dict of ndarray, each shaped like ``times``
+            ``theta, phi`` (rad), ``omega1, omega2`` (rad/s, clockwise positive);
+            ``x_elbow, y_elbow`` (m), ``vx_elbow, vy_elbow`` (m/s); the positions
+            ``x_P, y_P`` (m) and velocities ``vx_P, vy_P`` (m/s) of the wrist, the
+            racket's end and the hitting point (``P`` = ``wrist``, ``racket``, ``hit``;
+            :func:`tennis_stroke.model.dynamics.rod_points`,
+            :func:`tennis_stroke.model.dynamics.rod_velocities`) and the hitting point's
+            speed ``speed_hit`` (m/s); the ball's position ``x_ball`` (m) and velocity
+            ``vx_ball`` (m/s) along x (the model's ball moves along x only).
+
+        Notes
+        -----
+        In the contact the ball is the integrated state.  Outside it the ball flies free
+        (the model has no gravity): towards ``+x`` at ``ball_speed`` until the contact
+        start, where :func:`tennis_stroke.model.dynamics.incoming_ball` puts it at the
+        hitting point, and from separation on at its velocity then, the rebound speed
+        towards ``-x`` (``-v_out_kmh / 3.6`` m/s; the instantaneous rungs of the model
+        ladder: the ball leaves the hitting point at ``t0``).  The outgoing ball is
+        given only for a stroke whose status is ``ok``.
         """
         times = np.asarray(times, dtype=float)
-        out = {k: np.full(times.shape, np.nan) for k in ("theta", "phi", "omega1", "omega2")}
-        for seg in self.segments:
-            mask = (times >= seg.t0) & (times <= seg.t1)
-            if np.any(mask):
-                y = seg.sol(times[mask])
-                for key, idx in (
-                    ("theta", A_THETA),
-                    ("phi", A_PHI),
-                    ("omega1", A_OMEGA1),
-                    ("omega2", A_OMEGA2),
-                ):
-                    out[key][mask] = y[idx]
+        cf = self.cf
+        y = self.states(times)
+        theta, phi, w1, w2 = y[A_THETA], y[A_PHI], y[A_OMEGA1], y[A_OMEGA2]
+        simulated = np.isfinite(theta)
+        elbow = _elbow(times, cf, simulated)
+        out = {"theta": theta, "phi": phi, "omega1": w1, "omega2": w2, **elbow}
+        out.update(rod_points(theta, phi, elbow["x_elbow"], elbow["y_elbow"], cf))
+        vel = rod_velocities(theta, phi, w1, w2, elbow["vx_elbow"], elbow["vy_elbow"], cf)
+        out.update(vel)
+        out["speed_hit"] = np.hypot(vel["vx_hit"], vel["vy_hit"])
+        x_ball, v_ball = ball_in_lab(y[A_BALL_S], y[A_BALL_W], elbow["x_elbow"], elbow["vx_elbow"])
+        for t_ref, x_ref, v_ref, side in self._free_ball():
+            free = simulated & np.isnan(x_ball) & (side * (times - t_ref) >= 0.0)
+            x_ball[free] = x_ref + v_ref * (times[free] - t_ref)
+            v_ball[free] = v_ref
+        out["x_ball"], out["vx_ball"] = x_ball, v_ball
         return out
+
+    def _free_ball(self) -> list[tuple[float, float, float, int]]:
+        """The free ball's legs, ``(t, x, v, side)``: its lab-frame position (m) and
+        velocity (m/s) at time ``t`` (s), valid before ``t`` (side -1: the incoming ball,
+        from the contact start) or after it (side +1: the outgoing ball, from separation,
+        where the compression is 0: the ball is at the hitting point)."""
+        cf, res = self.cf, self.result
+        t_c = res.get("t_contact_start", math.nan)
+        if not math.isfinite(t_c):
+            return []
+        y_c = self.states(np.array([t_c]))[:, 0]
+        s, w = incoming_ball(t_c, math.sin(y_c[A_THETA]), math.sin(y_c[A_PHI]), cf)
+        x_in, v_in = ball_in_lab(s, w, elbow_position(t_c, cf)[0], elbow_velocity(t_c, cf)[0])
+        legs = [(t_c, x_in, v_in, -1)]
+        if res.get("status") == OK:
+            t_sep = res["t_separation"]
+            y_sep = self.states(np.array([t_sep]))[:, 0]
+            x_sep = rod_points(y_sep[A_THETA], y_sep[A_PHI], *elbow_position(t_sep, cf), cf)
+            legs.append((t_sep, float(x_sep["x_hit"]), -res["v_out_kmh"] / MS_TO_KMH, 1))
+        return legs
+
+
+def _elbow(times: np.ndarray, cf: np.ndarray, simulated: np.ndarray) -> dict[str, np.ndarray]:
+    """The elbow's position (m) and velocity (m/s) at ``times`` (s), NaN where the stroke
+    is not ``simulated`` (:func:`tennis_stroke.model.dynamics.elbow_position`,
+    :func:`tennis_stroke.model.dynamics.elbow_velocity`)."""
+    names = ("x_elbow", "y_elbow", "vx_elbow", "vy_elbow")
+    rows = [(*elbow_position(t, cf), *elbow_velocity(t, cf)) for t in times.ravel()]
+    table = np.array(rows, dtype=float).reshape(-1, 4)
+    return {
+        name: np.where(simulated, table[:, k].reshape(times.shape), np.nan)
+        for k, name in enumerate(names)
+    }
 
 
 def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segments):
@@ -140,8 +258,10 @@ def free_swing(
     its figures of omega(t) (Figs. 4, 10) show the swing.  ``result`` holds no stroke
     numbers (see :func:`solve_stroke` for those).
     """
-    cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
-    ref = ReferenceStroke({})
+    resolved = resolve_params(params)
+    cf = coefficients(resolved, theta0_deg, delta0_deg)[0]
+    solver = {"path": "scipy solve_ivp", "method": "DOP853", "rtol": rtol, "atol": atol}
+    ref = ReferenceStroke({}, cf=cf, params=resolved, solver={**solver, "t_end": t_end})
     y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
     _run(0.0, y0, t_end, cf, False, None, "DOP853", rtol, atol, np.inf, ref.segments)
     return ref
@@ -175,12 +295,29 @@ def solve_stroke(
     contact_min_steps : float
         The contact phase's ``max_step`` is the two-body contact duration over this.
     follow_through : float
-        Free swing after separation (s), for ``omega2_max``.
+        Free swing after separation (s), for ``omega2_max`` and to see the stroke go on.
+
+    Returns
+    -------
+    ReferenceStroke
+        The result fields (``.result``) and the trajectory: :meth:`ReferenceStroke.sample`
+        (angles and rates), :meth:`ReferenceStroke.lab_frame` (the elbow, the racket's
+        points and the ball in the lab frame) or, with names and units as an
+        ``xarray.Dataset``, :func:`tennis_stroke.stroke_dataset`.
+
+    Examples
+    --------
+    >>> stroke = solve_stroke(120.0, 81.5, follow_through=0.05)  # Fig. 4's stroke a
+    >>> round(stroke.result["v_out_kmh"], 2)
+    155.68
     """
-    cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
+    resolved = resolve_params(params)
+    cf = coefficients(resolved, theta0_deg, delta0_deg)[0]
     res = {name: math.nan for name in RESULT_FIELDS}
     res["rhs_evals"] = 0
-    ref = ReferenceStroke(res)
+    solver = {"path": "scipy solve_ivp", "method": method, "rtol": rtol, "atol": atol}
+    solver.update(t_max=t_max, contact_min_steps=contact_min_steps, follow_through=follow_through)
+    ref = ReferenceStroke(res, cf=cf, params=resolved, solver=solver)
     code = _phases(ref, cf, (method, rtol, atol), t_max, contact_min_steps, follow_through)
     return _finished(ref, code)
 
@@ -210,12 +347,13 @@ def _phases(ref, cf, opts, t_max, contact_min_steps, follow_through) -> int:
     res = ref.result
     swing: list[Segment] = []
     t0, y, code = _swing(cf, opts, t_max, swing, res)
-    if code != OK:
-        return code
     instant = cf[CF_CONTACT_MODEL] != 0.0  # a cheap rung of the model ladder: no contact phase
     t_c = t0 if instant else t0 - cf[CF_LEAD]
-    if t_c < 0.0:
-        return EARLY_CONTACT
+    if code == OK and t_c < 0.0:
+        code = EARLY_CONTACT
+    if code != OK:
+        ref.segments = swing  # the swing that was computed
+        return code
     yc = _contact_start(ref, swing, t_c)
     st, ct = math.sin(yc[A_THETA]), math.cos(yc[A_THETA])
     sp, cp = math.sin(yc[A_PHI]), math.cos(yc[A_PHI])
@@ -304,6 +442,9 @@ def _follow(t, y, duration, cf, method, rtol, atol, res, ref) -> bool:
 
 def exercise_reference() -> None:
     """The calls that compile (or load) scipy's reference path's right-hand sides
-    (:func:`tennis_stroke.solver.compiled.ensure_compiled`)."""
-    solve_stroke(120.0, 81.5, rtol=1e-6, atol=1e-6)
+    (:func:`tennis_stroke.solver.compiled.ensure_compiled`), and the model's functions
+    that :meth:`ReferenceStroke.lab_frame` calls from Python."""
+    solve_stroke(120.0, 81.5, rtol=1e-6, atol=1e-6, follow_through=0.01).lab_frame(
+        np.array([0.0, 0.5])
+    )
     free_swing(120.0, 81.5, 0.05)

@@ -87,7 +87,7 @@ class SolverSettings:
     Raises
     ------
     SolverSettingError
-        A setting out of range (a :class:`~tennis_stroke.model.params.ParameterError`).
+        A setting out of range (a :class:`tennis_stroke.model.params.ParameterError`).
     """
 
     method: str = "DOP853"

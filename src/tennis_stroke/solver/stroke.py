@@ -405,7 +405,8 @@ def strike_batch(
     Returns
     -------
     dict of ndarray
-        The fields of :data:`RESULT_FIELDS`, each of the broadcast shape.
+        The fields of :data:`tennis_stroke.solver.results.RESULT_FIELDS`, each of the
+        broadcast shape.
     """
     resolved = resolve_params(params)
     th = real_array("initial angle 'theta0'", theta0_deg)
