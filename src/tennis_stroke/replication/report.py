@@ -72,7 +72,7 @@ def markdown_html(text: str) -> Markup:
     return _safe(md.render(text))
 
 
-def _claim_row(claim: Mapping) -> dict:
+def claim_row(claim: Mapping) -> dict:
     """What the page shows of one claim (a row of ``results/claims.csv``)."""
     symbol, word, _ = STATUS_WORDS.get(claim["status"], ("?", claim["status"], ""))
     qualitative = str(claim["unit"]) == "1" and float(claim["tolerance"]) == 0
@@ -202,7 +202,7 @@ def _table_blocks(
     ]
 
 
-def _paper_sections(
+def paper_sections(
     rows: list[dict],
     figures: Mapping[str, dict],
     statements: Mapping[str, str],
@@ -264,7 +264,7 @@ def _failures(results: Sequence[str]) -> pd.DataFrame:
     return pd.DataFrame(rows).convert_dtypes().astype(object).fillna("-")
 
 
-def _check_image(path: str) -> None:
+def check_image(path: str) -> None:
     """A figure must decode as an image (a truncated file would embed as a broken one)."""
     from PIL import Image, UnidentifiedImageError
 
@@ -280,7 +280,7 @@ def _check_image(path: str) -> None:
 
 
 def _figure_entry(path: str) -> dict:
-    _check_image(path)
+    check_image(path)
     name = Path(path).stem
     title = FIGURES[name].title if name in FIGURES else name
     return {
@@ -465,10 +465,10 @@ def build_report(
     top."""
     claims, departures = _checked_inputs(claims_csv, statements_yaml, assumptions_md)
     paper = load_yaml(statements_yaml) if statements_yaml else {}
-    rows = [_claim_row(c) for c in claims.to_dict("records")]
+    rows = [claim_row(c) for c in claims.to_dict("records")]
     entries = {e["name"]: e for e in map(_figure_entry, figures)}
     paper_figures = {n: e for n, e in entries.items() if n in FIGURES and FIGURES[n].of_paper}
-    page_sections = _paper_sections(
+    page_sections = paper_sections(
         rows, paper_figures, paper.get("statements") or {}, paper.get("sections") or {}
     )
     views_head, views = _interactive(paper_figures, results, inference, claims, statements_yaml)
