@@ -49,7 +49,7 @@ from .analyses import (
     studies_section,
     validation_section,
 )
-from .claims import STATUS_WORDS, ClaimsTableError, consistency_errors, read_table
+from .claims import STATUS_WORDS, ClaimsTableError, checked_table, read_table
 from .formats import UNIT_SHORT, ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
 from .registry import FIGURES, LIVE
@@ -339,17 +339,14 @@ def _interactive(
 
 
 def _checked_claims(claims_csv: str, claims_yaml: str | None) -> pd.DataFrame:
-    """The claims table, checked (:func:`~tennis_stroke.replication.claims.read_table`)
-    and, with the declared claims, consistent with them (a status edited by hand is
-    refused: :func:`~tennis_stroke.replication.claims.consistency_errors`)."""
+    """The claims table, checked as `tennis-stroke claims` checks it with the declared
+    claims (:func:`~tennis_stroke.replication.claims.checked_table`: a status edited by
+    hand is refused), else only read (:func:`~tennis_stroke.replication.claims.read_table`)."""
     declared = load_claims(claims_yaml) if claims_yaml else None
     try:
-        table = read_table(claims_csv, [c["id"] for c in declared] if declared else None)
+        table = checked_table(claims_csv, declared) if declared else read_table(claims_csv)
     except ClaimsTableError as exc:
         raise ReportInputError(str(exc)) from None
-    errors = consistency_errors(table, declared, claims_csv) if declared else []
-    if errors:
-        raise ReportInputError(errors[0])
     table["reproduced_value"] = table["reproduced_value"].astype(float)
     return table
 
