@@ -24,7 +24,6 @@ kept: the PDF is written to a temporary file beside it and renamed on success.
 from __future__ import annotations
 
 import json
-import os
 import re
 import shutil
 import sys
@@ -40,8 +39,7 @@ import yaml
 from ..inference.claims import load_claims
 from ..io.config_files import load_yaml
 from ..io.environment import canonical, locked
-from ..io.errors import OutputError
-from ..io.netcdf import check_writable, load_result, temporary_beside
+from ..io.netcdf import load_result, write_bytes_whole
 from ..model.params import READINGS
 from .article_equations import EquationError, equations
 from .claims import ClaimsTableError, checked_table
@@ -391,18 +389,11 @@ def _require(*paths) -> None:
 
 
 def write_atomically(path: str | Path, data: bytes) -> None:
-    """Write ``data`` to ``path`` whole or not at all: a temporary file beside it renamed
-    into place, so a failure keeps what ``path`` held (a folder made where missing)."""
+    """Write ``data`` to ``path`` whole or not at all, its folder made where missing
+    (:func:`~tennis_stroke.io.netcdf.write_bytes_whole`: a failure keeps what ``path``
+    held)."""
     Path(path).parent.mkdir(parents=True, exist_ok=True)
-    target = check_writable(path)
-    tmp = temporary_beside(target)
-    try:
-        tmp.write_bytes(data)
-        os.replace(tmp, target)
-    except OSError as exc:
-        raise OutputError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
-    finally:
-        tmp.unlink(missing_ok=True)
+    write_bytes_whole(path, data)
 
 
 def _typeset(template: Path, data: Mapping, images: Sequence[str], output_pdf: str) -> None:
