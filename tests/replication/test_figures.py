@@ -122,7 +122,8 @@ def _drawn_texts(fig):
 
 def _check_texts_inside_and_legends_clear(fig):
     """No text leaves the canvas (Fig. 2's y label and a scenario's title did), and no
-    legend covers a marked point (Fig. 13's star, a paper's ring)."""
+    legend covers any part of a marked point (Fig. 13's star, a paper's ring: the
+    marker as drawn, not only its centre; the legend once half covered the star)."""
     fig.canvas.draw()
     renderer = fig.canvas.get_renderer()
     canvas = fig.bbox
@@ -136,11 +137,10 @@ def _check_texts_inside_and_legends_clear(fig):
             continue
         box = legend.get_window_extent(renderer)
         for line in ax.lines:
-            x, y = line.get_xdata(), line.get_ydata()
-            if len(x) != 1 or line.get_marker() in (None, "None", ""):
+            if len(line.get_xdata()) != 1 or line.get_marker() in (None, "None", ""):
                 continue
-            px, py = ax.transData.transform((x[0], y[0]))
-            assert not box.contains(px, py), (line.get_label(), ax.get_title())
+            marker = line.get_window_extent(renderer)  # the marker's size included
+            assert not box.overlaps(marker), (line.get_label(), ax.get_title())
 
 
 #: A scenario's note as long as a title gets (it wrapped inside a value: "(paper:\n0.4)").
@@ -225,6 +225,43 @@ def test_no_figure_is_laid_out_by_a_clock(tiny_run, tmp_path, name, factor):
     marks = mark_values(figure, CLAIMS)
     fig = drawn(figure, inputs, NOTE, marks=marks)
     try:
+        _check_texts_inside_and_legends_clear(fig)
+    finally:
+        plt.close(fig)
+
+
+def test_fig13_s_legend_clears_the_star_of_its_maximum(monkeypatch):
+    """The full run's Fig. 13: the maximum at the bottom edge between the paper's two
+    lines (psi_F near 232 deg, tau_F = -0.1 s). Every place inside the axes crosses a
+    line or covers the star, and loc="best" put the legend half over the star (its
+    centre just outside); the legend now covers no part of it."""
+    import xarray as xr
+
+    from tennis_stroke.replication import figures
+    from tennis_stroke.solver.results import OK
+
+    psi, tau = np.arange(0.0, 361.0, 5.0), np.linspace(-0.1, 0.1, 41)
+    bump = ((psi[:, None] - 232.0) / 60.0) ** 2 + ((tau[None, :] + 0.1) / 0.05) ** 2
+    units = {
+        "psi_F": ("direction of the elbow force from +x", "degree"),
+        "tau_F": ("delay of the force pulse after tau_H", "s"),
+        "v_out": ("rebound speed of the ball towards -x", "km/h"),
+    }
+    ds = xr.Dataset(
+        {
+            "v_out": (("psi_F", "tau_F"), 155.0 + 17.0 * np.exp(-bump)),
+            "status": (("psi_F", "tau_F"), np.full(bump.shape, OK)),
+        },
+        coords={"psi_F": psi, "tau_F": tau},
+    )
+    for name, (long_name, unit) in units.items():
+        ds[name].attrs.update(long_name=long_name, units=unit)
+    monkeypatch.setattr(figures, "load_result", lambda path: ds)
+    figure = FIGURES["fig13_elbow_force"]
+    fig = drawn(figure, ["elbow_map.nc"], marks=mark_values(figure, CLAIMS))
+    try:
+        [star] = [line for line in fig.axes[0].lines if line.get_label() == "maximum"]
+        assert star.get_xydata().tolist() == [pytest.approx([230.0, -0.1])]
         _check_texts_inside_and_legends_clear(fig)
     finally:
         plt.close(fig)

@@ -131,6 +131,9 @@ rule article:
         code=CODE("article.py"),
         template=CODE.checkout_file("src/tennis_stroke/replication/templates/article.typ"),
         lock=CODE.checkout_file("requirements.lock"),
+        pyproject=CODE.checkout_file("pyproject.toml"),
+        # the equations it prints are read from this module's source, never imported
+        equations=CODE.checkout_file("src/tennis_stroke/model/dynamics.py"),
     output:
         pdf="report/article.pdf",
         metadata="report/metadata.yaml",

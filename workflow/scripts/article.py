@@ -15,4 +15,5 @@ with logged(snakemake.log[0]):
         output_metadata=snakemake.output.metadata,
         job_seconds=job_seconds(Path(snakemake.params.benchmarks)),
         lock=snakemake.input.lock,
+        pyproject=snakemake.input.pyproject,
     )

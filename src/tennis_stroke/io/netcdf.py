@@ -278,6 +278,21 @@ def check_writable(path: str | os.PathLike) -> Path:
     return path
 
 
+def write_bytes_whole(path: str | os.PathLike, data: bytes) -> None:
+    """Write ``data`` to ``path`` whole or not at all (:func:`check_writable` first): a
+    temporary file beside it (:func:`temporary_beside`) renamed into place, so a failed
+    write leaves what ``path`` held; a failure is one line (:class:`OutputError`)."""
+    target = check_writable(path)
+    tmp = temporary_beside(target)
+    try:
+        tmp.write_bytes(data)
+        os.replace(tmp, target)
+    except OSError as exc:
+        raise OutputError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
+    finally:
+        tmp.unlink(missing_ok=True)
+
+
 def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
     """``ds`` (a shallow copy) with the encodings and attribute types CF asks for where
     xarray's defaults differ; values, dtypes as read back and attributes are unchanged.

@@ -3,21 +3,33 @@ written from the result files, and ``report/metadata.yaml`` in ReScience C's for
 
 Every number in the article is read from the results: the claims table
 (``results/claims.csv``: each claim's paper value, ours, tolerance, verdict, robustness
-class and evidence), the paper's figures (``results/figures/*.png``), the configuration
-record and the result files' provenance (commit, lock).  The text around them is the
-template ``templates/article.typ``, typeset by the Typst compiler (the ``typst`` wheel:
-no LaTeX).  The template reads the numbers from a JSON file as data, never as markup, so
-no text from a file can change the layout.  A missing or unreadable input is one line
-(:class:`~tennis_stroke.replication.formats.ReportInputError`).
+class and evidence), the paper's figures (``results/figures/*.png``), the result files'
+provenance (commit, lock, Python: each stated from every file, a mix stated as a mix).
+The claims go where the report puts them (:func:`~.report.paper_sections`), each row as
+the report writes it (:func:`~.report.claim_row`), and the table is the one
+``tennis-stroke claims`` accepts (:func:`~.claims.checked_table`).  The model's equations
+are rendered from the code that computes them (:mod:`.article_equations`).  The
+Discussion and the Conclusion are sentences around the claims table's counts, classes
+and deciding readings, never a number typed by hand.
+
+The text around them is the template ``templates/article.typ``, typeset by the Typst
+compiler (the ``typst`` wheel: no LaTeX).  The template reads everything from a JSON
+file as data, never as markup (but the equations, Typst math this package writes from
+its own source), so no text from a result file can change the layout.  A missing,
+damaged or unreadable input is one line
+(:class:`~tennis_stroke.replication.formats.ReportInputError`) and the previous PDF is
+kept: the PDF is written to a temporary file beside it and renamed on success.
 """
 
 from __future__ import annotations
 
 import json
-import platform
 import re
 import shutil
+import sys
 import tempfile
+import tomllib
+from collections import Counter
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
@@ -26,16 +38,21 @@ import yaml
 
 from ..inference.claims import load_claims
 from ..io.config_files import load_yaml
-from ..io.netcdf import load_result
+from ..io.environment import canonical, locked
+from ..io.netcdf import load_result, write_bytes_whole
 from ..model.params import READINGS
-from .claims import ClaimsTableError, read_table
-from .formats import ReportInputError, _number, _timings
+from .article_equations import EquationError, equations
+from .claims import ClaimsTableError, checked_table
+from .formats import ReportInputError, _timings
 from .registry import FIGURES
+from .report import check_image, claim_row, paper_sections
+from .robustness import EVIDENCE_MEANING
 
 #: The article's template (Typst), beside the report's templates, and a scenario's.
 TEMPLATE = Path(__file__).parent / "templates" / "article.typ"
-#: The replicated article.
+#: The replicated article; ``key``: its BibTeX key (ReScience C's ``bib`` field).
 ORIGINAL = {
+    "key": "Youn2015",
     "authors": "Sun-Hyun Youn",
     "title": "Double pendulum model for tennis stroke including a collision process",
     "reference": "arXiv:1505.01916 [physics.pop-ph] (2015)",
@@ -43,46 +60,104 @@ ORIGINAL = {
     "doi": "10.48550/arXiv.1505.01916",
 }
 TITLE = f"[Re] {ORIGINAL['title']}"
-#: The verdicts and robustness classes in the article's words.
-VERDICTS = {
-    "pass": "reproduced",
-    "known_deviation": "deviates",
-    "used_for_fit": "used for fit",
-    "fail": "fails",
+#: The provenance the article states: global attributes every result file records.
+PROVENANCE = {
+    "git_commit": "commit",
+    "environment_lock_sha256_16": "lock (SHA-256 of requirements.lock, first 16 digits)",
+    "environment_is_lock": "environment is the lock",
+    "python_version": "Python",
+    "tennis_stroke_version": "tennis-stroke",
 }
-_FIGURE = re.compile(r"Fig\. (\d+)")
-_SECTION = re.compile(r"Sec\. ([IVX]+)")
+#: The extras of ``pyproject.toml`` the workflow runs on (besides the dependencies).
+RUNTIME_EXTRAS = ("workflow",)
+#: Names listed per value of a mixed provenance fact, at most.
+SHOWN_NAMES = 4
 
 
-def _claim(c: Mapping) -> dict:
+def _with_unit(value: str, unit: str) -> str:
+    """A value the report wrote (:func:`~.report.claim_row`) with its unit, none after
+    a value that is none (``-``) or a yes/no, with a space: ``0.185 s``, ``20 deg``."""
+    if not unit or value in ("-", "yes", "no"):
+        return value
+    return f"{value} {unit}"
+
+
+def _row(row: Mapping) -> dict:
+    """A claim as the article's tables show it: the report's row, every value with its
+    unit."""
+    unit = row["unit_short"]
     return {
-        "id": str(c["id"]),
-        "quantity": str(c["quantity"]),
-        "unit": str(c["unit"]),
-        "paper": _number(float(c["paper_value"])),
-        "ours": _number(float(c["reproduced_value"])),
-        "tolerance": _number(float(c["tolerance"])),
-        "verdict": VERDICTS.get(str(c["status"]), str(c["status"])),
-        "robustness": str(c.get("robustness", "") or "").replace("_", " "),
-        "evidence": str(c.get("evidence", "") or "").replace("_", " "),
-        "cause": str(c.get("reason", "") or c.get("map_cause", "") or ""),
+        "id": row["id"],
+        "source": row["source"],
+        "quantity": row["quantity"],
+        "paper": _with_unit(row["paper"], unit),
+        "ours": _with_unit(row["ours"], unit),
+        "tolerance": row["tolerance"].strip(),
+        "verdict": row["word"],
     }
+
+
+def _caption(name: str, attrs: Mapping[str, Mapping]) -> str:
+    """A figure's title, filled from its first result file's attributes where the
+    article has it, else its number (the paper's: the article's only figure numbers)."""
+    figure = FIGURES[name]
+    found = next((a for path, a in attrs.items() if path.endswith(figure.inputs[0])), None)
+    if found is not None:
+        try:
+            return figure.filled_title(found)
+        except (KeyError, ValueError, IndexError):
+            pass
+    return figure.title.split(":")[0] if "{" in figure.title else figure.title
+
+
+def _sections(
+    rows: list[dict], figures: Mapping[str, str], attrs: Mapping, paper: Mapping
+) -> list[dict]:
+    """The paper's sections as the report places them (:func:`~.report.paper_sections`):
+    per block its heading, the paper's statement, its figure (file and caption) and its
+    claims."""
+    entries = {name: {"name": name, "file": Path(path).name} for name, path in figures.items()}
+    placed = paper_sections(
+        rows, entries, paper.get("statements") or {}, paper.get("sections") or {}
+    )
+    return [
+        {
+            "heading": section["heading"],
+            "blocks": [
+                {
+                    "heading": block["heading"],
+                    "statement": block["statement"],
+                    "figure": None
+                    if block["figure"] is None
+                    else {
+                        "file": block["figure"]["file"],
+                        "caption": _caption(block["figure"]["name"], attrs),
+                    },
+                    "claims": [_row(r) for r in block["claims"]],
+                }
+                for block in section["blocks"]
+            ],
+        }
+        for section in placed
+    ]
 
 
 def _counts(table: pd.DataFrame) -> dict:
     status = table["status"].value_counts()
     deviating = table[table["status"] == "known_deviation"]
+    evidence = deviating.get("evidence", pd.Series([""] * len(deviating), dtype=str))
     held = table[table["status"] != "used_for_fit"]
     robustness = held["robustness"].value_counts() if "robustness" in held else pd.Series()
     return {
         "claims": int(len(table)),
+        "held": int(len(held)),
         "reproduced": int(status.get("pass", 0)),
         "deviating": int(status.get("known_deviation", 0)),
         "failing": int(status.get("fail", 0)),
         "fit": int(status.get("used_for_fit", 0)),
         "evidence": [
             {"class": str(k).replace("_", " "), "n": int(n)}
-            for k, n in deviating["evidence"].fillna("not classified").value_counts().items()
+            for k, n in evidence.replace("", "not classified").value_counts().items()
         ],
         "robustness": [
             {"class": str(k).replace("_", " "), "n": int(n)} for k, n in robustness.items()
@@ -90,50 +165,110 @@ def _counts(table: pd.DataFrame) -> dict:
     }
 
 
-def _sections(table: pd.DataFrame, figures: Mapping[str, str], titles: Mapping) -> list[dict]:
-    """One subsection per section of the paper: its figures (each with the claims its
-    source names) and its other claims."""
-    out = []
-    for sid, spec in titles.items():
-        claims = [c for c in table.to_dict("records") if sid in _SECTION.findall(c["source"])]
-        shown = []
-        for name, path in figures.items():
-            figure = FIGURES[name]
-            if figure.section != sid:
-                continue
-            number = name[3:5].lstrip("0")
-            own = [c for c in claims if number in _FIGURE.findall(c["source"])]
-            shown.append(
+def _first_unknown(deciding: str) -> str:
+    """The unknown a claims table's ``deciding`` names (``contact_lead_rule (a 0/8, b
+    8/8)``)."""
+    return deciding.split(" (")[0].strip()
+
+
+def discussion(table: pd.DataFrame, rows: Sequence[Mapping]) -> dict:
+    """What the Discussion and the Conclusion say, from the claims table: what
+    reproduces (held-out claims that pass, and how many of them under every reading),
+    what does not and why (the deviations and failures grouped by their evidence class,
+    with its meaning, :data:`~.robustness.EVIDENCE_MEANING`), and what the unstated
+    readings decide (each reading-dependent claim with the unknown that decides it)."""
+    records = table.to_dict("records")
+    shown = {r["id"]: _row(r) for r in rows}
+    held = [c for c in records if c["status"] != "used_for_fit"]
+    passing = [c for c in held if c["status"] == "pass"]
+    robust = [c for c in passing if c.get("robustness") == "robust"]
+    groups = []
+    for key, meaning in {**EVIDENCE_MEANING, "": "not classified"}.items():
+        members = [
+            c
+            for c in records
+            if c["status"] in ("known_deviation", "fail") and (c.get("evidence") or "") == key
+        ]
+        if members:
+            groups.append(
                 {
-                    "file": Path(path).name,
-                    "title": figure.title.split(":")[0],
-                    "claims": [_claim(c) for c in own],
+                    "class": key.replace("_", " ") or "not classified",
+                    "meaning": meaning,
+                    "claims": [
+                        {**shown[c["id"]], "reason": str(c.get("reason") or "")} for c in members
+                    ],
                 }
             )
-        placed = {c["id"] for f in shown for c in f["claims"]}
-        out.append(
+    dependent = [c for c in held if c.get("robustness") == "reading_dependent"]
+    deciding = Counter(_first_unknown(str(c.get("deciding") or "")) for c in dependent)
+    return {
+        "held": len(held),
+        "passing": len(passing),
+        "robust": len(robust),
+        "not_reproduced": sum(c.get("robustness") == "not_reproduced" for c in held),
+        "groups": groups,
+        "dependent": [
             {
-                "id": sid,
-                "title": spec.get("title", ""),
-                "figures": shown,
-                "claims": [_claim(c) for c in claims if c["id"] not in placed],
+                "id": c["id"],
+                "verdict": shown[c["id"]]["verdict"],
+                "share": f"{100 * float(c.get('pass_share') or 'nan'):.0f} %",
+                "deciding": str(c.get("deciding") or "not named"),
+            }
+            for c in dependent
+        ],
+        "deciders": [{"name": k or "not named", "n": n} for k, n in deciding.most_common()],
+        "fit_sets": sorted({str(c["fit_set"]) for c in records if c.get("fit_set")}),
+    }
+
+
+def _attributes(results: Sequence[str]) -> dict[str, Mapping]:
+    """Each result file's global attributes (read whole: a damaged file is one line)."""
+    return {str(path): dict(load_result(path).attrs) for path in results}
+
+
+def provenance(attrs: Mapping[str, Mapping]) -> list[dict]:
+    """Each provenance fact of :data:`PROVENANCE` as every result file records it: one
+    value (``mixed`` False), or a mix, each value with its files' count and names (the
+    most common value first).  A mix is stated, never resolved: the workflow reruns only
+    the jobs a change touches, so a run's files may come from several commits; which one
+    a reader needs is the reader's to choose."""
+    facts = []
+    for key, label in PROVENANCE.items():
+        by_value: dict[str, list[str]] = {}
+        for path, record in attrs.items():
+            value = str(record.get(key, "not recorded"))
+            by_value.setdefault(value, []).append(Path(path).name)
+        values = sorted(by_value.items(), key=lambda item: (-len(item[1]), item[0]))
+        facts.append(
+            {
+                "key": key,
+                "label": label,
+                "mixed": len(values) > 1,
+                "values": [
+                    {"value": v, "files": len(names), "names": sorted(names)} for v, names in values
+                ],
+                "text": _fact_text(label, values, len(attrs)),
             }
         )
-    return out
+    return facts
 
 
-def _provenance(results: Sequence[str]) -> dict:
-    """The commit and lock the result files record, and the machine this ran on."""
-    commits, locks = set(), set()
-    for path in results:
-        attrs = load_result(path).attrs
-        commits.add(str(attrs.get("git_commit", "unknown")))
-        locks.add(str(attrs.get("environment_lock_sha256_16", "unknown")))
-    return {
-        "commits": sorted(commits),
-        "locks": sorted(locks),
-        "machine": f"{platform.system()} {platform.machine()}, Python {platform.python_version()}",
-    }
+def _fact_text(label: str, values: Sequence[tuple[str, list[str]]], files: int) -> str:
+    """``commit: abc (all 31 result files)``, or a mix with each value's files."""
+    if not values:
+        return f"{label}: no result file"
+    if len(values) == 1:
+        return f"{label}: {values[0][0]} (all {files} result files)"
+
+    def listed(value: str, names: list[str], first: bool) -> str:
+        count = f"{len(names)} file{'s' if len(names) > 1 else ''}"
+        if first:
+            return f"{value} ({count})"
+        more = f" and {len(names) - SHOWN_NAMES} more" if len(names) > SHOWN_NAMES else ""
+        return f"{value} ({count}: {', '.join(sorted(names)[:SHOWN_NAMES])}{more})"
+
+    parts = [listed(v, n, i == 0) for i, (v, n) in enumerate(values)]
+    return f"{label}: a mix of {len(values)}: " + "; ".join(parts)
 
 
 def article_data(
@@ -144,21 +279,25 @@ def article_data(
     job_seconds: float | None = None,
 ) -> dict:
     """Everything the article states, from the result files (the template's data)."""
-    declared = load_claims(claims_yaml)
     try:
-        table = read_table(claims_csv, [c["id"] for c in declared])
+        table = checked_table(claims_csv, load_claims(claims_yaml))
     except ClaimsTableError as exc:
         raise ReportInputError(str(exc)) from None
-    titles = (load_yaml(claims_yaml) or {}).get("sections") or {}
+    paper = load_yaml(claims_yaml) or {}
+    rows = [claim_row(c) for c in table.to_dict("records")]
+    attrs = _attributes(results)
+    facts = provenance(attrs)
+    try:
+        shown_equations = equations()
+    except EquationError as exc:
+        raise ReportInputError(f"the article's equations: {exc}") from None
     return {
         "title": TITLE,
         "original": ORIGINAL,
         "counts": _counts(table),
-        "sections": _sections(table, figures, titles),
-        "claims": [_claim(c) for c in table.to_dict("records")],
-        "deviations": [
-            _claim(c) for c in table.to_dict("records") if c["status"] == "known_deviation"
-        ],
+        "equations": shown_equations,
+        "sections": _sections(rows, figures, attrs, paper),
+        "discussion": discussion(table, rows),
         "readings": [
             {
                 "name": r.name,
@@ -169,14 +308,15 @@ def article_data(
             }
             for r in READINGS.values()
         ],
-        "provenance": _provenance(results),
+        "provenance": facts,
+        "provenance_mixed": [f["label"] for f in facts if f["mixed"]],
         "job_seconds": "-" if job_seconds is None else f"{job_seconds:.0f}",
     }
 
 
 def job_seconds(benchmarks: Path) -> float | None:
     """The wall time of the paper's run's jobs summed (the report's table of timings,
-    :func:`~tennis_stroke.replication.report._timings`, less this job), or None without
+    :func:`~tennis_stroke.replication.formats._timings`, less this job), or None without
     any."""
     timings = _timings(benchmarks) if benchmarks.is_dir() else pd.DataFrame()
     if timings.empty:
@@ -184,28 +324,52 @@ def job_seconds(benchmarks: Path) -> float | None:
     return float(timings.loc[timings["job"] != "article", "wall time (s)"].sum())
 
 
-def locked_software(lock: str | Path | None) -> list[str]:
-    """``name==version`` of every package the lock pins (``requirements.lock``)."""
-    if lock is None or not Path(lock).is_file():
+def runtime_software(pyproject: str | Path | None, lock: str | Path | None) -> list[str]:
+    """What the replication runs on (ReScience C's ``software``): the package's
+    dependencies and its workflow extra (:data:`RUNTIME_EXTRAS`, from ``pyproject.toml``)
+    as ``name==version`` of the lock, never the lint and test tools; a name the lock does
+    not pin keeps its declared range."""
+    if pyproject is None or not Path(pyproject).is_file():
         return []
-    found = re.findall(r"^([A-Za-z0-9_.\-]+==[^\s\\;]+)", Path(lock).read_text(), flags=re.M)
-    return sorted(set(found), key=str.lower)
+    project = tomllib.loads(Path(pyproject).read_text(encoding="utf-8"))["project"]
+    extras = project.get("optional-dependencies", {})
+    declared = [*project.get("dependencies", []), *(r for e in RUNTIME_EXTRAS for r in extras[e])]
+    pins = locked(lock) if lock is not None and Path(lock).is_file() else {}
+    out = []
+    for requirement in declared:
+        name = re.match(r"[A-Za-z0-9_.\-]+", requirement.strip()).group(0)
+        pin = pins.get(canonical(name))
+        out.append(f"{name}=={pin[0]}" if pin else requirement.strip())
+    return out
+
+
+def _code_url(repository: str, facts: Sequence[Mapping]) -> str:
+    """The code's URL: the repository at the one commit every result file records (a
+    commit with uncommitted changes, or a mix, is no commit of it: the repository
+    alone), or nothing without a repository."""
+    if not repository:
+        return ""
+    commit = next(f for f in facts if f["key"] == "git_commit")
+    value = commit["values"][0]["value"] if not commit["mixed"] and commit["values"] else ""
+    if re.fullmatch(r"[0-9a-f]{40}", value):
+        return f"{repository.rstrip('/')}/tree/{value}"
+    return repository
 
 
 def metadata(data: Mapping, repository: str = "", software: Sequence[str] = ()) -> dict:
-    """``report/metadata.yaml``: the fields of ReScience C's template, the authors left
-    to fill; ``software``: the packages of the lock."""
-    commits = data["provenance"]["commits"]
+    """``report/metadata.yaml``: the fields of ReScience C's template as it defines them
+    (``bib`` a BibTeX key, ``url`` fields URLs or empty, ``software`` what the
+    replication runs on: :func:`runtime_software`), the authors left to fill."""
     return {
         "title": data["title"],
-        "authors": [{"name": "(to fill)", "orcid": "(to fill)", "affiliations": "1"}],
+        "authors": [{"name": "(to fill)", "orcid": "", "affiliations": "1"}],
         "affiliations": [{"code": "1", "name": "(to fill)"}],
-        "contact": {"name": "(to fill)", "email": "(to fill)"},
-        "code": {"url": repository or "(to fill)", "commit": commits[0] if commits else ""},
-        "data": {"url": "results/ (this run)", "lock": ", ".join(data["provenance"]["locks"])},
+        "contact": {"name": "(to fill)", "email": ""},
+        "code": {"url": _code_url(repository, data["provenance"]), "doi": ""},
+        "data": {"url": "", "doi": ""},
         "replication": {
             "cite": f"{ORIGINAL['authors']}, {ORIGINAL['title']}, {ORIGINAL['reference']}",
-            "bib": ORIGINAL["doi"],
+            "bib": ORIGINAL["key"],
             "url": ORIGINAL["url"],
             "doi": ORIGINAL["doi"],
         },
@@ -224,19 +388,34 @@ def _require(*paths) -> None:
         raise ReportInputError(f"the article needs {missing[0]}, which does not exist")
 
 
+def write_atomically(path: str | Path, data: bytes) -> None:
+    """Write ``data`` to ``path`` whole or not at all, its folder made where missing
+    (:func:`~tennis_stroke.io.netcdf.write_bytes_whole`: a failure keeps what ``path``
+    held)."""
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    write_bytes_whole(path, data)
+
+
 def _typeset(template: Path, data: Mapping, images: Sequence[str], output_pdf: str) -> None:
-    """Typeset ``template`` with ``data`` (as ``data.json``) and ``images`` beside it."""
+    """Typeset ``template`` with ``data`` (as ``data.json``) and ``images`` beside it
+    into ``output_pdf`` (:func:`write_atomically`).  Each image must decode (one line
+    naming a damaged one, :func:`~.report.check_image`); a Typst error is one line."""
     import typst  # the workflow's extra: only the article jobs load it
 
+    for path in images:
+        check_image(path)
     with tempfile.TemporaryDirectory() as folder:
         work = Path(folder)
         shutil.copy(template, work / template.name)
         for path in images:
             shutil.copy(path, work / Path(path).name)
         (work / "data.json").write_text(json.dumps(data))
-        pdf = typst.compile(str(work / template.name), root=str(work))
-    Path(output_pdf).parent.mkdir(parents=True, exist_ok=True)
-    Path(output_pdf).write_bytes(pdf)
+        try:
+            pdf = typst.compile(str(work / template.name), root=str(work))
+        except typst.TypstError as exc:
+            problem = str(exc).splitlines()[0] if str(exc) else type(exc).__name__
+            raise ReportInputError(f"{template.name} does not typeset: {problem}") from None
+    write_atomically(output_pdf, pdf)
 
 
 def build_article(
@@ -249,15 +428,24 @@ def build_article(
     job_seconds: float | None = None,
     repository: str = "",
     lock: str | Path | None = None,
+    pyproject: str | Path | None = None,
 ) -> None:
     """Write the article (``output_pdf``) and its ``metadata.yaml`` from the results
-    (``lock``: ``requirements.lock``, the software it lists)."""
+    (``lock``, ``pyproject``: ``requirements.lock`` and ``pyproject.toml``, whose
+    runtime dependencies it lists).  A provenance fact the result files do not share is
+    stated as a mix in the article and said on stderr."""
     _require(claims_csv, claims_yaml, *figures, *results)
-    shown = {Path(p).stem: p for p in figures if Path(p).stem in FIGURES}
+    shown = {
+        Path(p).stem: p
+        for p in figures
+        if Path(p).stem in FIGURES and FIGURES[Path(p).stem].of_paper
+    }
     data = article_data(claims_csv, claims_yaml, shown, results, job_seconds)
+    for label in data["provenance_mixed"]:
+        print(f"warning: the result files record more than one {label}", file=sys.stderr)
     _typeset(TEMPLATE, data, list(shown.values()), output_pdf)
-    Path(output_metadata).write_text(
-        yaml.safe_dump(
-            metadata(data, repository, locked_software(lock)), sort_keys=False, allow_unicode=True
-        )
+    meta = metadata(data, repository, runtime_software(pyproject, lock))
+    write_atomically(
+        output_metadata,
+        yaml.safe_dump(meta, sort_keys=False, allow_unicode=True).encode("utf-8"),
     )

@@ -80,7 +80,55 @@ def drawn(
     fig.tight_layout()
     if note:
         _room_for_titles(fig)
+    _legends_clear_of_points(fig)
     return fig
+
+
+#: Where a legend that covers a marked point moves inside its axes, in the order tried.
+LEGEND_PLACES = (
+    "upper right",
+    "upper left",
+    "lower left",
+    "lower right",
+    "center right",
+    "center left",
+    "upper center",
+    "lower center",
+    "center",
+)
+
+
+def _marked_points(ax, renderer) -> list:
+    """The drawn extent (display coordinates, the marker's size included) of each
+    single point ``ax`` marks: the paper's rings, Fig. 13's star."""
+    return [
+        line.get_window_extent(renderer)
+        for line in ax.lines
+        if len(line.get_xdata()) == 1 and line.get_marker() not in (None, "None", "")
+    ]
+
+
+def _legends_clear_of_points(fig: plt.Figure) -> None:
+    """Move each legend that covers a marked point (:func:`_marked_points`, as drawn:
+    ``loc="best"`` counts a point's centre, not its marker, and takes a place over a
+    point when every place crosses a line) to the first of :data:`LEGEND_PLACES` that
+    covers none; a legend already clear stays where it is."""
+    for ax in fig.axes:
+        legend = ax.get_legend()
+        if legend is None or not any(len(line.get_xdata()) == 1 for line in ax.lines):
+            continue
+        fig.canvas.draw()
+        renderer = fig.canvas.get_renderer()
+        points = _marked_points(ax, renderer)
+        for place in (None, *LEGEND_PLACES):
+            if place is not None:
+                legend.set_loc(place)
+                fig.canvas.draw()
+            box = legend.get_window_extent(renderer)
+            if not any(box.overlaps(p) for p in points):
+                break
+        else:  # no place is clear: where matplotlib would put it
+            legend.set_loc("best")
 
 
 def _room_for_titles(fig: plt.Figure) -> None:

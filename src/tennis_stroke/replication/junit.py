@@ -10,7 +10,6 @@ junitparser, read back with it in the tests.
 
 from __future__ import annotations
 
-import os
 from pathlib import Path
 
 import pandas as pd
@@ -24,8 +23,7 @@ from junitparser import (
     TestSuite,
 )
 
-from ..io.errors import OutputError
-from ..io.netcdf import check_writable, temporary_beside
+from ..io.netcdf import write_bytes_whole
 
 #: The name of the whole run's test suites.
 NAME = "Youn 2015 replication claims"
@@ -87,13 +85,5 @@ def write_junit(table: pd.DataFrame, path: str | Path) -> None:
     place; a symbolic link stays a link to the file it names).  A missing folder, a
     folder, a device or a pipe as ``path``, or a write that fails, is one line
     (:class:`~tennis_stroke.io.errors.OutputError`) and leaves the target as it was."""
-    target = check_writable(path)
     text = b'<?xml version="1.0" encoding="utf-8"?>\n' + claims_xml(table).tostring()
-    tmp = temporary_beside(target)
-    try:
-        tmp.write_bytes(text)
-        os.replace(tmp, target)
-    except OSError as exc:
-        raise OutputError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
-    finally:
-        tmp.unlink(missing_ok=True)
+    write_bytes_whole(path, text)

@@ -49,7 +49,7 @@ from .analyses import (
     studies_section,
     validation_section,
 )
-from .claims import STATUS_WORDS, ClaimsTableError, consistency_errors, read_table
+from .claims import STATUS_WORDS, ClaimsTableError, checked_table, read_table
 from .formats import UNIT_SHORT, ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
 from .registry import FIGURES, LIVE
@@ -72,7 +72,7 @@ def markdown_html(text: str) -> Markup:
     return _safe(md.render(text))
 
 
-def _claim_row(claim: Mapping) -> dict:
+def claim_row(claim: Mapping) -> dict:
     """What the page shows of one claim (a row of ``results/claims.csv``)."""
     symbol, word, _ = STATUS_WORDS.get(claim["status"], ("?", claim["status"], ""))
     qualitative = str(claim["unit"]) == "1" and float(claim["tolerance"]) == 0
@@ -188,7 +188,7 @@ def _table_blocks(
     ]
 
 
-def _paper_sections(
+def paper_sections(
     rows: list[dict],
     figures: Mapping[str, dict],
     statements: Mapping[str, str],
@@ -250,7 +250,7 @@ def _failures(results: Sequence[str]) -> pd.DataFrame:
     return pd.DataFrame(rows).convert_dtypes().astype(object).fillna("-")
 
 
-def _check_image(path: str) -> None:
+def check_image(path: str) -> None:
     """A figure must decode as an image (a truncated file would embed as a broken one)."""
     from PIL import Image, UnidentifiedImageError
 
@@ -266,7 +266,7 @@ def _check_image(path: str) -> None:
 
 
 def _figure_entry(path: str) -> dict:
-    _check_image(path)
+    check_image(path)
     name = Path(path).stem
     title = FIGURES[name].title if name in FIGURES else name
     return {
@@ -325,17 +325,14 @@ def _interactive(
 
 
 def _checked_claims(claims_csv: str, claims_yaml: str | None) -> pd.DataFrame:
-    """The claims table, checked (:func:`~tennis_stroke.replication.claims.read_table`)
-    and, with the declared claims, consistent with them (a status edited by hand is
-    refused: :func:`~tennis_stroke.replication.claims.consistency_errors`)."""
+    """The claims table, checked as `tennis-stroke claims` checks it with the declared
+    claims (:func:`~tennis_stroke.replication.claims.checked_table`: a status edited by
+    hand is refused), else only read (:func:`~tennis_stroke.replication.claims.read_table`)."""
     declared = load_claims(claims_yaml) if claims_yaml else None
     try:
-        table = read_table(claims_csv, [c["id"] for c in declared] if declared else None)
+        table = checked_table(claims_csv, declared) if declared else read_table(claims_csv)
     except ClaimsTableError as exc:
         raise ReportInputError(str(exc)) from None
-    errors = consistency_errors(table, declared, claims_csv) if declared else []
-    if errors:
-        raise ReportInputError(errors[0])
     table["reproduced_value"] = table["reproduced_value"].astype(float)
     return table
 
@@ -451,10 +448,10 @@ def build_report(
     top."""
     claims, departures = _checked_inputs(claims_csv, statements_yaml, assumptions_md)
     paper = load_yaml(statements_yaml) if statements_yaml else {}
-    rows = [_claim_row(c) for c in claims.to_dict("records")]
+    rows = [claim_row(c) for c in claims.to_dict("records")]
     entries = {e["name"]: e for e in map(_figure_entry, figures)}
     paper_figures = {n: e for n, e in entries.items() if n in FIGURES and FIGURES[n].of_paper}
-    page_sections = _paper_sections(
+    page_sections = paper_sections(
         rows, paper_figures, paper.get("statements") or {}, paper.get("sections") or {}
     )
     views_head, views = _interactive(paper_figures, results, inference, claims, statements_yaml)
