@@ -33,6 +33,7 @@ from collections import Counter
 from collections.abc import Mapping, Sequence
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import yaml
 
@@ -46,7 +47,7 @@ from .claims import ClaimsTableError, checked_table
 from .formats import ReportInputError, _timings
 from .registry import FIGURES
 from .report import check_image, claim_row, paper_sections
-from .robustness import EVIDENCE_MEANING
+from .robustness import CONFIDENCE, EVIDENCE_MEANING, across_short
 
 #: The article's template (Typst), beside the report's templates, and a scenario's.
 TEMPLATE = Path(__file__).parent / "templates" / "article.typ"
@@ -201,17 +202,25 @@ def discussion(table: pd.DataFrame, rows: Sequence[Mapping]) -> dict:
             )
     dependent = [c for c in held if c.get("robustness") == "reading_dependent"]
     deciding = Counter(_first_unknown(str(c.get("deciding") or "")) for c in dependent)
+    bounds = [float(c.get("class_bound", "nan")) for c in robust]
+    bounds = [b for b in bounds if np.isfinite(b)]
+    sure = {
+        "readings": str(int(float(robust[0]["readings"]))) if bounds else "",
+        "bound": f"{100 * max(bounds):.2g} %" if bounds else "",
+        "confidence": f"{100 * CONFIDENCE:.0f} %",
+    }
     return {
         "held": len(held),
         "passing": len(passing),
         "robust": len(robust),
+        "sure": sure,
         "not_reproduced": sum(c.get("robustness") == "not_reproduced" for c in held),
         "groups": groups,
         "dependent": [
             {
                 "id": c["id"],
                 "verdict": shown[c["id"]]["verdict"],
-                "share": f"{100 * float(c.get('pass_share') or 'nan'):.0f} %",
+                "share": across_short(c).removesuffix(" *"),
                 "deciding": str(c.get("deciding") or "not named"),
             }
             for c in dependent
