@@ -243,6 +243,21 @@ def test_saving_the_settings_declares_a_scenario(shared):
     assert session.saved.text.startswith("not saved: scenario 'from_the_explorer' is already")
 
 
+def test_saving_the_paper_s_setting_is_refused_in_the_page(shared):
+    """Save at the defaults appended ``good-one: {}`` (issue 56, 9): refused as whatif
+    and the workflow's planning refuse it, the file as it was."""
+    session = app.Session(shared, Document())
+    settle(session)
+    before = shared.scenarios.read_text()
+    session.scenario_name.value = "good-one"
+    session._save()
+    assert session.saved.text == (
+        "not saved: scenario 'good-one' changes nothing of the paper's configuration "
+        "(each override is the value it has, or a model value's default)"
+    )
+    assert shared.scenarios.read_text() == before
+
+
 def test_a_second_pick_shows_its_stroke_in_the_same_view(shared):
     session = app.Session(shared, Document())
     settle(session)

@@ -170,6 +170,9 @@ def test_a_saved_scenario_is_declared_with_the_file_s_comments_kept(paper, tmp_p
         ("bad name", {"model": {"M2": 0.4}}, "a letter, then letters"),
         ("a" + "x" * 20, {"model": {"M2": 0.4}}, "repeated 20 times"),
         ("negative", {"model": {"M2": -1.0}}, "must be > 0"),
+        # Save at the defaults appended `good-one: {}`, whose page planned jobs
+        ("good-one", {}, "changes nothing of the paper's configuration"),
+        ("good-one", {"model": {"M2": 0.3}, "solver": {"rtol": 5e-8}}, "changes nothing"),
     ],
 )
 def test_a_refused_scenario_leaves_the_file_as_it_was(paper, tmp_path, name, overrides, message):

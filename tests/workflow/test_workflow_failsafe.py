@@ -283,6 +283,18 @@ def test_a_bad_claim_is_refused_before_any_job(tmp_path):
             "tennis-stroke scenario error: scenario 'a': config key 'model': parameter 'M2' "
             "must be > 0 kg, got -1",
         ),
+        # a scenario that changes nothing (the explorer's Save at the defaults wrote one;
+        # whatif refused it while its page planned jobs)
+        (
+            "good-one: {}\n",
+            "report/scenarios/good-one/index.html",
+            "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
+        ),
+        (
+            "good-one: {model: {M2: 0.3}}\n",
+            "results/scenarios/good-one/claims.csv",
+            "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
+        ),
         # a section only the paper's configuration runs
         (
             "a: {solver_study: {seed: 3}}\n",
