@@ -209,7 +209,7 @@ def test_reset_returns_every_control_to_the_default_reading(shared):
     settle(session)
     for control in session.controls:
         assert session.widgets[control.key].value == (
-            control.paper if control.choices else app.number_text(control.paper)
+            control.paper if control.choices else controls.number_text(control.paper)
         )
     assert controls.overrides(shared.config, session.values) == {}
 
@@ -343,7 +343,7 @@ def test_text_from_a_user_is_escaped_in_the_page(shared, monkeypatch):
     ],
 )
 def test_a_number_is_read_as_a_person_types_it(text, value):
-    assert app.read_number(text) == value
+    assert controls.read_number(text) == value
 
 
 @pytest.mark.parametrize(
@@ -362,7 +362,7 @@ def test_a_number_is_read_as_a_person_types_it(text, value):
 )
 def test_what_is_not_a_number_is_named(text, words):
     with pytest.raises(ValueError, match=words):
-        app.read_number(text)
+        controls.read_number(text)
 
 
 def test_a_field_computes_with_the_value_typed_and_never_rewrites_it(shared, monkeypatch):

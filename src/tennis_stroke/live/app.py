@@ -22,7 +22,6 @@ saying so, and no session.
 from __future__ import annotations
 
 import html
-import re
 import threading
 import time
 from collections.abc import Callable, Mapping
@@ -165,54 +164,6 @@ class Shared:
 def _first_line(exc: BaseException) -> str:
     text = str(exc).strip().splitlines()
     return f"{type(exc).__name__}: {text[0] if text else ''}"
-
-
-#: A number as a person types it: an optional sign, digits with a decimal point or a
-#: decimal comma, an optional exponent ("7800", "-0.5", "0,35", ".3", "1e-5", "2E3").
-_NUMBER = re.compile(r"[-+]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][-+]?\d+)?")
-#: A comma that may separate thousands ("7,800"): read neither way.
-_THOUSANDS = re.compile(r"[-+]?[1-9]\d{0,2},\d{3}")
-
-
-def read_number(text: str) -> float:
-    """The number a person typed in a field (surrounding spaces and a typographic minus
-    allowed, a decimal comma read as a point); a ValueError naming why for anything
-    else, and for a comma that may separate thousands ("7,800")."""
-    if not isinstance(text, str):
-        raise ValueError(f"{text!r} is not a number")
-    typed = text.strip().replace("\u2212", "-")
-    if not _NUMBER.fullmatch(typed):
-        raise ValueError(f"{text.strip()!r} is not a number" if typed else "no value")
-    if _THOUSANDS.fullmatch(typed):
-        raise ValueError(f"{typed!r} is ambiguous: write it without the comma or with a point")
-    value = float(typed.replace(",", "."))
-    if not np.isfinite(value):
-        raise ValueError(f"{typed!r} is not a finite number")
-    return value
-
-
-def number_text(value: float) -> str:
-    """A number control's text: the shortest that reads back as ``value``."""
-    return repr(float(value)).removesuffix(".0")
-
-
-def refusal(control: controls.Control, value) -> str | None:
-    """Why ``value`` cannot be ``control``'s (a one-line reason; "" for no value at all),
-    or None: a choice must be one of the control's, a number finite and within its
-    bounds.  The page's widgets offer no other, but a page can send any value."""
-    if value is None:
-        return ""
-    if control.choices:
-        if not isinstance(value, str) or value not in control.choices:
-            return f"{value!r} is not one of {', '.join(control.choices)}"
-        return None
-    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
-        return f"{value!r} is not a finite number"
-    if (control.low is not None and value < control.low) or (
-        control.high is not None and value > control.high
-    ):
-        return f"{number_text(value)} is outside [{control.low}, {control.high}]"
-    return None
 
 
 class Session:
@@ -360,7 +311,7 @@ class Session:
         else:  # a text field: its value changes on Enter or on leaving it, never per key
             widget = TextInput(
                 title=title,
-                value=number_text(paper),
+                value=controls.number_text(paper),
                 width=CONTROL_WIDTH,
                 name=control.key,
             )
@@ -443,16 +394,16 @@ class Session:
         value, problem = new, None
         if not control.choices:
             try:
-                value = read_number(new)
+                value = controls.read_number(new)
             except ValueError as exc:
                 problem = str(exc)
         if problem is None:
             if value == self.values[control.key]:  # a value put back: nothing to do
                 return
-            problem = refusal(control, value)
+            problem = controls.refusal(control, value)
         if problem is not None:  # checked here: a page can send any value
             current = self.values[control.key]
-            kept = current if control.choices else number_text(current)
+            kept = current if control.choices else controls.number_text(current)
             if problem:
                 self.error.text = html.escape(
                     f"{control.label}: {problem}; kept {kept}", quote=False
@@ -469,7 +420,8 @@ class Session:
         try:
             for control in self.controls:
                 widget = self.widgets[control.key]
-                widget.value = str(control.paper) if control.choices else number_text(control.paper)
+                paper = control.paper
+                widget.value = str(paper) if control.choices else controls.number_text(paper)
         finally:
             self._resetting = False
         self.request("all")
@@ -573,7 +525,7 @@ class Session:
             value = controls.config_value(config, control.key)
             if str(value) == str(control.paper) or value == control.paper:
                 continue
-            text = value if control.choices else number_text(value)
+            text = value if control.choices else controls.number_text(value)
             unit = f" {control.unit}" if control.unit not in ("", "1") else ""
             changed.append(f"{control.label} = {text}{unit}")
         return "computed with " + ("; ".join(changed) or "the paper's setting")
