@@ -17,7 +17,7 @@ from chromium import CHROMIUM, DRIVER, MISSING, POSITION_JS, chromium, wait_idle
 from conftest import ROOT
 
 from tennis_stroke.io.config_files import load_yaml
-from tennis_stroke.live import app, compute, controls
+from tennis_stroke.live import compute, controls
 from tennis_stroke.live import server as server_module
 from tennis_stroke.solver.stroke import strike_batch
 
