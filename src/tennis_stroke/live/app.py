@@ -183,6 +183,21 @@ class Session:
         self._build(*shared.paper_views())
         self.status.text = "the paper's setting, coarse map; the full map once connected"
         doc.on_event("document_ready", self._connected)
+        if hasattr(doc, "apply_json_patch"):  # a Bokeh document (tests use a stand-in)
+            doc.apply_json_patch = partial(self._patched, doc.apply_json_patch)
+
+    def _patched(self, apply: Callable, patch, setter=None) -> None:
+        """Apply what the page sent (Bokeh's ``Document.apply_json_patch``).  Bokeh
+        refuses a value of the wrong type (a number, a list, a dict for a text field)
+        before any callback of ours runs, with a traceback in the server's log, nothing
+        on the page and the page's widget keeping the value: here the refusal is the
+        error line, and every field shows its value again."""
+        try:
+            apply(patch, setter=setter)
+        except Exception as exc:  # noqa: BLE001 - anything a page can send
+            self.error.text = html.escape(f"refused: {_first_line(exc)}", quote=False)
+            for widget in [*self.widgets.values(), self.scenario_name]:
+                widget.trigger("value", widget.value, widget.value)  # sent to the page
 
     def _connected(self, event) -> None:
         """The page is connected: compute its full map and claims (once)."""
@@ -236,7 +251,7 @@ class Session:
         self.map_source = self.map.select_one({"name": "explore-map-map"})
         self.map_colors = self.map.select_one({"name": "explore-map-colors"})
         self.map_line = self.map.select_one({"name": "explore-map-line"})
-        self.map_source.data = self._map_data(ds, 0)
+        self._set_map(self._map_data(ds, 0))
         self.map_source.js_on_change(
             "data", CustomJS(args={"source": self.map_source}, code=_PROBE_JS)
         )
@@ -358,6 +373,13 @@ class Session:
 
     # -- data of the views ------------------------------------------------------------
 
+    def _set_map(self, data: dict) -> None:
+        """Show the map ``data``; its grid (first point, steps, shape) is kept apart for
+        a tap: a page can send new data for the map's source."""
+        self.map_source.data = data
+        rows, cols = data["image"][0].shape
+        self.grid = (*(data[k][0] for k in ("x0", "y0", "dx", "dy")), rows, cols)
+
     @staticmethod
     def _map_data(ds, generation: int, level: str = "coarse") -> dict:
         data = map_data(ds, "theta0", "delta0", "v_out")
@@ -379,9 +401,11 @@ class Session:
 
     # -- events -----------------------------------------------------------------------
 
-    def _config(self) -> dict:
-        """The configuration at the controls' values, checked as a scenario's is."""
-        overrides = controls.overrides(self.shared.config, self.values)
+    def _config(self, values: Mapping[str, object] | None = None) -> dict:
+        """The configuration at the controls' values (or ``values``), checked as a
+        scenario's is."""
+        values = self.values if values is None else values
+        overrides = controls.overrides(self.shared.config, values)
         try:
             return scenario_config(self.shared.config, "explore", overrides, self.shared.schema)
         except ScenarioError as exc:
@@ -401,6 +425,11 @@ class Session:
             if value == self.values[control.key]:  # a value put back: nothing to do
                 return
             problem = controls.refusal(control, value)
+        if problem is None:  # the whole setting, as the workflow checks it
+            try:
+                self._config({**self.values, control.key: value})
+            except controls.ExplorerError as exc:
+                problem = str(exc)
         if problem is not None:  # checked here: a page can send any value
             current = self.values[control.key]
             kept = current if control.choices else controls.number_text(current)
@@ -427,14 +456,18 @@ class Session:
         self.request("all")
 
     def _tap(self, event) -> None:
-        data = self.map_source.data
-        dx, dy = data["dx"][0], data["dy"][0]
-        i = int(np.clip(round((event.x - data["x0"][0]) / dx), 0, data["image"][0].shape[1] - 1))
-        j = int(np.clip(round((event.y - data["y0"][0]) / dy), 0, data["image"][0].shape[0] - 1))
-        self.picked = (
-            float(round(data["x0"][0] + i * dx, 6)),
-            float(round(data["y0"][0] + j * dy, 6)),
-        )
+        """A tap on the map picks the stroke of the nearest grid point of the map shown
+        (:attr:`grid`); a tap a page sends off the map, or not a number, is refused in
+        the error line."""
+        x0, y0, dx, dy, rows, cols = self.grid
+        x, y = event.x, event.y
+        numbers = all(isinstance(v, int | float) and np.isfinite(v) for v in (x, y))
+        if not (numbers and x0 - dx <= x <= x0 + cols * dx and y0 - dy <= y <= y0 + rows * dy):
+            self.error.text = html.escape(f"a tap at ({x!r}, {y!r}) is not on the map", quote=False)
+            return
+        i = int(np.clip(round((x - x0) / dx), 0, cols - 1))
+        j = int(np.clip(round((y - y0) / dy), 0, rows - 1))
+        self.picked = (float(round(x0 + i * dx, 6)), float(round(y0 + j * dy, 6)))
         self.request("stroke")
 
     def _save(self) -> None:
@@ -539,7 +572,7 @@ class Session:
         self.map_colors.update(
             **dict(zip(("low", "high"), value_range(data["image"][0]), strict=True))
         )
-        self.map_source.data = data
+        self._set_map(data)
         self.map_line.data = {"x": ds["theta0"].values, "y": ds["best_delta0"].values}
         shape = data["image"][0].shape[::-1]
         self.status.text = f"{level} map ({shape[0]} x {shape[1]}) in {elapsed:.2f} s"

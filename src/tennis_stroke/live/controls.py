@@ -226,11 +226,11 @@ def number_text(value: float) -> str:
 
 
 def refusal(control: Control, value) -> str | None:
-    """Why ``value`` cannot be ``control``'s (a one-line reason; "" for no value at all),
-    or None: a choice must be one of the control's, a number finite and within its
-    bounds.  The page's widgets offer no other, but a page can send any value."""
+    """Why ``value`` cannot be ``control``'s (a one-line reason), or None: a choice must
+    be one of the control's, a number finite and within its bounds.  The page's widgets
+    offer no other, but a page can send any value (a select's ``null`` too)."""
     if value is None:
-        return ""
+        return "no value"
     if control.choices:
         if not isinstance(value, str) or value not in control.choices:
             return f"{value!r} is not one of {', '.join(control.choices)}"
