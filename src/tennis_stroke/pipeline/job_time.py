@@ -1,18 +1,20 @@
-"""Time of a solver study's job, estimated before anything runs, and the limit.
+"""Time of a study's job, estimated before anything runs, and the limit.
 
 A step or a count of a study sets how long its job computes, not how much memory it
 holds: ``solver_study.rk4_steps: [1.0e-12]`` passed every memory estimate, was planned,
-and its job would have run for thousands of hours a stroke (issue 56).  Every job of the
+and its job would have run for hundreds of hours a stroke (issue 56).  Every job of the
 solver studies (:func:`study_jobs`: the work-precision table, the stability map, the
-model ladder on random strokes) is estimated from its counts (strokes, repeats, RK4
-steps, cases, spring constants) and the costs measured in the work-precision study, and
-the workflow's config check refuses one above :func:`time_limit` in one line naming the
-key of its dearest part (:func:`tennis_stroke.pipeline.config_check.time_errors`).
+model ladder on random strokes), and the model ladder claim by claim, is estimated from
+its counts (strokes, repeats, RK4 steps, cases, spring constants, rungs) at the costs
+measured in the work-precision study, and the workflow's config check refuses one above
+:func:`time_limit` in one line naming the key of its dearest part
+(:func:`tennis_stroke.pipeline.config_check.time_errors`).
 
-The maps and the claims' searches need no such estimate: their memory is bounded
-(:mod:`tennis_stroke.pipeline.memory`, at least 432 bytes a stroke held at once), and a
-compiled stroke costs about 24 µs, so a job within 16 GiB computes for at most about
-15 minutes a core.
+The maps and the claims' searches need no such estimate: the memory of each of their
+batches is bounded (:mod:`tennis_stroke.pipeline.memory`, at least 432 bytes a stroke
+held at once) and a compiled stroke costs about 24 µs, so a batch within 16 GiB computes
+for about 16 minutes a core at most; a search's later batches halve their step down to
+its tolerance, a number of batches logarithmic in it.
 
 The limit, first found wins: the config key ``max_job_hours``, the environment variable
 :data:`TIME_ENV` (``TENNIS_STROKE_MAX_JOB_HOURS``), else :data:`DEFAULT_HOURS`.
@@ -25,6 +27,7 @@ import os
 from collections.abc import Iterator, Mapping
 
 from ..studies.methods import parse_method
+from ..studies.timing import TIMING_STROKES
 
 #: Seconds a stroke of the compiled solver costs on one thread: the dearest compiled row
 #: of the work-precision table of 2026-11-30 (6220384, docs/performance.md): DP54 at rtol
@@ -44,9 +47,12 @@ RK4_STROKE_SPAN = 9484 / 4 * 2e-4
 #: Simulated seconds of the stability study's isolated contact at most
 #: (:func:`tennis_stroke.studies.stability.isolated_contact`'s ``t_end``).
 CONTACT_SPAN = 0.5
-#: The strokes :func:`tennis_stroke.studies.timing.compiled_cost` times a batch of at
-#: least (its ``TIMING_STROKES``), and the repeats the model ladder times.
-TIMING_STROKES, LADDER_REPEATS = 4000, 3
+#: The repeats the model ladder on random strokes times (``studies.ladder.ladder``'s
+#: default; a batch timed is at least ``studies.timing.TIMING_STROKES`` strokes).
+LADDER_REPEATS = 3
+#: Seconds the model ladder's job computes per rung: 1.5 s for the shipped 5 rungs at the
+#: shipped search steps (docs/performance.md, the inference jobs, 10164ac).
+RUNG_SECONDS = 1.5 / 5
 #: Hours a job may take by default: the whole replication runs in minutes, so a job
 #: beyond a day is a mistyped step or count.
 DEFAULT_HOURS = 24.0
@@ -82,7 +88,8 @@ def study_jobs(config: Mapping) -> Iterator[tuple[str, list[tuple[str, str, floa
     study = config["solver_study"]
     n, repeats = int(study["strokes"]), int(study["repeats"])
     timed = max(n, TIMING_STROKES)
-    parts = [("solver_study.strokes", f"the reference of {n} strokes", n * COMPILED_STROKE_SECONDS)]
+    reference = n * COMPILED_STROKE_SECONDS
+    parts = [("solver_study.strokes", f"the reference of {n} strokes", reference)]
     for i, tol in enumerate(study["compiled_tolerances"]):
         what = f"the compiled methods at {tol:g} ({repeats} x {timed} strokes each)"
         seconds = 2 * repeats * timed * COMPILED_STROKE_SECONDS
@@ -105,6 +112,10 @@ def study_jobs(config: Mapping) -> Iterator[tuple[str, list[tuple[str, str, floa
     yield "the stability study", parts
     seconds = 2 * LADDER_REPEATS * timed * COMPILED_STROKE_SECONDS
     yield "the model ladder study", [("solver_study.strokes", f"{timed} strokes", seconds)]
+    rungs = len((config.get("model_ladder") or {}).get("rungs") or ())
+    if rungs:
+        what = f"every claim under {rungs} rungs"
+        yield "the model ladder", [("model_ladder.rungs", what, rungs * RUNG_SECONDS)]
 
 
 def time_limit(explicit: float | int | None = None, source: str = "the given limit"):
@@ -125,7 +136,9 @@ def _hours(value, source: str) -> float:
     except (TypeError, ValueError):
         hours = math.nan
     if not (math.isfinite(hours) and hours > 0):
-        raise ValueError(f"{source}: a job's time limit must be a number of hours > 0, got {value!r}")
+        raise ValueError(
+            f"{source}: a job's time limit must be a number of hours > 0, got {value!r}"
+        )
     return hours
 
 
