@@ -327,6 +327,13 @@ def test_a_study_s_time_is_estimated_from_its_counts_and_refused_above_the_limit
         assert sum(rk4) == pytest.approx(2 * sum(p[2] for p in parts if "rk4_steps" in p[0]))
 
 
+def test_the_time_estimate_counts_the_batches_the_studies_time():
+    from tennis_stroke.pipeline import job_time
+    from tennis_stroke.studies import timing
+
+    assert job_time.TIMING_STROKES == timing.TIMING_STROKES
+
+
 def test_the_shipped_config_declares_max_memory_with_a_default():
     schema = yaml.safe_load(SCHEMA.read_text())
     spec = schema["properties"]["max_memory"]

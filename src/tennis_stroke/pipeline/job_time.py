@@ -27,7 +27,6 @@ import os
 from collections.abc import Iterator, Mapping
 
 from ..studies.methods import parse_method
-from ..studies.timing import TIMING_STROKES
 
 #: Seconds a stroke of the compiled solver costs on one thread: the dearest compiled row
 #: of the work-precision table of 2026-11-30 (6220384, docs/performance.md): DP54 at rtol
@@ -47,9 +46,11 @@ RK4_STROKE_SPAN = 9484 / 4 * 2e-4
 #: Simulated seconds of the stability study's isolated contact at most
 #: (:func:`tennis_stroke.studies.stability.isolated_contact`'s ``t_end``).
 CONTACT_SPAN = 0.5
-#: The repeats the model ladder on random strokes times (``studies.ladder.ladder``'s
-#: default; a batch timed is at least ``studies.timing.TIMING_STROKES`` strokes).
-LADDER_REPEATS = 3
+#: The strokes a timed batch holds at least (``studies.timing.TIMING_STROKES``, written
+#: again here: planning imports no solver, tests/workflow/test_job_imports.py; a test
+#: checks the two agree), and the repeats the model ladder on random strokes times
+#: (``studies.ladder.ladder``'s default).
+TIMING_STROKES, LADDER_REPEATS = 4000, 3
 #: Seconds the model ladder's job computes per rung: 1.5 s for the shipped 5 rungs at the
 #: shipped search steps (docs/performance.md, the inference jobs, 10164ac).
 RUNG_SECONDS = 1.5 / 5
