@@ -170,6 +170,9 @@ def test_a_saved_scenario_is_declared_with_the_file_s_comments_kept(paper, tmp_p
         ("bad name", {"model": {"M2": 0.4}}, "a letter, then letters"),
         ("a" + "x" * 20, {"model": {"M2": 0.4}}, "repeated 20 times"),
         ("negative", {"model": {"M2": -1.0}}, "must be > 0"),
+        # Save at the defaults appended `good-one: {}`, whose page planned jobs
+        ("good-one", {}, "changes nothing of the paper's configuration"),
+        ("good-one", {"model": {"M2": 0.3}, "solver": {"rtol": 5e-8}}, "changes nothing"),
     ],
 )
 def test_a_refused_scenario_leaves_the_file_as_it_was(paper, tmp_path, name, overrides, message):
@@ -235,7 +238,8 @@ def test_two_savers_of_one_name_at_once_save_it_once(paper, tmp_path):
         except ScenarioError as exc:
             outcomes.append(str(exc))
 
-    threads = [threading.Thread(target=save, args=(0.3 + i / 100,)) for i in range(4)]
+    # 0.31 ...: none is the default M2 (a scenario that changes nothing is refused)
+    threads = [threading.Thread(target=save, args=(0.31 + i / 100,)) for i in range(4)]
     for t in threads:
         t.start()
     for t in threads:

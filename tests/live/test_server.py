@@ -17,7 +17,7 @@ from chromium import CHROMIUM, DRIVER, MISSING, POSITION_JS, chromium, wait_idle
 from conftest import ROOT
 
 from tennis_stroke.io.config_files import load_yaml
-from tennis_stroke.live import app, compute, controls
+from tennis_stroke.live import compute, controls
 from tennis_stroke.live import server as server_module
 from tennis_stroke.solver.stroke import strike_batch
 
@@ -366,7 +366,7 @@ def test_every_number_field_computes_with_what_is_typed_over_its_text(server, br
         shown = browser.execute_script(INPUT_JS, control.key).get_attribute("value")
         assert shown == text, (control.key, shown)  # what was typed stays as typed
         unit = f" {control.unit}" if control.unit not in ("", "1") else ""
-        assert f"{control.label} = {app.number_text(value)}{unit}" in said, (control.key, said)
+        assert f"{control.label} = {controls.number_text(value)}{unit}" in said, (control.key, said)
     assert browser.execute_script(TEXT_JS, "explore-error") == ""
 
 

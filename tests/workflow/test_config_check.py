@@ -13,7 +13,9 @@ from tennis_stroke.pipeline.config_check import (
     load_schema,
     memory_errors,
     numbers_from_strings,
+    time_errors,
 )
+from tennis_stroke.pipeline.job_time import TIME_ENV, study_jobs
 from tennis_stroke.pipeline.memory import BATCH_BYTES_PER_STROKE, format_size
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
@@ -185,6 +187,27 @@ BAD = [  # (path, value, fragment of the message)
         1e-6,
         "'search': the search of the Fig. 13 map's claims (search.psi_F_step = 1e-06",
     ),
+    # time, estimated from the studies' steps and counts (issue 56: a step of 1e-12 s
+    # was planned and its job would have run for about 826 h a stroke)
+    (
+        ("solver_study", "rk4_steps"),
+        [2e-3, 1e-12],
+        "config key 'solver_study.rk4_steps.1': the work-precision study would take about ",
+    ),
+    (
+        ("solver_study", "stability", "cases"),
+        [["tennis_stroke.DOP853", 5e-8], ["fixed.RK4", 1e-12]],
+        "config key 'solver_study.stability.cases.1': the stability study would take about ",
+    ),
+    (
+        ("solver_study", "stability", "k_contact", "num"),
+        1_000_000,
+        "'solver_study.stability.cases.10': the stability study would take about 275 h "
+        "(1000000 spring constants, each up to 50000 RK4 steps of 1e-05 s: 214 h), above "
+        "the limit of 24 h",
+    ),
+    (("max_job_hours",), 0.0, "'max_job_hours': 0.0 is less than or equal to the minimum"),
+    (("max_job_hours",), "long", "'max_job_hours': 'long' is not of type 'number', 'null'"),
 ]
 
 
@@ -270,6 +293,45 @@ def test_planning_counts_the_readings_searched_in_lockstep(tmp_path):
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert done.returncode == 1 and len(lines) == 1, lines
     assert "24100241 strokes at once for each of 32 readings) needs about" in lines[0]
+
+
+def test_a_study_s_time_is_estimated_from_its_counts_and_refused_above_the_limit(monkeypatch):
+    """The limit: the config key, else the environment variable, else 24 h; the estimate
+    grows with the strokes and falls with the RK4 step, and the line names the key of
+    the job's dearest part."""
+    monkeypatch.delenv(TIME_ENV, raising=False)
+    config = copy.deepcopy(GOOD)
+    work_precision, parts = next(study_jobs(config))
+    total = sum(part[2] for part in parts)
+    assert work_precision == "the work-precision study" and 1.0 < total < 3600.0
+    config["max_job_hours"] = total / 3600.0 / 2
+    (error,) = time_errors(config)
+    assert error.startswith("config key 'solver_study.scipy_tolerances.0': the work-precision")
+    assert error.endswith("(config key 'max_job_hours') (rule: time)")
+    config["max_job_hours"] = None
+    monkeypatch.setenv(TIME_ENV, str(total / 3600.0 / 2))
+    (error,) = time_errors(config)
+    assert f"({TIME_ENV}) (rule: time)" in error
+    monkeypatch.setenv(TIME_ENV, "soon")
+    assert list(time_errors(config)) == [
+        f"{TIME_ENV}: a job's time limit must be a number of hours > 0, got 'soon' (rule: hours)"
+    ]
+    monkeypatch.delenv(TIME_ENV)
+    doubled = copy.deepcopy(GOOD)
+    doubled["solver_study"]["strokes"] *= 2
+    halved = copy.deepcopy(GOOD)
+    halved["solver_study"]["rk4_steps"] = [h / 2 for h in GOOD["solver_study"]["rk4_steps"]]
+    for changed in (doubled, halved):
+        _, more = next(study_jobs(changed))
+        rk4 = [p[2] for p in more if "rk4_steps" in p[0]]
+        assert sum(rk4) == pytest.approx(2 * sum(p[2] for p in parts if "rk4_steps" in p[0]))
+
+
+def test_the_time_estimate_counts_the_batches_the_studies_time():
+    from tennis_stroke.pipeline import job_time
+    from tennis_stroke.studies import timing
+
+    assert job_time.TIMING_STROKES == timing.TIMING_STROKES
 
 
 def test_the_shipped_config_declares_max_memory_with_a_default():

@@ -358,6 +358,7 @@ def _changed(value):
 UNMOVED = {
     "solver.method",
     "max_memory",
+    "max_job_hours",
     "model",
     "figure_curves",
     "fig4.strokes",

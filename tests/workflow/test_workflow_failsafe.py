@@ -22,6 +22,7 @@ from conftest import ROOT, planned_kinds, run_snakemake, snakemake_command, work
 from tiny import TINY, TINY_READINGS
 
 from tennis_stroke.experiments.specs import EXPERIMENTS
+from tennis_stroke.io.netcdf import TEST_PAUSE_ENV
 from tennis_stroke.pipeline.explain import rows_reading
 
 #: The workflow end to end: slow (pytest -m 'not slow' leaves it out).
@@ -282,6 +283,18 @@ def test_a_bad_claim_is_refused_before_any_job(tmp_path):
             "report/scenarios/a/index.html",
             "tennis-stroke scenario error: scenario 'a': config key 'model': parameter 'M2' "
             "must be > 0 kg, got -1",
+        ),
+        # a scenario that changes nothing (the explorer's Save at the defaults wrote one;
+        # whatif refused it while its page planned jobs)
+        (
+            "good-one: {}\n",
+            "report/scenarios/good-one/index.html",
+            "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
+        ),
+        (
+            "good-one: {model: {M2: 0.3}}\n",
+            "results/scenarios/good-one/claims.csv",
+            "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
         ),
         # a section only the paper's configuration runs
         (
@@ -623,3 +636,72 @@ def test_whatif_stopped_by_a_signal_leaves_no_lock(tmp_path, signum, status, lin
         timeout=300,
     )
     assert again.returncode == 0 and "LockException" not in again.stderr, again.stderr[-2000:]
+
+
+#: The line a failed or stopped run says when it puts earlier results back.
+PUT_BACK = (
+    "tennis-stroke: 1 earlier result(s) put back until their jobs complete (dated 1970, so "
+    "they run again): "
+)
+
+
+def test_a_failed_job_leaves_the_earlier_result_until_the_new_one_is_made(tmp_path):
+    """Snakemake removes a job's output when it starts the job, so a job that failed lost
+    the earlier file (issue 56, 6).  The failed run puts it back, dated 1970: the next
+    plan runs its job again, and the file is the earlier one until then."""
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    target = "results/torque_delay/fig9.nc"
+    first = run_snakemake(target, work, "--cores", "1", timeout=600)
+    assert first.returncode == 0, first.stderr[-3000:]
+    earlier = (work / target).read_bytes()
+    config = work / "config" / "config.yaml"
+    config.write_text(yaml.safe_dump({**TINY, "solver": {"t_max": 0.05}}))  # strokes fail
+    failed = run_snakemake(target, work, "--cores", "1", timeout=600)
+    assert failed.returncode != 0 and "FailureShareError" in failed.stderr
+    assert (work / target).read_bytes() == earlier
+    assert (work / target).stat().st_mtime == 0
+    assert PUT_BACK + target in failed.stderr.splitlines()
+    plan = run_snakemake(target, work, "-n")
+    assert plan.returncode == 0 and "gather_map" in planned_jobs(plan.stdout + plan.stderr)
+    config.write_text(yaml.safe_dump(TINY))
+    again = run_snakemake(target, work, "--cores", "1", timeout=600)
+    assert again.returncode == 0, again.stderr[-3000:]
+    assert (work / target).stat().st_mtime > 0 and PUT_BACK not in again.stderr
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_a_stopped_run_leaves_the_earlier_result_of_its_job(tmp_path, signum):
+    """The issue's case: a work-precision job stopped while it runs (here paused inside
+    its write, ``io.netcdf.TEST_PAUSE_ENV``) took results/solver_study/work_precision.nc
+    with it.  Now the stopped run puts the earlier file back, dated 1970."""
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    target = "results/solver_study/work_precision.nc"
+    first = run_snakemake(target, work, "--cores", "1", timeout=600)
+    assert first.returncode == 0, first.stderr[-3000:]
+    earlier = (work / target).read_bytes()
+    run = subprocess.Popen(
+        snakemake_command(target, work, "--cores", "1", "-f"),
+        start_new_session=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, TEST_PAUSE_ENV: "3"},
+    )
+    deadline = time.monotonic() + 300
+    try:
+        while not list((work / "results").rglob("*.tmp")):
+            assert run.poll() is None, "the run ended before its job wrote"
+            assert time.monotonic() < deadline, "no write after 300 s"
+            time.sleep(0.01)
+        assert not (work / target).exists()  # removed by Snakemake when the job started
+        os.killpg(run.pid, signum)
+        _, stderr = run.communicate(timeout=120)
+    finally:
+        if run.poll() is None:
+            os.killpg(run.pid, signal.SIGKILL)
+    assert run.returncode != 0 and "Traceback" not in stderr
+    assert (work / target).read_bytes() == earlier
+    assert (work / target).stat().st_mtime == 0
+    assert PUT_BACK + target in stderr.splitlines(), stderr[-2000:]
+    plan = run_snakemake(target, work, "-n")
+    assert plan.returncode == 0 and "work_precision" in planned_jobs(plan.stdout + plan.stderr)

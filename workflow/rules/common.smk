@@ -21,9 +21,10 @@ from tennis_stroke.experiments.specs import (
 )
 from tennis_stroke.io.interrupts import PARENT_ENV, process_identity
 from tennis_stroke.pipeline import params as job_params
-from tennis_stroke.pipeline.checkout import shell_safe
+from tennis_stroke.pipeline.checkout import runs_no_code, shell_safe
 from tennis_stroke.pipeline.code_inputs import CodeInputs
 from tennis_stroke.pipeline.config_check import canonical, load_schema
+from tennis_stroke.pipeline.kept import keep, restore, unrecord
 from tennis_stroke.pipeline.runs import (
     CHUNKED,
     CHUNKED_MAPS,
@@ -65,6 +66,22 @@ sys.executable = shell_safe(sys.executable)
 # and writing after it (tennis_stroke.io.interrupts.stop_with_snakemake).
 os.environ[PARENT_ENV] = process_identity(os.getpid())
 CODE = CodeInputs(workflow.basedir)
+# Every result and page as it is before any job, kept until the run has made the new
+# one: Snakemake removes a job's outputs when it starts the job, and a job that fails
+# or is stopped would take its earlier file with it.  A failed or stopped run puts each
+# one back, dated 1970 and without Snakemake's records of it, so that its job runs again
+# (tennis_stroke.pipeline.kept).
+KEPT = keep() if workflow.is_main_process and not runs_no_code(sys.argv[1:]) else []
+
+
+onerror:
+    put_back = restore(KEPT)
+    unrecord(workflow.persistence, put_back)
+    if put_back:
+        sys.stderr.write(
+            f"tennis-stroke: {len(put_back)} earlier result(s) put back until their jobs "
+            f"complete (dated 1970, so they run again): {', '.join(put_back)}\n"
+        )
 
 
 # A run is the paper's ({run} empty: its files under results/) or a declared scenario's

@@ -22,7 +22,6 @@ saying so, and no session.
 from __future__ import annotations
 
 import html
-import re
 import threading
 import time
 from collections.abc import Callable, Mapping
@@ -167,54 +166,6 @@ def _first_line(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {text[0] if text else ''}"
 
 
-#: A number as a person types it: an optional sign, digits with a decimal point or a
-#: decimal comma, an optional exponent ("7800", "-0.5", "0,35", ".3", "1e-5", "2E3").
-_NUMBER = re.compile(r"[-+]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][-+]?\d+)?")
-#: A comma that may separate thousands ("7,800"): read neither way.
-_THOUSANDS = re.compile(r"[-+]?[1-9]\d{0,2},\d{3}")
-
-
-def read_number(text: str) -> float:
-    """The number a person typed in a field (surrounding spaces and a typographic minus
-    allowed, a decimal comma read as a point); a ValueError naming why for anything
-    else, and for a comma that may separate thousands ("7,800")."""
-    if not isinstance(text, str):
-        raise ValueError(f"{text!r} is not a number")
-    typed = text.strip().replace("\u2212", "-")
-    if not _NUMBER.fullmatch(typed):
-        raise ValueError(f"{text.strip()!r} is not a number" if typed else "no value")
-    if _THOUSANDS.fullmatch(typed):
-        raise ValueError(f"{typed!r} is ambiguous: write it without the comma or with a point")
-    value = float(typed.replace(",", "."))
-    if not np.isfinite(value):
-        raise ValueError(f"{typed!r} is not a finite number")
-    return value
-
-
-def number_text(value: float) -> str:
-    """A number control's text: the shortest that reads back as ``value``."""
-    return repr(float(value)).removesuffix(".0")
-
-
-def refusal(control: controls.Control, value) -> str | None:
-    """Why ``value`` cannot be ``control``'s (a one-line reason; "" for no value at all),
-    or None: a choice must be one of the control's, a number finite and within its
-    bounds.  The page's widgets offer no other, but a page can send any value."""
-    if value is None:
-        return ""
-    if control.choices:
-        if not isinstance(value, str) or value not in control.choices:
-            return f"{value!r} is not one of {', '.join(control.choices)}"
-        return None
-    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
-        return f"{value!r} is not a finite number"
-    if (control.low is not None and value < control.low) or (
-        control.high is not None and value > control.high
-    ):
-        return f"{number_text(value)} is outside [{control.low}, {control.high}]"
-    return None
-
-
 class Session:
     """One browser session: its controls' values, its views and its requests."""
 
@@ -232,6 +183,21 @@ class Session:
         self._build(*shared.paper_views())
         self.status.text = "the paper's setting, coarse map; the full map once connected"
         doc.on_event("document_ready", self._connected)
+        if hasattr(doc, "apply_json_patch"):  # a Bokeh document (tests use a stand-in)
+            doc.apply_json_patch = partial(self._patched, doc.apply_json_patch)
+
+    def _patched(self, apply: Callable, patch, setter=None) -> None:
+        """Apply what the page sent (Bokeh's ``Document.apply_json_patch``).  Bokeh
+        refuses a value of the wrong type (a number, a list, a dict for a text field)
+        before any callback of ours runs, with a traceback in the server's log, nothing
+        on the page and the page's widget keeping the value: here the refusal is the
+        error line, and every field shows its value again."""
+        try:
+            apply(patch, setter=setter)
+        except Exception as exc:  # noqa: BLE001 - anything a page can send
+            self.error.text = html.escape(f"refused: {_first_line(exc)}", quote=False)
+            for widget in [*self.widgets.values(), self.scenario_name]:
+                widget.trigger("value", widget.value, widget.value)  # sent to the page
 
     def _connected(self, event) -> None:
         """The page is connected: compute its full map and claims (once)."""
@@ -285,7 +251,7 @@ class Session:
         self.map_source = self.map.select_one({"name": "explore-map-map"})
         self.map_colors = self.map.select_one({"name": "explore-map-colors"})
         self.map_line = self.map.select_one({"name": "explore-map-line"})
-        self.map_source.data = self._map_data(ds, 0)
+        self._set_map(self._map_data(ds, 0))
         self.map_source.js_on_change(
             "data", CustomJS(args={"source": self.map_source}, code=_PROBE_JS)
         )
@@ -360,7 +326,7 @@ class Session:
         else:  # a text field: its value changes on Enter or on leaving it, never per key
             widget = TextInput(
                 title=title,
-                value=number_text(paper),
+                value=controls.number_text(paper),
                 width=CONTROL_WIDTH,
                 name=control.key,
             )
@@ -407,6 +373,13 @@ class Session:
 
     # -- data of the views ------------------------------------------------------------
 
+    def _set_map(self, data: dict) -> None:
+        """Show the map ``data``; its grid (first point, steps, shape) is kept apart for
+        a tap: a page can send new data for the map's source."""
+        self.map_source.data = data
+        rows, cols = data["image"][0].shape
+        self.grid = (*(data[k][0] for k in ("x0", "y0", "dx", "dy")), rows, cols)
+
     @staticmethod
     def _map_data(ds, generation: int, level: str = "coarse") -> dict:
         data = map_data(ds, "theta0", "delta0", "v_out")
@@ -428,9 +401,11 @@ class Session:
 
     # -- events -----------------------------------------------------------------------
 
-    def _config(self) -> dict:
-        """The configuration at the controls' values, checked as a scenario's is."""
-        overrides = controls.overrides(self.shared.config, self.values)
+    def _config(self, values: Mapping[str, object] | None = None) -> dict:
+        """The configuration at the controls' values (or ``values``), checked as a
+        scenario's is."""
+        values = self.values if values is None else values
+        overrides = controls.overrides(self.shared.config, values)
         try:
             return scenario_config(self.shared.config, "explore", overrides, self.shared.schema)
         except ScenarioError as exc:
@@ -443,16 +418,21 @@ class Session:
         value, problem = new, None
         if not control.choices:
             try:
-                value = read_number(new)
+                value = controls.read_number(new)
             except ValueError as exc:
                 problem = str(exc)
         if problem is None:
             if value == self.values[control.key]:  # a value put back: nothing to do
                 return
-            problem = refusal(control, value)
+            problem = controls.refusal(control, value)
+        if problem is None:  # the whole setting, as the workflow checks it
+            try:
+                self._config({**self.values, control.key: value})
+            except controls.ExplorerError as exc:
+                problem = str(exc)
         if problem is not None:  # checked here: a page can send any value
             current = self.values[control.key]
-            kept = current if control.choices else number_text(current)
+            kept = current if control.choices else controls.number_text(current)
             if problem:
                 self.error.text = html.escape(
                     f"{control.label}: {problem}; kept {kept}", quote=False
@@ -469,20 +449,25 @@ class Session:
         try:
             for control in self.controls:
                 widget = self.widgets[control.key]
-                widget.value = str(control.paper) if control.choices else number_text(control.paper)
+                paper = control.paper
+                widget.value = str(paper) if control.choices else controls.number_text(paper)
         finally:
             self._resetting = False
         self.request("all")
 
     def _tap(self, event) -> None:
-        data = self.map_source.data
-        dx, dy = data["dx"][0], data["dy"][0]
-        i = int(np.clip(round((event.x - data["x0"][0]) / dx), 0, data["image"][0].shape[1] - 1))
-        j = int(np.clip(round((event.y - data["y0"][0]) / dy), 0, data["image"][0].shape[0] - 1))
-        self.picked = (
-            float(round(data["x0"][0] + i * dx, 6)),
-            float(round(data["y0"][0] + j * dy, 6)),
-        )
+        """A tap on the map picks the stroke of the nearest grid point of the map shown
+        (:attr:`grid`); a tap a page sends off the map, or not a number, is refused in
+        the error line."""
+        x0, y0, dx, dy, rows, cols = self.grid
+        x, y = event.x, event.y
+        numbers = all(isinstance(v, int | float) and np.isfinite(v) for v in (x, y))
+        if not (numbers and x0 - dx <= x <= x0 + cols * dx and y0 - dy <= y <= y0 + rows * dy):
+            self.error.text = html.escape(f"a tap at ({x!r}, {y!r}) is not on the map", quote=False)
+            return
+        i = int(np.clip(round((x - x0) / dx), 0, cols - 1))
+        j = int(np.clip(round((y - y0) / dy), 0, rows - 1))
+        self.picked = (float(round(x0 + i * dx, 6)), float(round(y0 + j * dy, 6)))
         self.request("stroke")
 
     def _save(self) -> None:
@@ -573,7 +558,7 @@ class Session:
             value = controls.config_value(config, control.key)
             if str(value) == str(control.paper) or value == control.paper:
                 continue
-            text = value if control.choices else number_text(value)
+            text = value if control.choices else controls.number_text(value)
             unit = f" {control.unit}" if control.unit not in ("", "1") else ""
             changed.append(f"{control.label} = {text}{unit}")
         return "computed with " + ("; ".join(changed) or "the paper's setting")
@@ -587,7 +572,7 @@ class Session:
         self.map_colors.update(
             **dict(zip(("low", "high"), value_range(data["image"][0]), strict=True))
         )
-        self.map_source.data = data
+        self._set_map(data)
         self.map_line.data = {"x": ds["theta0"].values, "y": ds["best_delta0"].values}
         shape = data["image"][0].shape[::-1]
         self.status.text = f"{level} map ({shape[0]} x {shape[1]}) in {elapsed:.2f} s"

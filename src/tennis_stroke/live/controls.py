@@ -11,6 +11,7 @@ computes each view at it).
 
 from __future__ import annotations
 
+import re
 from collections.abc import Collection, Mapping
 from dataclasses import dataclass
 
@@ -193,3 +194,51 @@ def _same(a, b) -> bool:
 def configuration(paper: Mapping, values: Mapping[str, object]) -> dict:
     """The configuration at control values: the paper's with :func:`overrides`."""
     return merged(paper, overrides(paper, values))
+
+
+#: A number as a person types it: an optional sign, digits with a decimal point or a
+#: decimal comma, an optional exponent ("7800", "-0.5", "0,35", ".3", "1e-5", "2E3").
+_NUMBER = re.compile(r"[-+]?(?:\d+(?:[.,]\d*)?|[.,]\d+)(?:[eE][-+]?\d+)?")
+#: A comma that may separate thousands ("7,800"): read neither way.
+_THOUSANDS = re.compile(r"[-+]?[1-9]\d{0,2},\d{3}")
+
+
+def read_number(text: str) -> float:
+    """The number a person typed in a field (surrounding spaces and a typographic minus
+    allowed, a decimal comma read as a point); a ValueError naming why for anything
+    else, and for a comma that may separate thousands ("7,800")."""
+    if not isinstance(text, str):
+        raise ValueError(f"{text!r} is not a number")
+    typed = text.strip().replace("\u2212", "-")
+    if not _NUMBER.fullmatch(typed):
+        raise ValueError(f"{text.strip()!r} is not a number" if typed else "no value")
+    if _THOUSANDS.fullmatch(typed):
+        raise ValueError(f"{typed!r} is ambiguous: write it without the comma or with a point")
+    value = float(typed.replace(",", "."))
+    if not np.isfinite(value):
+        raise ValueError(f"{typed!r} is not a finite number")
+    return value
+
+
+def number_text(value: float) -> str:
+    """A number control's text: the shortest that reads back as ``value``."""
+    return repr(float(value)).removesuffix(".0")
+
+
+def refusal(control: Control, value) -> str | None:
+    """Why ``value`` cannot be ``control``'s (a one-line reason), or None: a choice must
+    be one of the control's, a number finite and within its bounds.  The page's widgets
+    offer no other, but a page can send any value (a select's ``null`` too)."""
+    if value is None:
+        return "no value"
+    if control.choices:
+        if not isinstance(value, str) or value not in control.choices:
+            return f"{value!r} is not one of {', '.join(control.choices)}"
+        return None
+    if isinstance(value, bool) or not isinstance(value, int | float) or not np.isfinite(value):
+        return f"{value!r} is not a finite number"
+    if (control.low is not None and value < control.low) or (
+        control.high is not None and value > control.high
+    ):
+        return f"{number_text(value)} is outside [{control.low}, {control.high}]"
+    return None

@@ -7,8 +7,10 @@ through :func:`tennis_stroke.model.params.resolve_params` (every parameter's uni
 bounds), the solver section and the work-precision tolerances through
 :class:`~tennis_stroke.solver.settings.SolverSettings` (the accuracy bound), the
 stability cases through :func:`tennis_stroke.studies.methods.check_case` (the methods
-that exist), and last the memory of every map's job (:mod:`tennis_stroke.pipeline.memory`)
-against the limit (config key ``max_memory``).  The Snakefile prints the first message and
+that exist), then the memory of every map's job (:mod:`tennis_stroke.pipeline.memory`)
+against the limit (config key ``max_memory``), and last the time of every solver study's
+job (:mod:`tennis_stroke.pipeline.job_time`) against its limit (``max_job_hours``): a step
+or a count that costs time, not memory.  The Snakefile prints the first message and
 exits before any job starts.
 """
 
@@ -32,6 +34,7 @@ from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_erro
 from ..model.params import CHOICES, PARAMETERS, ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
 from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case
+from .job_time import JobTimeError, check_time, study_jobs, time_limit
 from .memory import (
     WORD,
     MemoryLimitError,
@@ -285,6 +288,23 @@ def memory_errors(config: Mapping, readings: int = 1) -> Iterator[str]:
             return
 
 
+def time_errors(config: Mapping) -> Iterator[str]:
+    """The first solver study's job whose time estimate
+    (:func:`tennis_stroke.pipeline.job_time.study_jobs`) is above the limit (config key
+    ``max_job_hours``), as a one-line message naming the key of its dearest part."""
+    try:
+        limit = time_limit(config.get("max_job_hours"), "config key 'max_job_hours'")
+    except ValueError as exc:
+        yield f"{exc} (rule: hours)"
+        return
+    for job, parts in study_jobs(config):
+        try:
+            check_time(job, parts, limit)
+        except JobTimeError as exc:
+            yield f"{exc} (rule: time)"
+            return
+
+
 def _number(text: str):
     for kind in (int, float):
         try:
@@ -435,7 +455,12 @@ def _parsed_schema(path: Path, mtime_ns: int, size: int) -> dict:
 def config_errors(config: Mapping, schema_path: str | Path, readings: int = 1) -> list[str]:
     """Every problem of ``config`` as one-line messages (empty: the config is good);
     ``readings``: how many readings the largest job searches in lockstep (the memory
-    check, :func:`memory_errors`)."""
+    check, :func:`memory_errors`); last the solver studies' time (:func:`time_errors`)."""
     schema = load_schema(schema_path)
     errors = schema_errors(config, schema, "config")
-    return errors or list(_semantic_errors(config)) or list(memory_errors(config, readings))
+    return (
+        errors
+        or list(_semantic_errors(config))
+        or list(memory_errors(config, readings))
+        or list(time_errors(config))
+    )

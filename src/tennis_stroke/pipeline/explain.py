@@ -79,7 +79,7 @@ def effect(key: str, claims: Sequence[Mapping]) -> KeyEffect:
         note = "checked when a map is gathered: moves no number (reruns the gatherings)"
     elif key.startswith("chunks."):
         note = "splits the map into jobs: moves no number (reruns the map's jobs)"
-    elif key == "max_memory":
+    elif key in ("max_memory", "max_job_hours"):
         note = "a limit checked before any job: moves no number"
     moving = [] if note else rows
     inference = [

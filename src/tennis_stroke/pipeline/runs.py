@@ -36,11 +36,11 @@ from .scenarios import (
     ScenarioError,
     changes,
     changes_read,
+    changing_config,
     describe,
     folder,
     load_scenarios,
     resolved_results,
-    scenario_config,
     unreached,
 )
 from .targets import damaged_results
@@ -173,7 +173,7 @@ class Runs:
         configs = {}
         for name, overrides in scenarios.items():
             try:
-                configs[name] = scenario_config(config, name, overrides, schema)
+                configs[name] = changing_config(config, name, overrides, schema)
             except ScenarioError as exc:
                 errors[name] = str(exc)
         for error in errors.values():

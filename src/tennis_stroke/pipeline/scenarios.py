@@ -119,6 +119,31 @@ def scenario_config(
     return canonical(config, load_schema(schema))
 
 
+def changing_config(
+    base: Mapping, name: str, overrides: Mapping | None, schema: str | Path
+) -> dict:
+    """:func:`scenario_config`, refusing a scenario that changes nothing of ``base``
+    (every override the value ``base`` has, a model value's default, or none: ``NAME:
+    {}``): its page would be the paper's under another name.  The one check of a
+    declared scenario at planning (:class:`~tennis_stroke.pipeline.runs.Runs`), of the
+    explorer's Save (:func:`save_scenario`) and of ``tennis-stroke whatif``
+    (:func:`scenario_reach`).  Raises :class:`ScenarioError`."""
+    config = scenario_config(base, name, overrides, schema)
+    loaded = load_schema(schema)
+    if not changes(_complete(base, loaded), _complete(config, loaded)):
+        raise ScenarioError(
+            f"scenario {name!r} changes nothing of the paper's configuration (each "
+            "override is the value it has, or a model value's default)"
+        )
+    return config
+
+
+def _complete(config: Mapping, schema: Mapping) -> dict:
+    """``config`` with the schema's defaults, in one spelling per value: two configs
+    that run the same jobs compare equal."""
+    return canonical(with_defaults(config, schema), schema)
+
+
 def load_scenarios(
     path: str | Path, extra: Mapping | None = None, errors: dict | None = None
 ) -> dict[str, dict]:
@@ -259,12 +284,7 @@ def scenario_reach(
         base = canonical(with_defaults(load_yaml(root / CONFIG_FILE), loaded), loaded)
     except ConfigFileError as exc:
         raise ScenarioError(str(exc)) from None
-    config = scenario_config(base, name, overrides, schema)
-    if not changes(base, config):
-        raise ScenarioError(
-            f"scenario {name!r} changes nothing of the paper's configuration (each "
-            "override is the value it has, or a model value's default)"
-        )
+    config = changing_config(base, name, overrides, schema)
     moved = set(changed_results(base, config))
     for figure in figures:
         if not moved & set(FIGURES[figure].files):
@@ -316,7 +336,8 @@ def save_scenario(
 ) -> Path:
     """Declare scenario ``name`` with ``overrides`` at the end of ``path``
     (``config/scenarios.yaml``; its comments kept), after checking it as a declared one
-    is (:func:`scenario_config`); a name already declared is refused.  Returns the path.
+    is (:func:`changing_config`: one that changes nothing is refused); a name already
+    declared is refused.  Returns the path.
 
     Safe against what a saver meets: the file is read again under a lock (two savers of
     one name: the second is refused), the new text is read back before it replaces the
@@ -325,7 +346,7 @@ def save_scenario(
     regular file is refused, a symbolic link stays a link to the file it names, and the
     file keeps its mode.  Every refusal is one line (:class:`ScenarioError`)."""
     path = Path(path)
-    scenario_config(base, name, overrides, schema)
+    changing_config(base, name, overrides, schema)
     target = path.resolve() if path.is_symlink() else path
     if target.exists() and not target.is_file():
         raise ScenarioError(f"{path}: not a regular file: not saved")
