@@ -107,7 +107,7 @@ def edited_shape(table: pd.DataFrame, every: int = 3) -> pd.DataFrame:
 def text_of(html: str) -> str:
     """A page's text: tags dropped, entities of quotes and ampersands read, spaces
     collapsed."""
-    text = re.sub(r"<[^>]+>", " ", html)
+    text = re.sub(r"<[^>]+>", "", html)
     for entity, char in (("&#39;", "'"), ("&quot;", '"'), ("&amp;", "&"), ("&minus;", "-")):
         text = text.replace(entity, char)
     return " ".join(text.split())
