@@ -56,6 +56,55 @@ while (stack.length) {
 return null;
 """
 
+#: Every text a plot draws itself beside its glyphs (labels and legends: titles and axes
+#: aside), with the box it is drawn in and the box it must lie in (a label: the plot's
+#: frame, inside the axes; a legend: the canvas), in canvas pixels.
+TEXTS_JS = """
+const out = [];
+const stack = [...Bokeh.index.roots];
+while (stack.length) {
+  const v = stack.pop();
+  if (v.renderer_views && v.canvas) {
+    const c = v.canvas.bbox;
+    const canvas = {left: 0, right: c.width, top: 0, bottom: c.height};
+    const f = v.frame.bbox;
+    const frame = {left: f.left, right: f.right, top: f.top, bottom: f.bottom};
+    for (const r of v.renderer_views.values()) {
+      let box = null, texts = [], within = null;
+      if (r._rect !== undefined && r.model.x_offset !== undefined) {  // a Label
+        const {sx, sy, width, height, anchor} = r._rect;
+        const left = sx - anchor.x * width, top = sy - anchor.y * height;
+        box = {left, right: left + width, top, bottom: top + height};
+        texts = [r.model.text];
+        within = frame;  // a label beside a glyph: over an axis or a colour bar outside it
+      } else if (r.model.items !== undefined && r.bbox !== undefined) {  // a Legend
+        const b = r.bbox;
+        box = {left: b.left, right: b.right, top: b.top, bottom: b.bottom};
+        texts = r.model.items.map((i) => i.label?.value ?? String(i.label));
+        within = canvas;  // a legend: beside the frame, inside the canvas
+      }
+      if (box) out.push({plot: v.model.name, texts, ...box, within});
+    }
+  }
+  stack.push(...(v.child_views ?? []));
+}
+return out;
+"""
+
+
+def cut_texts(driver) -> list[dict]:
+    """The labels and legends of the page's plots that run out of the box they must lie
+    in (:data:`TEXTS_JS`): cut at the canvas's edge, or drawn over an axis."""
+    return [
+        t
+        for t in driver.execute_script(TEXTS_JS)
+        if t["left"] < t["within"]["left"] - 0.5
+        or t["right"] > t["within"]["right"] + 0.5
+        or t["top"] < t["within"]["top"] - 0.5
+        or t["bottom"] > t["within"]["bottom"] + 0.5
+    ]
+
+
 #: Whether the page's Bokeh document is drawn and idle.
 IDLE_JS = (
     "return typeof Bokeh !== 'undefined' && Bokeh.documents.length > 0"

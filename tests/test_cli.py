@@ -145,7 +145,7 @@ def test_sweep_writes_cf_netcdf(tmp_path, capsys):
         (["strike", "--theta0", "nan", "--delta0", "3"], "must be finite"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "M2=-1"], "'M2' must be > 0"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "L2=0"], "'L2' must be > 0"),
-        (["strike", "--theta0", "90", "--delta0", "3", "--set", "nope=1"], "unknown parameter"),
+        (["strike", "--theta0", "90", "--delta0", "3", "--set", "nope=1"], "is no model parameter"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "C2=x"], "must be a number"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "C2"], "expects KEY=VALUE"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "tau=nan"], "must be finite"),
@@ -822,3 +822,40 @@ def test_a_table_wraps_its_last_column_to_the_width_under_itself():
         "             seven eight nine ten",
     ]
     assert text_table(("name", "value", "meaning"), rows).count("\n") == 1  # no width
+
+
+@pytest.mark.parametrize(
+    ("argv", "hint"),
+    [
+        (["strike", "--theta0", "90", "--delta0", "30", "--set", "M22=0.3"], "(did you mean M2?)"),
+        (
+            ["sweep", "--theta0", "60:120:3", "--delta0", "0:90:3", "--set", "M22=0.3"],
+            "(did you mean M2?)",
+        ),
+        (["whatif", "x", "--set", "M22=0.3", "-n"], "(did you mean M2?)"),
+        (["whatif", "x", "--set", "model.M22=0.3", "-n"], "(did you mean M2?)"),
+        (
+            ["whatif", "x", "--set", "torque_delay.base_strok.C2=8", "-n"],
+            "(did you mean torque_delay.base_stroke,",
+        ),
+        (["config", "explain", "M22"], "(did you mean M2"),
+        (
+            ["config", "explain", "torque_delay.base_strok.C2"],
+            "(did you mean torque_delay.base_stroke.C2,",
+        ),
+    ],
+)
+def test_every_command_that_takes_a_name_or_key_says_the_closest(
+    argv, hint, monkeypatch, capsys, tmp_path
+):
+    """Issue 53: `strike --set M22=0.3` listed every key while `whatif --set M22=...`
+    said 'did you mean M2?'.  Every command that takes --set or a config key refuses a
+    name it does not know in one line with the closest names (one function:
+    tennis_stroke.io.config_files.did_you_mean)."""
+    monkeypatch.chdir(ROOT)  # whatif and config explain read the project's files
+    with pytest.raises(SystemExit) as info:
+        main([*argv, *(["--out", str(tmp_path / "x.nc")] if argv[0] == "sweep" else [])])
+    err = capsys.readouterr().err
+    assert info.value.code == 2 and err.count("\n") == 1 and hint in err, err
+    assert "known:" not in err  # not every name there is
+    assert not list(tmp_path.iterdir())

@@ -30,7 +30,7 @@ from tennis_stroke.inference.paper_config import (
     describe_departures,
     read_record,
 )
-from tennis_stroke.replication.claims import STATUS_WORDS
+from tennis_stroke.replication.claims import STATUS_WORDS, tally
 from tennis_stroke.replication.ladder import findings, verdict
 
 PAGES = ("README.md", "docs/inference.md", "docs/assumptions.md")
@@ -49,38 +49,44 @@ def markers(name: str) -> tuple[str, str]:
 
 def block(table: pd.DataFrame) -> str:
     """The README's results at a glance, from a claims table (``results/claims.csv``):
-    the claims by their verdict under the default reading (rows, in the report's words)
-    and by how they fare across the consistent readings (columns, the robustness
-    classes), then the claims that deviate or fail."""
-    counts = pd.crosstab(table["status"], table["robustness"])
+    the claims by their verdict under the default reading (rows, in the report's words:
+    the held-out claims by status, then the claims used for fit within and outside their
+    tolerance, so the rows add up to every claim) and by how they fare across the
+    consistent readings (columns, the robustness classes), then the claims outside their
+    tolerance."""
+    counts = tally(table)
+    held = table[table["fit_set"] == ""]
+    classes = pd.crosstab(held["status"], held["robustness"])
     lines = [
-        f"{len(table)} claims: a row for each verdict under the default reading, a column "
-        "for how those claims fare across every reading consistent with the paper.",
+        f"{counts['claims'].total} claims: the {counts['held'].total} held out by their "
+        f"verdict under the default reading, then the {counts['fit'].total} used for fit; "
+        "a column for how the held-out claims fare across every reading consistent with "
+        "the paper.",
         "",
         "| default reading | claims | robust (pass under every reading) "
         "| reading-dependent (pass under some) | not reproduced under any reading |",
         "|---|---:|---:|---:|---:|",
     ]
-    for status in STATUSES:
-        if status not in counts.index:
+    rows = {s: counts["held"][s] for s in ("pass", "known_deviation", "fail")}
+    rows |= {"used_for_fit": counts["fit"]["within"], "outside": counts["fit"]["outside"]}
+    for status in ROWS:
+        if not rows[status]:
             continue
-        row = counts.loc[status]
-        cells = [int(row.get(c, 0)) for c in ("robust", "reading_dependent", "not_reproduced")]
-        total = int(row.sum())
-        if status == "used_for_fit":  # chose the readings: no robustness class
-            cells = ["-"] * 3
-        word = STATUS_WORDS[status][1]
-        lines.append(f"| {word} | {total} | " + " | ".join(map(str, cells)) + " |")
+        cells: list = ["-"] * 3  # a claim used for fit has no robustness class
+        if status in classes.index:
+            row = classes.loc[status]
+            cells = [int(row.get(c, 0)) for c in CLASSES[:3]]
+        word = ROW_WORDS.get(status) or STATUS_WORDS[status][1]
+        lines.append(f"| {word} | {rows[status]} | " + " | ".join(map(str, cells)) + " |")
     deviating = table[table["status"].isin(("known_deviation", "fail"))]
     if len(deviating):
-        which = " and ".join(
-            _claims_that(int((deviating["status"] == status).sum()), status)
-            for status in ("known_deviation", "fail")
-            if (deviating["status"] == status).any()
-        )
+        which = [_claims_that(counts["held"][s], s) for s in ("known_deviation", "fail")] + [
+            f"{counts['fit']['outside']} used for fit outside their tolerance"
+        ]
+        which = [w for w in which if not w.startswith("0 ")]
         lines += [
             "",
-            f"The {which} under the default reading (the report gives each one's cause):",
+            f"The {_and(which)} under the default reading (the report gives each one's cause):",
             "",
             "| claim | paper | ours | unit | evidence |",
             "|---|---:|---:|---|---|",
@@ -91,6 +97,17 @@ def block(table: pd.DataFrame) -> str:
                 f"{float(r['reproduced_value']):.4g} | {r['unit']} | {r['evidence'] or '-'} |"
             )
     return "\n".join(lines)
+
+
+#: The rows of the README's table: the held-out claims by status, then the claims used
+#: for fit within their tolerance (``used_for_fit``) and outside it (``outside``).
+ROWS = ("pass", "used_for_fit", "known_deviation", "fail", "outside")
+ROW_WORDS = {"outside": "used for fit, outside tolerance"}
+
+
+def _and(items: list[str]) -> str:
+    """``a``, ``a and b``, ``a, b and c``."""
+    return " and ".join([", ".join(items[:-1]), items[-1]] if len(items) > 1 else items)
 
 
 def _claims_that(n: int, status: str) -> str:
@@ -108,8 +125,10 @@ def held_out(table: pd.DataFrame, results: Path) -> str:
         readings, variants = kept.sizes["reading"], kept.sizes["variant"]
     statuses = held["status"].value_counts()
     classes = held["robustness"].value_counts()
+    fit = tally(table)["fit"]
+    off = f", {fit['outside']} of them outside their tolerance" if fit["outside"] else ""
     lines = [
-        f"{len(table)} claims: {len(table) - len(held)} chose the readings (`used_for_fit`), "
+        f"{len(table)} claims: {fit.total} chose the readings (`used_for_fit`{off}), "
         f"{len(held)} are held out: "
         + ", ".join(f"{int(statuses.get(s, 0))} `{s}`" for s in STATUSES if s != "used_for_fit")
         + f". Across the {readings} kept readings consistent with the paper, each under "

@@ -11,6 +11,7 @@ from pathlib import Path
 import pandas as pd
 import pytest
 import yaml
+from claim_tables import edited_shape, numbers, text_of
 from conftest import ROOT, SCENARIO_PAGE, merged, record_configuration, run_snakemake
 
 from tennis_stroke.experiments.specs import INFERENCE_RESULTS, PAPER_RESULTS, STUDY_RESULTS
@@ -279,6 +280,12 @@ def test_a_scenario_page_in_a_real_browser(tiny_scenario, tmp_path):
     assert len(seen["images"]) >= 6 and all(loaded for _, loaded in seen["images"])
     assert not [c for c in CLAIM_IDS if c not in seen["text"]]
     assert "torque_delay.base_stroke.C2 = 8 N m (paper: 5 N m)" in seen["text"]
+    # each claim's value moves, stays or cannot be compared: the parts make every claim
+    said = re.search(
+        r"Of the (\d+) claims' values, (\d+) move, (\d+) stay the same and (\d+) cannot",
+        " ".join(seen["text"].split()),
+    )
+    assert said and int(said[1]) == len(CLAIM_IDS) == sum(int(said[k]) for k in (2, 3, 4))
     assert not seen["overflowing"], seen["overflowing"]
     assert seen["pageWidth"] <= seen["viewport"], (seen["pageWidth"], seen["viewport"])
 
@@ -316,6 +323,63 @@ def test_a_departing_configuration_opens_the_page(tiny_run, tmp_path):
         ROOT / "config/claims.yaml",
     )
     assert "departs from the paper" not in paper
+
+
+def _cards(html: str) -> dict[str, str]:
+    """The scoreboard's cards by their class, as text."""
+    board = html.split('id="scoreboard"')[1].split("<nav")[0]
+    return {
+        k: text_of(v) for k, v in re.findall(r'<div class="card (\w+)">(.*?)</div>', board, re.S)
+    }
+
+
+@pytest.mark.parametrize("shape", ["as run", "edited"])
+def test_every_count_line_of_the_page_adds_up(tiny_run, tmp_path, shape):
+    """Issue 53: '7 deviate, each with its cause: 1 ill conditioned, 8 reading dependent,
+    6 irreducible' (15), and '23 of 35 held-out claims reproduce' beside 7 deviating and
+    8 failing (38).  On the page of the tiny run's claims and of an edited
+    configuration's (claims held out and used for fit pushed outside their tolerance),
+    every count line sums to the set it counts, read from the table."""
+    table = pd.read_csv(tiny_run / "results/claims.csv", keep_default_na=False, dtype=str)
+    if shape == "edited":
+        table = edited_shape(table)
+    table.to_csv(tmp_path / "claims.csv", index=False)
+    html = _build(
+        tiny_run, tmp_path / "index.html", tmp_path / "claims.csv", ROOT / "config/claims.yaml"
+    )
+    held = int((table["fit_set"] == "").sum())
+    outside = table["status"].isin(["known_deviation", "fail"])
+    cards = _cards(html)
+    first = {k: int(re.match(r"\d+", v)[0]) for k, v in cards.items()}
+    assert int(re.search(r"of (\d+) held-out", cards["pass"])[1]) == held
+    assert first["pass"] + first["known_deviation"] + first["fail"] == held, cards
+    for card in ("known_deviation", "fail"):
+        causes = cards[card].partition(": ")[2]
+        assert not causes or sum(numbers(causes)) == first[card], cards[card]
+    fit = re.match(
+        r"(\d+) used for fit: (\d+) within tolerance(?:, (\d+) outside it(?:: (.*?))?)? \(fits\)",
+        cards["used_for_fit"],
+    )
+    assert fit, cards["used_for_fit"]
+    assert int(fit[1]) == len(table) - held == int(fit[2]) + int(fit[3] or 0)
+    assert not fit[4] or sum(numbers(fit[4])) == int(fit[3])
+    # below the board: every claim outside its tolerance, by status, then by cause
+    section = html.split('id="deviations"')[1].split("</section>")[0]
+    groups = [int(n) for n in re.findall(r'<h3 id="cause-[^"]+">[^<]*\((\d+)\)</h3>', section)]
+    assert sum(groups) == int(outside.sum())
+    intro = re.search(
+        r"(\d+) of the (\d+) claims lie outside their tolerance: (\d+) held-out deviate as "
+        r"declared, (\d+) held-out fail unexpectedly and (\d+) used for fit",
+        text_of(section),
+    )
+    if outside.any():
+        assert intro, text_of(section)[:300]
+        assert int(intro[1]) == int(outside.sum()) == sum(int(intro[k]) for k in (3, 4, 5))
+        assert int(intro[2]) == len(table)
+        assert (int(intro[3]), int(intro[4])) == (first["known_deviation"], first["fail"])
+    robust = re.search(r"the (\d+) held-out claims are (.*?)\.", text_of(html.split("<nav")[0]))
+    if robust:
+        assert int(robust[1]) == held == sum(numbers(robust[2])), robust[0]
 
 
 def test_the_ledger_marks_a_fitted_default_as_the_fits_chose_it(tmp_path):

@@ -9,6 +9,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+import xarray as xr
 from chromium import CHROMIUM, DRIVER, MISSING, ROWS_JS, chromium, hover_lines, wait_idle
 from conftest import SCENARIO, SCENARIO_PAGE
 
@@ -85,6 +86,91 @@ def test_hovering_a_cell_of_fig2_shows_the_files_value(browser, page, tiny_run):
         assert float(shown["delta0 (degree)"]) == pytest.approx(delta0)
         assert shown["v_out (km/h)"] == f"{float(cell['v_out']):.2f}"
         assert shown["status"] == "ok"
+
+
+def _map(tilt: float = 0.0) -> xr.Dataset:
+    """A map of v_out over (theta0, delta0), as the paper's files hold one."""
+    theta, delta = np.arange(60.0, 121.0, 5.0), np.arange(0.0, 101.0, 5.0)
+    v = 130.0 + 0.3 * theta[:, None] + 0.1 * delta[None, :] + tilt * (theta[:, None] - 90.0)
+    status = {"flag_values": np.arange(7, dtype=np.int8), "flag_meanings": " ".join("abcdefg")}
+    return xr.Dataset(
+        {
+            "v_out": (("theta0", "delta0"), v, {"units": "km/h", "long_name": "rebound speed"}),
+            "status": (("theta0", "delta0"), np.zeros(v.shape, np.int8), status),
+        },
+        coords={
+            "theta0": ("theta0", theta, {"units": "degree"}),
+            "delta0": ("delta0", delta, {"units": "degree"}),
+        },
+    )
+
+
+def test_no_claim_name_of_a_view_is_cut(browser, tmp_path):
+    """Issue 53: on a scenario's page a claim's name was cut ('fig2_best_delta0_at_120
+    (paper'), as Fig. 13's had been ('fig14_wors'): names drawn beside their marks ran
+    out of the comparison's narrow panels.  Fig. 3's marks (points at theta0 = 90 and
+    120 deg, by delta0 = 0 deg) and a line near the edge, on a comparison and on a map of
+    the report: in Chromium every label and legend lies whole in its box (a label in its
+    plot's frame, a legend in its canvas) and every mark's name is on the page."""
+    from chromium import TEXTS_JS, cut_texts
+
+    from tennis_stroke.replication.views.comparison import map_comparison
+
+    marks = [
+        {
+            "claim": f"fig3_best_delta0_at_{t}",
+            "axis": "delta0",
+            "paper": d,
+            "ours": d + 1.0,
+            "other_paper": float(t),
+            "other_ours": float(t),
+        }
+        for t, d in ((120, 0.0), (90, 26.1))
+    ] + [
+        {
+            "claim": "fig14_worst_direction",
+            "axis": "theta0",
+            "paper": 119.0,
+            "ours": 61.0,
+            "other_paper": None,
+            "other_ours": None,
+        }
+    ]
+    views = {
+        "fig03_angle_map": map_comparison(
+            _map(),
+            _map(0.1),
+            "theta0",
+            "delta0",
+            "v_out",
+            "fig03_angle_map",
+            "heavy",
+            (marks, marks),
+        ),
+        "fig03_single": map_view(_map(), "theta0", "delta0", "v_out", "t", "fig03_single", marks),
+    }
+    head, divs = page_views(views)
+    page = tmp_path / "marks.html"
+    page.write_text(
+        f"<!DOCTYPE html><html><head>{head}</head><body>{''.join(divs.values())}</body></html>"
+    )
+    _open(browser, page)
+    assert cut_texts(browser) == []
+    shown = [t for entry in browser.execute_script(TEXTS_JS) for t in entry["texts"]]
+    for mark in marks:
+        for who in ("paper", "ours"):
+            assert shown.count(f"{mark['claim']} ({who})") == 3, (mark["claim"], who)
+    shots = Path(os.environ.get("REPORT_SCREENSHOTS", tmp_path))
+    shots.mkdir(parents=True, exist_ok=True)
+    assert browser.save_screenshot(str(shots / "marks-legend.png"))
+
+
+def test_no_text_of_the_report_s_or_a_scenario_s_views_is_cut(browser, page, scenario_page):
+    from chromium import cut_texts
+
+    for html in (page, scenario_page[1]):
+        _open(browser, html)
+        assert cut_texts(browser) == [], html
 
 
 def test_the_hover_check_fails_on_a_view_whose_data_disagree(browser, tiny_run, tmp_path):

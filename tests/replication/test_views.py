@@ -322,24 +322,49 @@ def test_a_map_comparison_draws_each_side_s_line_and_hovers_its_extras():
     assert data["theta0_best_scenario"][0].max() == 5.0 and data["theta0_best_paper"][0].max() == 0
 
 
-def test_a_mark_label_in_the_right_half_ends_at_its_line():
-    """Fig. 13's direction marks near the right edge were cut ("fig14_wors"): a label
-    in the right half of a map is right-aligned to its line, one in the left half not."""
-    from bokeh.models import Label
+def test_every_mark_is_named_in_a_legend_the_panels_keep_one_frame():
+    """A mark's name drawn beside it ran out of narrow plots ("fig14_wors",
+    "fig2_best_delta0_at_120 (paper"): each is now a legend entry under the plot (the
+    browser lays it out, tests/replication/test_report_browser.py checks it is whole),
+    no label is left, and in a comparison the panel without marks grows as the others,
+    so the frames stay level."""
+    from bokeh.models import Label, Legend
 
     theta = np.arange(60.0, 121.0, 5.0)
     marks = [
         {
-            "claim": c,
+            "claim": "point",
+            "axis": "delta0",
+            "paper": 20.0,
+            "ours": 25.0,
+            "other_paper": 90.0,
+            "other_ours": 90.0,
+        },
+        {
+            "claim": "line",
             "axis": "theta0",
-            "paper": x,
-            "ours": x,
+            "paper": 118.0,
+            "ours": 65.0,
             "other_paper": None,
             "other_ours": None,
-        }
-        for c, x in (("left_one", 65.0), ("right_one", 118.0))
+        },
     ]
     p = maps.map_view(_angle_map(theta), "theta0", "delta0", "v_out", "t", "fig", marks)
-    labels = {m.text: m for m in _models(p, Label)}
-    assert labels["right_one (paper)"].text_align == "right"
-    assert labels["left_one (paper)"].text_align == "left"
+    assert not _models(p, Label)
+    (legend,) = _models(p, Legend)
+    named = [item.label["value"] for item in legend.items]
+    assert named == ["point (paper)", "point (ours)", "line (paper)", "line (ours)"]
+    assert p.height == 460 + maps.LEGEND_ROW * 4 + 8
+    view = comparison.map_comparison(
+        _angle_map(theta),
+        _angle_map(theta, 0.1),
+        "theta0",
+        "delta0",
+        "v_out",
+        "f",
+        "s",
+        (marks, marks),
+    )
+    heights = {c.name: (c.height, c.min_border_bottom) for c in view.children}
+    assert len({h for h, _ in heights.values()}) == 1, heights
+    assert heights["f-difference"][1] == maps.LEGEND_ROW * 4 + 8 + 5, heights

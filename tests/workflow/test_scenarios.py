@@ -402,6 +402,33 @@ def test_a_mistyped_key_gets_the_nearest_full_keys():
         explain("model.ballmass", PAPER, CLAIMS)
 
 
+def test_every_key_of_the_config_at_any_depth_is_explained():
+    """Issue 53: `config explain torque_delay.fig9.tau.step` was refused though
+    `torque_delay.fig9.tau` was explained.  Every key of config.yaml at any depth is
+    explained, and a range's start, stop or step moves what the range moves."""
+    from tennis_stroke.io.config_files import config_keys
+
+    keys = list(config_keys(PAPER))
+    assert {"torque_delay.fig9.tau.step", "angle_maps.theta0.start", "torque_delay"} <= set(keys)
+    for key in keys:
+        assert explain(key, PAPER, CLAIMS).key == key
+    ranges = [k for k in keys if {f"{k}.start", f"{k}.stop"} <= set(keys)]
+    assert "torque_delay.fig9.tau" in ranges
+    for key in ranges:
+        whole = explain(key, PAPER, CLAIMS)
+        for part in ("start", "stop", "step"):
+            if f"{key}.{part}" in keys:
+                inner = explain(f"{key}.{part}", PAPER, CLAIMS)
+                assert (inner.rows, inner.files, inner.figures, inner.claims) == (
+                    whole.rows,
+                    whole.files,
+                    whole.figures,
+                    whole.claims,
+                ), f"{key}.{part}"
+    with pytest.raises(KeyError, match=r"did you mean torque_delay\.fig9\.tau\.step"):
+        explain("torque_delay.fig9.tau.stepp", PAPER, CLAIMS)
+
+
 def test_a_model_option_is_explained_as_whatif_sets_it():
     """`whatif --set contact_model=impact` sets model.contact_model: explain knows it."""
     for key in ("contact_model", "model.contact_model"):

@@ -132,14 +132,24 @@ def add_model_options(p: argparse.ArgumentParser) -> None:
 
 
 def parse_set(items: Sequence[str]) -> dict[str, object]:
-    from ..model.params import parse_value
+    """``--set NAME=VALUE`` items of a command that takes model parameters, readings and
+    options by name: a name that is none of them is refused with the closest names, as
+    every command refuses a name or key it does not know."""
+    from ..io.config_files import did_you_mean
+    from ..model.params import known_names, parse_value
 
     out: dict[str, object] = {}
     for item in items:
         key, sep, value = item.partition("=")
         if not sep or not key:
             raise ValueError(f"--set expects KEY=VALUE, got {item!r}")
-        out[key.strip()] = parse_value(key.strip(), value.strip())
+        key = key.strip()
+        if key not in known_names():
+            raise ValueError(
+                f"--set {item!r}: {key!r} is no model parameter, reading or option"
+                f"{did_you_mean(key, known_names())} ('tennis-stroke params' lists them)"
+            )
+        out[key] = parse_value(key, value.strip())
     return out
 
 

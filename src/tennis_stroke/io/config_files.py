@@ -143,12 +143,38 @@ def schema_errors(data: object, schema: Mapping, what: str) -> list[str]:
             missing = error.message.split("'")[1]
             out.append(f"{what} key {dotted_key([*parts, missing])!r} is missing (required)")
         elif error.validator == "additionalProperties":
-            out.append(f"{what} key {dotted_key(parts)!r}: {error.message} (unknown key)")
+            allowed = error.schema.get("properties", {})
+            extra = [k for k in error.instance if k not in allowed]
+            known = [dotted_key([*parts, k]) for k in allowed]
+            hint = did_you_mean(dotted_key([*parts, extra[0]]), known) if extra else ""
+            out.append(f"{what} key {dotted_key(parts)!r}: {error.message} (unknown key){hint}")
         else:
             out.append(
                 f"{what} key {dotted_key(parts)!r}: {error.message} (rule: {error.validator})"
             )
     return out
+
+
+def did_you_mean(name: str, known) -> str:
+    """`` (did you mean M2?)``: the closest of the names ``known`` to ``name``, a name
+    nobody knows (at most three, by difflib's ratio, at least 0.6), or ``""`` when none
+    is close.  The one hint of every command that takes a name or a key (``--set``,
+    ``config explain``) and of the config's schema."""
+    import difflib
+
+    close = difflib.get_close_matches(name, list(known), n=3, cutoff=0.6)
+    return f" (did you mean {', '.join(close)}?)" if close else ""
+
+
+def config_keys(node, parts: tuple = ()):
+    """Every dotted key of a config, at every depth, each before the keys inside it: its
+    sections, their keys, a range and its ``start``, ``stop`` and ``step`` (a list is one
+    key)."""
+    if isinstance(node, Mapping):
+        for key, value in node.items():
+            path = (*parts, str(key))
+            yield ".".join(path)
+            yield from config_keys(value, path)
 
 
 def dotted_key(parts) -> str:

@@ -12,3 +12,8 @@ class OutputError(OSError):
 class ResultError(OSError):
     """A result file cannot be read: missing, damaged or not a result (message is one
     line and names the file)."""
+
+
+class ProvenanceError(OutputError):
+    """A result would not record where it comes from (the checkout's commit), so it is
+    not written (message is one line)."""

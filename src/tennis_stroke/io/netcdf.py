@@ -31,7 +31,7 @@ from ..model.params import MODEL_OPTIONS, PARAMETERS, READINGS, scalar_params
 from ..solver.results import FILE_NAMES, STATUS_NAMES
 from ..solver.settings import SolverSettings
 from .environment import environment_attrs
-from .errors import OutputError, ResultError
+from .errors import OutputError, ProvenanceError, ResultError
 from .interrupts import deferred_signals
 from .units import VARIABLES, cf_attrs
 
@@ -71,14 +71,30 @@ JOB_INPUTS = (
 
 @cache
 def git_commit() -> str:
-    """Commit of the source tree this package runs from, or ``"unknown"`` (read once per
-    process: a job's files all carry the commit it started from), with ``-dirty`` if a
-    file of :data:`JOB_INPUTS` has uncommitted changes."""
+    """Commit of the source tree this package runs from (read once per process: a job's
+    files all carry the commit it started from), with ``-dirty`` if a file of
+    :data:`JOB_INPUTS` has uncommitted changes; outside a git checkout the commit an
+    installed copy records, else ``"unknown"``.  A checkout git refuses to read (another
+    user's) raises :class:`~tennis_stroke.io.errors.ProvenanceError`
+    (:func:`commit_of`)."""
     return commit_of(Path(__file__).parent)
 
 
+#: What git says when it refuses a repository whose owner is not the user running it
+#: (git >= 2.36: "detected dubious ownership"; 2.35.2-2.35.x: "unsafe repository").
+_NOT_OWNED = ("dubious ownership", "unsafe repository")
+
+
 def commit_of(folder: Path) -> str:
-    """:func:`git_commit` of the checkout holding ``folder``."""
+    """:func:`git_commit` of the checkout holding ``folder``.
+
+    Raises
+    ------
+    ProvenanceError
+        The folder is in a git checkout that git refuses to read because another user
+        owns it (a CI container running as root over the runner's checkout): its files
+        would record no commit, so none is written; the message names the fix.
+    """
     try:
         out = subprocess.run(
             ["git", "rev-parse", "HEAD"],
@@ -99,6 +115,14 @@ def commit_of(folder: Path) -> str:
             timeout=5,
             check=True,
         )
+    except subprocess.CalledProcessError as exc:
+        said = " ".join(str(exc.stderr or "").split())
+        if any(words in said for words in _NOT_OWNED):
+            raise ProvenanceError(
+                f"no result written: it would not record its commit, since git refuses the "
+                f"checkout of {folder} owned by another user ({said}; or run as its owner)"
+            ) from None
+        return installed_commit()
     except (OSError, subprocess.SubprocessError):
         return installed_commit()
     return out.stdout.strip() + ("-dirty" if dirty.stdout.strip() else "")

@@ -16,6 +16,7 @@ from dataclasses import dataclass
 
 from ..experiments.specs import EXPERIMENTS, VALIDATION_GROUPS
 from ..inference.claims import claim_files
+from ..io.config_files import config_keys, did_you_mean
 from ..model.params import CHOICES, PARAMETERS
 from ..replication.registry import FIGURES
 from .params import PAPER_SECTIONS, reads, related
@@ -129,20 +130,20 @@ def leaves(node, parts: tuple = ()) -> Iterator[str]:
 
 
 def explain(key: str, config: Mapping, claims: Sequence[Mapping]) -> KeyEffect:
-    """:func:`effect` of a key of ``config`` (a leaf or a section); raises
+    """:func:`effect` of a key of ``config`` at any depth (a section, a leaf, a range or
+    one of its bounds and step: :func:`~tennis_stroke.io.config_files.config_keys`), or
+    of a model parameter, reading or option by its name; raises
     :class:`UnknownKeyError` naming the closest keys otherwise."""
     if key in PARAMETERS or key in CHOICES:  # a model parameter, reading or option by name
         key = f"model.{key}"
-    known = list(leaves(config))
     section, _, name = key.partition(".")
-    every = [*known, *(f"model.{p}" for p in (*PARAMETERS, *CHOICES))]
     if section == "model" and (name in PARAMETERS or name in CHOICES):
         return effect(key, claims)
-    if key not in known and not any(k.startswith(f"{key}.") for k in known):
-        import difflib
-
-        close = difflib.get_close_matches(key, every, n=3, cutoff=0.6)
-        hint = f" (did you mean {', '.join(close)}?)" if close else ""
+    known = list(config_keys(config))
+    if key not in known:
+        names = (*PARAMETERS, *CHOICES)  # taken by name or as model.NAME
+        every = [*known, *names, *(f"model.{p}" for p in names)]
+        hint = did_you_mean(key, every)
         raise UnknownKeyError(f"config key {key!r} is not in the configuration{hint}")
     return effect(key, claims)
 

@@ -19,7 +19,6 @@ runs (:data:`PAPER_ONLY`).
 from __future__ import annotations
 
 import contextlib
-import difflib
 import fcntl
 import os
 import re
@@ -29,7 +28,7 @@ from pathlib import Path
 import yaml
 
 from ..experiments.specs import BOUND_KEYS, EXPERIMENTS, PAPER_RESULTS, merged, shown, sorted_data
-from ..io.config_files import ConfigFileError, load_yaml
+from ..io.config_files import ConfigFileError, did_you_mean, load_yaml
 from ..io.netcdf import read_only, temporary_beside
 from ..model.listing import origin
 from ..model.params import CHOICES, PARAMETERS
@@ -193,13 +192,9 @@ def override_from(items, top_level: Collection[str] | None = None) -> dict:
         if not sep or not key or not text:
             raise ScenarioError(f"--set {item!r}: expected KEY=VALUE")
         named = key in PARAMETERS or key in CHOICES
-        if top_level is not None and "." not in key and not named and key not in top_level:
-            close = difflib.get_close_matches(key, [*PARAMETERS, *CHOICES, *top_level], n=3)
-            hint = f" (did you mean {', '.join(close)}?)" if close else ""
-            raise ScenarioError(
-                f"--set {item!r}: {key!r} is no model parameter, reading or option, nor a "
-                f"top-level config key{hint}"
-            )
+        unknown = _unknown_name(key, top_level) if top_level is not None else ""
+        if unknown:
+            raise ScenarioError(f"--set {item!r}: {unknown}")
         try:
             value = yaml.safe_load(text)
         except yaml.YAMLError:
@@ -212,6 +207,20 @@ def override_from(items, top_level: Collection[str] | None = None) -> dict:
                 raise ScenarioError(f"--set {item!r}: {part!r} is already set to a value")
         node[parts[-1]] = value
     return out
+
+
+def _unknown_name(key: str, top_level: Collection[str]) -> str:
+    """Why the ``--set`` key ``key`` names nothing (``""``: it may name something): a
+    bare name must be a model parameter, reading or option or a top-level config key,
+    ``model.NAME`` one of the first; a deeper key is the schema's to check."""
+    models = [*PARAMETERS, *CHOICES]
+    section, _, name = key.partition(".")
+    if not name and key not in models and key not in top_level:
+        hint = did_you_mean(key, [*models, *top_level])
+        return f"{key!r} is no model parameter, reading or option, nor a top-level config key{hint}"
+    if section == "model" and name and name not in models:
+        return f"{name!r} is no model parameter, reading or option{did_you_mean(name, models)}"
+    return ""
 
 
 def folder(name: str, top: str = "results") -> str:

@@ -14,6 +14,7 @@ import pandas as pd
 import xarray as xr
 
 from ..io.netcdf import load_result
+from .claims import tally
 from .formats import _table
 from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
 from .robustness import ROBUSTNESS_MEANING, ROBUSTNESS_WORDS
@@ -64,8 +65,7 @@ def robustness_section(claims: pd.DataFrame, inference: Mapping[str, str]) -> di
             for i in range(kept.sizes["reading"])
         }
     )
-    held = claims[claims["fit_set"] == ""]
-    counts = held["robustness"].value_counts()
+    classes = tally(claims)["robustness"]  # the held-out claims, each in one class
     deviations = claims[claims["evidence"] != ""]
     return {
         "candidates": screen.sizes["candidate"] * screen.sizes["combination"],
@@ -76,9 +76,12 @@ def robustness_section(claims: pd.DataFrame, inference: Mapping[str, str]) -> di
         "variants": kept.sizes["variant"],
         "combos": combos,
         "classes": [
-            {"word": ROBUSTNESS_WORDS[k], "n": int(counts[k]), "meaning": meaning}
-            for k, meaning in ROBUSTNESS_MEANING.items()
-            if k in counts
+            {
+                "word": ROBUSTNESS_WORDS.get(k, k or "no class"),
+                "n": n,
+                "meaning": ROBUSTNESS_MEANING.get(k, "no robustness class was computed"),
+            }
+            for k, n in classes.parts
         ],
         "evidence": _table(
             deviations[

@@ -5,6 +5,7 @@ with its status (``results/claims.csv``), and the check of a finished table.
 from __future__ import annotations
 
 from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -13,6 +14,7 @@ import xarray as xr
 
 from ..inference.claims import cause, difference, grid_half_step, measure, within
 from ..io.netcdf import load_result
+from .robustness import EVIDENCE, ROBUSTNESS
 
 COLUMNS = [
     "id",
@@ -108,6 +110,78 @@ STATUS_WORDS = {
 def status_count(n: int, status: str) -> str:
     """``26 reproduce``, ``1 deviates``: a count of claims with the verb of ``status``."""
     return f"{n} {STATUS_WORDS[status][1 if n == 1 else 2]}"
+
+
+def cause_of(claim: Mapping) -> str:
+    """Why a claim outside its tolerance (status ``known_deviation`` or ``fail``) is: its
+    evidence class (:data:`~tennis_stroke.replication.robustness.EVIDENCE`), else
+    ``fail`` (a failure without one) or ``other`` (a declared deviation without one);
+    ``""`` for a claim within its tolerance."""
+    if claim["status"] not in ("known_deviation", "fail"):
+        return ""
+    evidence = claim.get("evidence")
+    if evidence is not None and not pd.isna(evidence) and str(evidence):
+        return str(evidence)
+    return "fail" if claim["status"] == "fail" else "other"
+
+
+@dataclass(frozen=True)
+class Tally:
+    """One count line of a claims table: the ``total`` claims of one set and how they
+    split (``parts``: key and count, in a fixed order, none of zero), each claim of the
+    set in exactly one part, so the parts always add up to the total."""
+
+    total: int
+    parts: tuple[tuple[str, int], ...]
+
+    def __getitem__(self, key: str) -> int:
+        return dict(self.parts).get(key, 0)
+
+
+def _tally(keys: pd.Series, order: Sequence[str] = ()) -> Tally:
+    """The :class:`Tally` of ``keys`` (one per claim of a set): ``order`` first, any
+    other key after it in the order of its first claim."""
+    counts = keys.value_counts(sort=False)
+    ordered = [k for k in order if k in counts] + [k for k in keys.unique() if k not in order]
+    return Tally(int(len(keys)), tuple((str(k), int(counts[k])) for k in ordered))
+
+
+#: The sets every count of a claims table is made of (:func:`tally`), each a partition.
+TALLIES = {
+    "claims": "every claim: held out (they confirm or not) or used for fit",
+    "held": "the held-out claims by status: pass, known_deviation, fail",
+    "fit": "the claims used for fit: within their tolerance or outside it",
+    "known_deviation": "the held-out claims that deviate as declared, by cause",
+    "fail": "the held-out claims that fail unexpectedly, by cause",
+    "outside": "the claims used for fit outside their tolerance, by cause",
+    "outside_tolerance": "every claim outside its tolerance (held out or not), by cause",
+    "robustness": "the held-out claims by robustness class (a table that has the column)",
+}
+
+
+def tally(table: pd.DataFrame) -> dict[str, Tally]:
+    """Every count a page quotes of a claims ``table``, by name (:data:`TALLIES`), each a
+    partition of one set of claims: the report's scoreboard and its causes, the README's
+    and the article's counts are read from here, so no two of them count one claim twice
+    or leave one out.  A claim is held out when it is in no fit set (``fit_set`` empty,
+    whatever its status); a claim used for fit is within or outside its tolerance
+    whatever the configuration did to it."""
+    held = table["fit_set"].astype(str) == ""
+    status = table["status"].astype(str)
+    causes = pd.Series([cause_of(c) for c in table.to_dict("records")], index=table.index)
+    outside = status.isin(("known_deviation", "fail"))
+    order = (*EVIDENCE, "fail", "other")
+    classes = table["robustness"].astype(str) if "robustness" in table else None
+    return {
+        "claims": _tally(held.map({True: "held", False: "fit"}), ("held", "fit")),
+        "held": _tally(status[held], ("pass", "known_deviation", "fail")),
+        "fit": _tally(outside[~held].map({False: "within", True: "outside"}), ("within",)),
+        "known_deviation": _tally(causes[held & (status == "known_deviation")], order),
+        "fail": _tally(causes[held & (status == "fail")], order),
+        "outside": _tally(causes[~held & outside], order),
+        "outside_tolerance": _tally(causes[outside], order),
+        **({"robustness": _tally(classes[held], ROBUSTNESS)} if classes is not None else {}),
+    }
 
 
 class ClaimsTableError(ValueError):

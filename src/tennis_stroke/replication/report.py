@@ -49,7 +49,14 @@ from .analyses import (
     studies_section,
     validation_section,
 )
-from .claims import STATUS_WORDS, ClaimsTableError, checked_table, read_table
+from .claims import (
+    STATUS_WORDS,
+    ClaimsTableError,
+    cause_of,
+    checked_table,
+    read_table,
+    tally,
+)
 from .formats import UNIT_SHORT, ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
 from .registry import FIGURES, LIVE
@@ -86,9 +93,6 @@ def claim_row(claim: Mapping) -> dict:
             f"\u00b1{_number(claim['tolerance'])} {UNIT_SHORT.get(claim['unit'], claim['unit'])}"
         )
     across = across_text(claim) if claim.get("robustness", "") else "-"
-    cause = ""
-    if claim["status"] in ("known_deviation", "fail"):
-        cause = claim.get("evidence") or ("fail" if claim["status"] == "fail" else "other")
     return {
         "id": claim["id"],
         "source": claim["source"],
@@ -104,7 +108,7 @@ def claim_row(claim: Mapping) -> dict:
         "fit_set": claim.get("fit_set", ""),
         "across": across,
         "deciding": f"deciding: {claim['deciding']}" if claim.get("deciding") else "",
-        "cause": cause,
+        "cause": cause_of(claim),
         "reason": claim.get("reason", ""),
     }
 
@@ -220,22 +224,35 @@ def paper_sections(
     return out
 
 
+#: Each cause of a claim outside its tolerance (:func:`~.claims.cause_of`): its title
+#: on the page and its meaning.
+CAUSES = {
+    **{k: (k.replace("_", " ").capitalize(), m) for k, m in EVIDENCE_MEANING.items()},
+    "fail": (
+        "Not yet explained",
+        "does not reproduce, and config/claims.yaml expected it to: a regression or a "
+        "finding not yet explained",
+    ),
+    "other": ("Not classified", "a declared deviation without a computed evidence class"),
+}
+
+
 def _deviation_groups(rows: list[dict]) -> list[dict]:
-    """The claims that do not pass, grouped by their cause: each evidence class's meaning
-    is said once, each claim's own reason beside it."""
-    meanings = {
-        **EVIDENCE_MEANING,
-        "fail": "does not reproduce, and config/claims.yaml expected it to: a regression or "
-        "a finding not yet explained",
-        "other": "a declared deviation without a computed evidence class",
-    }
+    """The claims outside their tolerance (held out or used for fit), grouped by their
+    cause: each cause's meaning is said once, each claim's own reason beside it."""
+    found = {r["cause"] for r in rows if r["cause"]}
     groups = []
-    for key, meaning in meanings.items():
+    for key in [*(k for k in CAUSES if k in found), *sorted(found - set(CAUSES))]:
+        title, meaning = _cause(key)
         members = [r for r in rows if r["cause"] == key]
-        if members:
-            title = key.replace("_", " ").capitalize()
-            groups.append({"key": key, "title": title, "meaning": meaning, "claims": members})
+        groups.append({"key": key, "title": title, "meaning": meaning, "claims": members})
     return groups
+
+
+def _cause(key: str) -> tuple[str, str]:
+    """A cause's title and meaning (:data:`CAUSES`; an evidence class it does not know
+    is still shown, by its name)."""
+    return CAUSES.get(key, (key.replace("_", " ").capitalize(), "an evidence class"))
 
 
 def _failures(results: Sequence[str]) -> pd.DataFrame:
@@ -353,17 +370,27 @@ def _checked_inputs(
     return claims, departure_lines(record)
 
 
-def _score(claims: pd.DataFrame) -> dict[str, int]:
-    """The scoreboard's counts: held-out claims and how many pass, deviations, failures,
-    fit claims and how many of them the fit meets."""
-    held = claims["fit_set"] == ""
+def _score(claims: pd.DataFrame) -> dict:
+    """The scoreboard's counts (:func:`~.claims.tally`), each line a partition: the
+    held-out claims that pass, deviate or fail, each of the last two by cause; the claims
+    used for fit within and outside their tolerance, the latter by cause; every claim
+    outside its tolerance, by status and by cause (the section below the board)."""
+    counts = tally(claims)
+
+    def causes(name: str) -> list[dict]:
+        return [{"key": k, "n": n, "title": _cause(k)[0]} for k, n in counts[name].parts]
+
     return {
-        "held": int(held.sum()),
-        "pass": int((held & (claims.status == "pass")).sum()),
-        "deviate": int((claims.status == "known_deviation").sum()),
-        "fail": int((claims.status == "fail").sum()),
-        "fit": int((~held).sum()),
-        "fit_ok": int((claims.status == "used_for_fit").sum()),
+        "claims": counts["claims"].total,
+        "held": counts["held"].total,
+        "pass": counts["held"]["pass"],
+        "deviate": counts["held"]["known_deviation"],
+        "fail": counts["held"]["fail"],
+        "fit": counts["fit"].total,
+        "fit_ok": counts["fit"]["within"],
+        "fit_outside": counts["fit"]["outside"],
+        "outside": counts["outside_tolerance"].total,
+        "causes": {k: causes(k) for k in ("known_deviation", "fail", "outside")},
     }
 
 

@@ -14,7 +14,7 @@ from .article import ORIGINAL, _require, _typeset
 from .claims import ClaimsTableError, read_table
 from .formats import ReportInputError
 from .registry import FIGURES
-from .scenario_report import _paper_table, claim_rows
+from .scenario_report import _paper_table, claim_rows, movement
 
 SCENARIO_TEMPLATE = Path(__file__).parent / "templates" / "scenario_article.typ"
 
@@ -49,7 +49,7 @@ def build_scenario_article(
             for p in comparisons
         ],
         "rows": [{k: str(v) for k, v in r.items()} for r in rows],
-        "moved": sum(r["moved"] for r in rows),
+        "values": movement(rows),
         "paper_note": note,
     }
     _typeset(SCENARIO_TEMPLATE, data, comparisons, output_pdf)

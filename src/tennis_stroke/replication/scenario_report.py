@@ -97,10 +97,26 @@ def claim_rows(scenario: pd.DataFrame, paper: pd.DataFrame | None) -> list[dict]
                 "ours_paper": _number(base) if np.isfinite(base) else "-",
                 "ours_scenario": _number(value),
                 "change": _change(base, value, c["unit"]),
-                "moved": bool(np.isfinite(base) and base != value),
+                "moved": bool(np.isfinite(base) and np.isfinite(value) and base != value),
+                "compared": bool(np.isfinite(base) and np.isfinite(value)),
             }
         )
     return rows
+
+
+def movement(rows: Sequence[Mapping]) -> dict[str, int]:
+    """How the claims' values (:func:`claim_rows`) split, each claim in one part: those
+    that move, those that stay, and those without two numbers to compare (not computed
+    under the paper's configuration, or a failed measurement on either side); ``all``,
+    their sum, is every claim."""
+    compared = [r for r in rows if r["compared"]]
+    moved = sum(r["moved"] for r in compared)
+    return {
+        "all": len(rows),
+        "moved": moved,
+        "same": len(compared) - moved,
+        "uncompared": len(rows) - len(compared),
+    }
 
 
 def _scenario_views(
@@ -204,7 +220,7 @@ def build_scenario_report(
         unchanged=unchanged,
         same=same,
         rows=rows,
-        moved=sum(r["moved"] for r in rows),
+        values=movement(rows),
         paper_note=paper_note,
         views_head=views_head,
         meta={

@@ -135,9 +135,22 @@ def map_comparison(
             p.line(ds[x].values, ds[line].values, color="red", line_width=2)
         draw_marks(p, pick, x, y)
         plots.append(p)
+    _level(plots)
     if len(plots) == 2:
         plots.append(Div(text=_NO_DIFFERENCE.format(var=var), width=MAP_PANEL[0]))
     return row(*plots, name=name)
+
+
+def _level(plots) -> None:
+    """Panels side by side of one height and one frame: a panel without the marks'
+    legend (:func:`~.maps.draw_marks` grows a panel by it) grows by as much, as room
+    under its frame."""
+    tallest = max(p.height for p in plots)
+    for p in plots:
+        extra = tallest - p.height
+        if extra:
+            border = p.min_border_bottom if p.min_border_bottom is not None else p.min_border
+            p.height, p.min_border_bottom = tallest, (border or 0) + extra
 
 
 def _linked_layers(sides, x: str, y: str, var: str, name: str, mapper, marks, extra):
@@ -267,6 +280,7 @@ def curve_comparison(
             p, Div(text=_NO_DIFFERENCE.format(var=var), width=CURVE_PANEL[0] // 2), name=name
         )
     q = _difference_panel(p, sides[0][1], paper, x, var, name, x_range, crosshair)
+    _level([p, q])
     return row(p, q, name=name)
 
 

@@ -1,7 +1,7 @@
 """A figure's map or curve as an interactive view, drawn from its result file: hover shows
 a cell's coordinates, its value and its stroke's status; zoom and pan; the paper's value
-(red ring) and ours (white cross) of the figure's claims, each labelled with its claim id
-(:class:`~tennis_stroke.replication.registry.Mark`).
+(red ring) and ours (white cross) of the figure's claims, each named by its claim id in a
+legend under the plot (:class:`~tennis_stroke.replication.registry.Mark`).
 
 * :func:`map_view`: a map of Figs. 2-3, 5-8 and 13; :func:`curve_view`: the curve of
   Fig. 9; :func:`figure_view`: the view of a registry figure (:data:`MAP_VIEWS`).
@@ -19,7 +19,15 @@ from collections.abc import Mapping, Sequence
 
 import numpy as np
 import xarray as xr
-from bokeh.models import ColumnDataSource, CustomJSHover, HoverTool, Label, LinearColorMapper, Span
+from bokeh.models import (
+    ColumnDataSource,
+    CustomJSHover,
+    HoverTool,
+    Legend,
+    LegendItem,
+    LinearColorMapper,
+    Span,
+)
 from bokeh.palettes import Magma256, Viridis256
 from bokeh.plotting import figure as bokeh_figure
 
@@ -234,12 +242,20 @@ def curve_data(ds: xr.Dataset, x: str, var: str) -> dict:
     }
 
 
+#: The marks' legend under a plot: its background (the white crosses of ours must show
+#: on it, the names in black read on it) and the height each entry adds to the plot, so
+#: the plot's frame keeps its size.
+LEGEND_BACKGROUND, LEGEND_ROW = "#c8c8c8", 19
+
+
 def draw_marks(p, marks: Sequence[Mapping], x: str, y: str, ours_color: str = OURS_COLOR):
-    """The paper's value (red) and ours of each mark, labelled with its claim id: a point
-    (ring, cross) where the mark has another coordinate, else a line (dashed, dotted)
-    across the plot along its axis."""
-    lines = 0  # labels of lines stack up from the plot's edge
-    points = []
+    """The paper's value (red) and ours of each mark: a point (ring, cross) where the
+    mark has another coordinate, else a line (dashed, dotted) across the plot along its
+    axis; each named by its claim in a legend under the plot, which the browser lays out
+    around the names it measures (names drawn beside the marks ran out of narrow plots:
+    "fig14_wors", "fig2_best_delta0_at_120 (paper").  The plot grows by the legend's
+    height."""
+    items, points = [], []
     for mark in marks:
         along_x = mark["axis"] == x
         for who, value, other, color in (
@@ -250,55 +266,50 @@ def draw_marks(p, marks: Sequence[Mapping], x: str, y: str, ours_color: str = OU
                 continue
             text = f"{mark['claim']} ({who})"
             if other is None:
-                lines += 1
-                _mark_line(p, value, along_x, who, color, text, 4 + 16 * (lines - 1))
+                glyph = _mark_line(p, value, along_x, who, color)
             else:
                 at = (value, other) if along_x else (other, value)
-                points.append(_mark_point(p, at, who, color, text))
+                glyph = _mark_point(p, at, who, color, text)
+                points.append(glyph)
+            items.append(LegendItem(label=text, renderers=[glyph]))
     if points:  # one hover for every mark of the plot
         tips = [("claim", "@text"), ("at", "(@x{0.0[000]}, @y{0.0[000]})")]
         p.add_tools(HoverTool(renderers=points, tooltips=tips))
+    if items:
+        legend = Legend(
+            items=items,
+            location="top_left",
+            label_text_font_size="10px",
+            label_height=12,
+            glyph_height=12,
+            spacing=2,
+            padding=4,
+            margin=2,
+            background_fill_color=LEGEND_BACKGROUND,
+            background_fill_alpha=1.0,
+            name=f"{p.name}-marks" if p.name else None,
+        )
+        p.add_layout(legend, "below")
+        p.height += LEGEND_ROW * len(items) + 8
 
 
-def _mark_label(text: str, color: str, **place) -> Label:
-    backdrop = "black" if color == "white" else "white"
-    return Label(
-        text=text,
-        text_color=color,
-        text_font_size="10px",
-        background_fill_color=backdrop,
-        background_fill_alpha=0.6,
-        **place,
-    )
-
-
-def _mark_line(p, value: float, along_x: bool, who: str, color: str, text: str, edge: float):
-    """A line at ``value`` across the plot, its label ``edge`` pixels from the plot's
-    bottom (a vertical line) or left (a horizontal one)."""
+def _mark_line(p, value: float, along_x: bool, who: str, color: str):
+    """A line at ``value`` across the plot; the glyph its legend entry shows (a line of
+    no points in the line's colour and dash, which draws nothing and moves no range)."""
     dash = "dashed" if who == "paper" else "dotted"
     dimension = "height" if along_x else "width"
     p.add_layout(
         Span(location=value, dimension=dimension, line_color=color, line_dash=dash, line_width=2)
     )
-    if along_x:  # in the right half, the label ends at the line (else it is cut)
-        place = {"x_offset": -4, "text_align": "right"} if _right_half(p, value) else {}
-        p.add_layout(_mark_label(text, color, x=value, y=edge, y_units="screen", **place))
-    else:
-        p.add_layout(_mark_label(text, color, x=40 + edge, y=value, x_units="screen"))
-
-
-def _right_half(p, x: float) -> bool:
-    """Whether ``x`` lies in the right half of ``p``'s x range (False for a range the
-    browser computes)."""
-    start, end = getattr(p.x_range, "start", None), getattr(p.x_range, "end", None)
-    return start is not None and end is not None and x > 0.5 * (start + end)
+    return p.line(x=[], y=[], line_color=color, line_dash=dash, line_width=2)
 
 
 def _mark_point(p, at: tuple[float, float], who: str, color: str, text: str):
-    """A ring (the paper's) or a cross (ours) at ``at``, labelled; its glyph."""
+    """A ring (the paper's) or a cross (ours) at ``at``, named ``text`` in the hover;
+    its glyph."""
     marker = "circle" if who == "paper" else "x"
     source = ColumnDataSource({"x": [at[0]], "y": [at[1]], "text": [text]})
-    glyph = p.scatter(
+    return p.scatter(
         "x",
         "y",
         source=source,
@@ -308,11 +319,6 @@ def _mark_point(p, at: tuple[float, float], who: str, color: str, text: str):
         line_color=color,
         line_width=2.5,
     )
-    offset = 6 if who == "paper" else -16
-    right = _right_half(p, at[0])
-    place = {"x_offset": -8, "text_align": "right"} if right else {"x_offset": 8}
-    p.add_layout(_mark_label(text, color, x=at[0], y=at[1], y_offset=offset, **place))
-    return glyph
 
 
 #: Which view each drawing function of the registry gets: (kind, var, line, extra); its
