@@ -12,7 +12,7 @@ from claim_tables import declared_table, edited_shape, numbers, papers_shape, wi
 from conftest import ROOT
 
 from tennis_stroke.replication.claims import TALLIES, tally
-from tennis_stroke.replication.report import _claim_row, _deviation_groups, _score
+from tennis_stroke.replication.report import _deviation_groups, _score, claim_row
 from tennis_stroke.replication.scenario_report import claim_rows, movement
 
 sys.path.insert(0, str(ROOT / "tools"))
@@ -94,7 +94,7 @@ def test_the_scoreboard_adds_up(shape):
     ):
         assert sum(c["n"] for c in score["causes"][card]) == n, card
     assert score["outside"] == score["deviate"] + score["fail"] + score["fit_outside"]
-    groups = _deviation_groups([_claim_row(c) for c in table.to_dict("records")])
+    groups = _deviation_groups([claim_row(c) for c in table.to_dict("records")])
     members = [c["id"] for g in groups for c in g["claims"]]
     assert len(members) == len(set(members)) == score["outside"]
     assert set(members) == set(table["id"][sets["outside_tolerance"]])

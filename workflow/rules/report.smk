@@ -13,7 +13,9 @@ rule claims:
         code=CODE("claims.py"),
     output:
         claims=report(
-            "results/{run}claims.csv", caption="../report/claims.rst", category="Claims"
+            "results/{run}claims.csv",
+            caption="../report/claims.rst",
+            category="Claims",
         ),
         configuration="results/{run}configuration.yaml",
     log:
@@ -129,7 +131,9 @@ rule article:
         statements="config/claims.yaml",
         results=list(PAPER_RESULTS.values()),
         code=CODE("article.py"),
-        template=CODE.checkout_file("src/tennis_stroke/replication/templates/article.typ"),
+        template=CODE.checkout_file(
+            "src/tennis_stroke/replication/templates/article.typ"
+        ),
         lock=CODE.checkout_file("requirements.lock"),
         pyproject=CODE.checkout_file("pyproject.toml"),
         # the equations it prints are read from this module's source, never imported

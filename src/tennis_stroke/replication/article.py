@@ -43,7 +43,7 @@ from ..io.environment import canonical, locked
 from ..io.netcdf import load_result, write_bytes_whole
 from ..model.params import READINGS
 from .article_equations import EquationError, equations
-from .claims import ClaimsTableError, checked_table
+from .claims import ClaimsTableError, checked_table, tally
 from .formats import ReportInputError, _timings
 from .registry import FIGURES
 from .report import check_image, claim_row, paper_sections
@@ -144,25 +144,27 @@ def _sections(
 
 
 def _counts(table: pd.DataFrame) -> dict:
-    status = table["status"].value_counts()
-    deviating = table[table["status"] == "known_deviation"]
-    evidence = deviating.get("evidence", pd.Series([""] * len(deviating), dtype=str))
-    held = table[table["status"] != "used_for_fit"]
-    robustness = held["robustness"].value_counts() if "robustness" in held else pd.Series()
+    """The abstract's counts, each a partition of one set (:func:`~.claims.tally`, the
+    report's and the README's): every claim held out (by status) or used for fit; the
+    declared deviations by cause; the held-out claims by robustness class."""
+    t = tally(table)
+
+    def parts(name: str) -> list[dict]:
+        found = t[name].parts if name in t else ()
+        return [
+            {"class": "not classified" if k == "other" else k.replace("_", " "), "n": n}
+            for k, n in found
+        ]
+
     return {
-        "claims": int(len(table)),
-        "held": int(len(held)),
-        "reproduced": int(status.get("pass", 0)),
-        "deviating": int(status.get("known_deviation", 0)),
-        "failing": int(status.get("fail", 0)),
-        "fit": int(status.get("used_for_fit", 0)),
-        "evidence": [
-            {"class": str(k).replace("_", " "), "n": int(n)}
-            for k, n in evidence.replace("", "not classified").value_counts().items()
-        ],
-        "robustness": [
-            {"class": str(k).replace("_", " "), "n": int(n)} for k, n in robustness.items()
-        ],
+        "claims": t["claims"].total,
+        "held": t["claims"]["held"],
+        "reproduced": t["held"]["pass"],
+        "deviating": t["held"]["known_deviation"],
+        "failing": t["held"]["fail"],
+        "fit": t["claims"]["fit"],
+        "evidence": parts("known_deviation"),
+        "robustness": parts("robustness"),
     }
 
 
@@ -180,7 +182,7 @@ def discussion(table: pd.DataFrame, rows: Sequence[Mapping]) -> dict:
     readings decide (each reading-dependent claim with the unknown that decides it)."""
     records = table.to_dict("records")
     shown = {r["id"]: _row(r) for r in rows}
-    held = [c for c in records if c["status"] != "used_for_fit"]
+    held = [c for c in records if not c.get("fit_set")]  # as tally() counts them
     passing = [c for c in held if c["status"] == "pass"]
     robust = [c for c in passing if c.get("robustness") == "robust"]
     groups = []
