@@ -38,8 +38,12 @@ lock:
 ## (python tools/readme_results.py writes them).  The
 ## target rule report names every result as an input, so one deleted by hand is rebuilt
 ## (docs/workflow.md, "Failing safe").
-report: $(STAMP)
-	$(BIN)/snakemake report --cores $(JOBS) --quiet rules
+## Jobs an interrupted run left incomplete run again (--rerun-incomplete; a run still
+## active in this folder is named before anything starts: docs/workflow.md, "Failing
+## safe"); a cache folder that cannot be used is one line (tools/cache_check.py).
+report: install
+	@$(BIN)/python tools/cache_check.py
+	$(BIN)/snakemake report --cores $(JOBS) --quiet rules --rerun-incomplete
 	$(BIN)/tennis-stroke claims results/claims.csv --junit results/claims.xml
 	$(BIN)/python tools/readme_results.py --check
 
