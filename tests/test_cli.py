@@ -392,18 +392,7 @@ def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path):
         text=True,
         env=env,
     )
-    try:
-        deadline = time.monotonic() + 300
-        while _cpu_seconds(proc.pid) < startup + 1.0:  # computing for a while now
-            assert proc.poll() is None, proc.communicate()
-            assert time.monotonic() < deadline, "the sweep never started computing"
-            time.sleep(0.05)
-        sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        stdout, stderr = proc.communicate(timeout=60)
-        stopped_after = time.monotonic() - sent
-    finally:
-        proc.kill()
+    stdout, stderr, stopped_after = _signal_when_computing(proc, startup, signal.SIGINT)
     assert proc.returncode == 130, stderr
     assert stderr == "tennis-stroke: interrupted\n" and stdout == ""
     assert stopped_after < 3.0, f"stopped {stopped_after:.1f} s after Ctrl-C"
@@ -420,6 +409,24 @@ def _startup_cpu_seconds(exe: str, tmp_path, env) -> float:
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
     (tmp_path / "warm.nc").unlink()
     return after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+
+
+def _signal_when_computing(proc: subprocess.Popen, startup: float, signum: int):
+    """Send ``signum`` to the sweep ``proc`` once it has computed for a while (its CPU
+    time past ``startup`` and a second); its stdout, stderr and the seconds it took to
+    end after the signal."""
+    try:
+        deadline = time.monotonic() + 300
+        while _cpu_seconds(proc.pid) < startup + 1.0:  # computing for a while now
+            assert proc.poll() is None, proc.communicate()
+            assert time.monotonic() < deadline, "the sweep never started computing"
+            time.sleep(0.05)
+        sent = time.monotonic()
+        proc.send_signal(signum)
+        stdout, stderr = proc.communicate(timeout=120)
+        return stdout, stderr, time.monotonic() - sent
+    finally:
+        proc.kill()
 
 
 @pytest.mark.signals
@@ -451,18 +458,7 @@ def test_a_sweep_of_strokes_that_fail_slowly_stops_within_a_stroke(
         text=True,
         env=env,
     )
-    try:
-        deadline = time.monotonic() + 300
-        while _cpu_seconds(proc.pid) < startup + 1.0:  # computing for a while now
-            assert proc.poll() is None, proc.communicate()
-            assert time.monotonic() < deadline, "the sweep never started computing"
-            time.sleep(0.05)
-        sent = time.monotonic()
-        proc.send_signal(signum)
-        stdout, stderr = proc.communicate(timeout=120)
-        stopped_after = time.monotonic() - sent
-    finally:
-        proc.kill()
+    stdout, stderr, stopped_after = _signal_when_computing(proc, startup, signum)
     assert proc.returncode == status, stderr
     assert stderr == line and stdout == ""
     assert stopped_after < 3.0, f"stopped {stopped_after:.1f} s after the signal"
