@@ -12,7 +12,16 @@ LOCKER := .venv-lock
 
 .PHONY: install lock report test check lint api bench kernels clean
 
+## The environment itself is checked at every use (make install, and before report, test
+## and check), not only the stamp: a distribution of the lock missing or at another
+## version, the project not importable or .venv/bin/python gone installs the lock again
+## (tools/lock_check.py --installed: one line naming what differs).
 install: $(STAMP)
+	@if ! test -x $(BIN)/python; then echo "make install: $(BIN)/python is missing"; fi
+	@if ! { test -x $(BIN)/python && $(BIN)/python tools/lock_check.py --installed; }; then \
+	    echo "make install: installing the lock again"; rm -f $(STAMP); \
+	    $(MAKE) --no-print-directory $(STAMP) && $(BIN)/python tools/lock_check.py --installed; \
+	fi
 
 ## Exactly the lock (hashes checked), then the project itself without dependencies; first
 ## one line and nothing installed if pyproject.toml's dependencies changed after the lock.
@@ -38,8 +47,12 @@ lock:
 ## (python tools/readme_results.py writes them).  The
 ## target rule report names every result as an input, so one deleted by hand is rebuilt
 ## (docs/workflow.md, "Failing safe").
-report: $(STAMP)
-	$(BIN)/snakemake report --cores $(JOBS) --quiet rules
+## Jobs an interrupted run left incomplete run again (--rerun-incomplete; a run still
+## active in this folder is named before anything starts: docs/workflow.md, "Failing
+## safe"); a cache folder that cannot be used is one line (tools/cache_check.py).
+report: install
+	@$(BIN)/python tools/cache_check.py
+	$(BIN)/snakemake report --cores $(JOBS) --quiet rules --rerun-incomplete
 	$(BIN)/tennis-stroke claims results/claims.csv --junit results/claims.xml
 	$(BIN)/python tools/readme_results.py --check
 
@@ -47,15 +60,15 @@ report: $(STAMP)
 ## are built once for all workers), the 25 slowest named at the end: every test,
 ## including a tiny end-to-end workflow run, the browser, compile and SLURM tests
 ## (docs/testing.md).
-test: $(STAMP)
+test: install
 	$(BIN)/python -m pytest -n $(JOBS) --durations=25
 
 ## The fast tier while editing: every test that needs no workflow run, no browser, no
 ## SLURM and no cold compile (pytest -m "not slow"), on every core.
-check: $(STAMP)
+check: install
 	$(BIN)/python -m pytest -n $(JOBS) --durations=10 -m "not slow"
 
-lint: $(STAMP)
+lint: install
 	$(BIN)/check-jsonschema --builtin-schema vendor.github-workflows .github/workflows/replication.yml
 	$(BIN)/ruff check src tests tools benchmarks examples workflow/scripts
 	$(BIN)/snakefmt --check Snakefile workflow/rules
@@ -67,11 +80,11 @@ api: $(STAMP)
 	$(BIN)/python tools/api_reference.py docs/api
 
 ## Speed and accuracy against solve_ivp (see benchmarks/bench_sweep.py).
-bench: $(STAMP)
+bench: install
 	$(BIN)/python benchmarks/bench_sweep.py
 
 ## Regenerate the unrolled Runge-Kutta kernels from the tableaux.
-kernels: $(STAMP)
+kernels: install
 	$(BIN)/python tools/generate_kernels.py
 
 clean:

@@ -101,6 +101,9 @@ def coefficient_tup(theta0=90.0, delta0=30.0, **overrides):
 
 
 ROOT = Path(__file__).resolve().parents[1]
+#: What a checkout needs to run the workflow (the package is imported from the
+#: environment; its sources are the simulations' inputs).
+CHECKOUT = ("Snakefile", "workflow", "src", "docs")
 
 
 def snakemake_command(targets, workdir, *options) -> list[str]:

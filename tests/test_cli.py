@@ -371,14 +371,7 @@ def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path):
     not a timing: the whole grid takes tens of seconds), one line, no output file."""
     exe = os.path.join(os.path.dirname(sys.executable), "tennis-stroke")
     env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
-    tiny = [exe, "sweep", "--theta0", "60:61:2", "--delta0", "0:1:2", "--no-progress"]
-    subprocess.run([*tiny, "--out", str(tmp_path / "warm.nc")], env=env, timeout=600, check=True)
-    # CPU time of the start-up alone (imports, loading the compiled code), cache warm
-    before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run([*tiny, "--out", str(tmp_path / "warm.nc")], env=env, timeout=600, check=True)
-    after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    startup = after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
-    (tmp_path / "warm.nc").unlink()
+    startup = _startup_cpu_seconds(exe, tmp_path, env)
     out = tmp_path / "big.nc"
     proc = subprocess.Popen(
         [
@@ -399,6 +392,29 @@ def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path):
         text=True,
         env=env,
     )
+    stdout, stderr, stopped_after = _signal_when_computing(proc, startup, signal.SIGINT)
+    assert proc.returncode == 130, stderr
+    assert stderr == "tennis-stroke: interrupted\n" and stdout == ""
+    assert stopped_after < 3.0, f"stopped {stopped_after:.1f} s after Ctrl-C"
+    assert not list(tmp_path.iterdir()), "no output file after Ctrl-C"
+
+
+def _startup_cpu_seconds(exe: str, tmp_path, env) -> float:
+    """CPU time of a tiny sweep, start-up and all (cache warm): beyond it, a process
+    of the same command is computing."""
+    tiny = [exe, "sweep", "--theta0", "60:61:2", "--delta0", "0:1:2", "--no-progress"]
+    subprocess.run([*tiny, "--out", str(tmp_path / "warm.nc")], env=env, timeout=600, check=True)
+    before = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run([*tiny, "--out", str(tmp_path / "warm.nc")], env=env, timeout=600, check=True)
+    after = resource.getrusage(resource.RUSAGE_CHILDREN)
+    (tmp_path / "warm.nc").unlink()
+    return after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
+
+
+def _signal_when_computing(proc: subprocess.Popen, startup: float, signum: int):
+    """Send ``signum`` to the sweep ``proc`` once it has computed for a while (its CPU
+    time past ``startup`` and a second); its stdout, stderr and the seconds it took to
+    end after the signal."""
     try:
         deadline = time.monotonic() + 300
         while _cpu_seconds(proc.pid) < startup + 1.0:  # computing for a while now
@@ -406,15 +422,47 @@ def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path):
             assert time.monotonic() < deadline, "the sweep never started computing"
             time.sleep(0.05)
         sent = time.monotonic()
-        proc.send_signal(signal.SIGINT)
-        stdout, stderr = proc.communicate(timeout=60)
-        stopped_after = time.monotonic() - sent
+        proc.send_signal(signum)
+        stdout, stderr = proc.communicate(timeout=120)
+        return stdout, stderr, time.monotonic() - sent
     finally:
         proc.kill()
-    assert proc.returncode == 130, stderr
-    assert stderr == "tennis-stroke: interrupted\n" and stdout == ""
-    assert stopped_after < 3.0, f"stopped {stopped_after:.1f} s after Ctrl-C"
-    assert not list(tmp_path.iterdir()), "no output file after Ctrl-C"
+
+
+@pytest.mark.signals
+@pytest.mark.skipif(not os.path.exists("/proc/self/stat"), reason="needs /proc (Linux)")
+@pytest.mark.parametrize(
+    ("threads", "signum", "status", "line"),
+    [
+        (1, signal.SIGINT, 130, "tennis-stroke: interrupted\n"),
+        (2, signal.SIGTERM, 143, "tennis-stroke: terminated\n"),
+    ],
+)
+def test_a_sweep_of_strokes_that_fail_slowly_stops_within_a_stroke(
+    tmp_path, threads, signum, status, line
+):
+    """Strokes that cannot finish run to the step limit (100,000 steps each): a signal
+    stopped the sweep only after its block of strokes (8192 per thread: 76 s after
+    SIGINT in issue 56).  The compiled solver looks for a stop before every stroke, so
+    the sweep ends within about one stroke (a fail-safe bound below, not a timing: the
+    1681 strokes take tens of seconds)."""
+    exe = os.path.join(os.path.dirname(sys.executable), "tennis-stroke")
+    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+    startup = _startup_cpu_seconds(exe, tmp_path, env)
+    grid = ["--theta0", "60:120:41", "--delta0", "0:100:41", "--set", "C1=-1e6"]
+    proc = subprocess.Popen(
+        [exe, "sweep", *grid, "--threads", str(threads), "--no-progress"]
+        + ["--out", str(tmp_path / "slow.nc")],
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env=env,
+    )
+    stdout, stderr, stopped_after = _signal_when_computing(proc, startup, signum)
+    assert proc.returncode == status, stderr
+    assert stderr == line and stdout == ""
+    assert stopped_after < 3.0, f"stopped {stopped_after:.1f} s after the signal"
+    assert not list(tmp_path.iterdir()), "no output file after a signal"
 
 
 def test_identify_names_file_and_line_of_a_yaml_syntax_error(tmp_path, capsys):

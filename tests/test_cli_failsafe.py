@@ -2,6 +2,7 @@
 device; long output names; overflowing ranges; an unusable cache folder; claims tables
 that are not one the claims job wrote; an identify config with a bad model section."""
 
+import os
 import re
 import subprocess
 import sys
@@ -76,6 +77,51 @@ def test_a_cache_folder_that_is_a_file_is_one_line(tmp_path):
     done = subprocess.run(cmd, capture_output=True, text=True, env=env, timeout=300)
     assert done.returncode == 2
     assert "cannot use the compiled code's cache folder" in _one_error_line(done.stderr)
+
+
+@pytest.mark.parametrize(
+    "variable, below",
+    [("HOME", ""), ("XDG_CACHE_HOME", ""), ("NUMBA_CACHE_DIR", ""), ("HOME", "locked")],
+)
+def test_a_cache_variable_that_names_no_usable_folder_is_named(tmp_path, variable, below):
+    """HOME, XDG_CACHE_HOME, NUMBA_CACHE_DIR: a file, or a folder that cannot be written
+    (a missing folder below a writable one is fine: it is made)."""
+    from tennis_stroke._cache import cache_problem
+
+    (tmp_path / "file").write_text("a file")
+    (tmp_path / "locked").mkdir(mode=0o500)
+    good = {"HOME": str(tmp_path / "home"), "NUMBA_CACHE_DIR": str(tmp_path / "new" / "n")}
+    assert cache_problem(good) is None
+    bad = str(tmp_path / below) if below else str(tmp_path / "file")
+    problem = cache_problem({**good, variable: bad})
+    if below and os.access(tmp_path / "locked", os.W_OK):  # root writes anywhere
+        pytest.skip("this user can write a folder of mode 0500")
+    assert problem.startswith(f"{variable}={bad!r} cannot hold"), problem
+    assert ("is not writable" if below else "is not a folder") in problem
+
+
+def test_whatif_with_a_home_that_is_a_file_is_one_line(tmp_path):
+    """HOME=/etc/hostname: `tennis-stroke whatif ... -n` and `make report` printed 29-44
+    lines of Snakemake's traceback (NotADirectoryError .../.cache), before the Snakefile
+    was read; both now ask first (tools/cache_check.py for make report)."""
+    (tmp_path / "home").write_text("a file, not a folder")
+    env = {k: v for k, v in os.environ.items() if k not in ("XDG_CACHE_HOME", "NUMBA_CACHE_DIR")}
+    env["HOME"] = str(tmp_path / "home")
+    whatif = [sys.executable, "-m", "tennis_stroke.cli", "whatif", "x", "--set", "M2=0.35"]
+    done = subprocess.run(
+        [*whatif, "--figure", "fig2", "-n"],
+        capture_output=True,
+        text=True,
+        env=env,
+        cwd=ROOT,
+        timeout=300,
+    )
+    assert done.returncode == 2
+    line = _one_error_line(done.stderr)
+    assert f"HOME={str(tmp_path / 'home')!r} cannot hold the caches" in line
+    check = [sys.executable, str(ROOT / "tools" / "cache_check.py")]
+    done = subprocess.run(check, capture_output=True, text=True, env=env, timeout=300)
+    assert done.returncode == 2 and _one_error_line(done.stderr) == line
 
 
 def _table(tmp_path):

@@ -2,12 +2,14 @@
 `make install` installs exactly the lock, and the lock holds every declared dependency
 at a version the declared range admits."""
 
+import os
 import shutil
 import subprocess
 import sys
 import tomllib
 from pathlib import Path
 
+import pytest
 from packaging.requirements import Requirement
 from packaging.utils import canonicalize_name
 
@@ -81,3 +83,73 @@ def test_an_edit_of_the_dependencies_without_make_lock_stops_make_install_in_one
         errors = [line for line in done.stderr.splitlines() if line.startswith("lock_check")]
         assert done.returncode != 0 and len(errors) == 1 and "run make lock" in errors[0]
         assert not (tmp_path / ".venv").exists()
+
+
+#: A stand-in for the interpreters `make install` calls (the system's python3 and the
+#: venv's): it records each call; `--installed` (the check of the environment) fails
+#: until a `pip install` has run; `-m venv DIR` makes DIR/bin/python (itself).
+FAKE_PYTHON = """#!/bin/sh
+echo "$*" >> "$FAKE_LOG"
+case "$*" in
+  "tools/lock_check.py --installed")
+    [ -f "$FAKE_STATE" ] && exit 0
+    echo "lock_check: .venv is not requirements.lock: pytest-xdist missing" >&2; exit 1;;
+  "-m venv "*) mkdir -p "$3/bin" && cp "$0" "$3/bin/python";;
+  "-m pip install"*) touch "$FAKE_STATE";;
+esac
+exit 0
+"""
+
+
+@pytest.mark.skipif(shutil.which("make") is None, reason="needs make")
+@pytest.mark.parametrize(
+    "case", ["a distribution missing", "the interpreter gone", "the environment is the lock"]
+)
+def test_make_install_checks_the_environment_not_only_its_stamp(tmp_path, case):
+    """`rm .venv/bin/python; make install` said 'Nothing to be done' (it trusted its
+    stamp), and with pytest-xdist uninstalled `make check` failed on '-n' while make
+    install repaired nothing (issue 56).  make install now checks the environment at
+    every call and installs the lock again when it differs; when it does not, it
+    installs nothing."""
+    for name in ("Makefile", "pyproject.toml", "requirements.lock"):
+        shutil.copy(ROOT / name, tmp_path / name)
+    fake = tmp_path / "python3"
+    fake.write_text(FAKE_PYTHON)
+    fake.chmod(0o755)
+    venv = tmp_path / ".venv"
+    (venv / "bin").mkdir(parents=True)
+    if case != "the interpreter gone":
+        shutil.copy(fake, venv / "bin" / "python")
+    state, log = tmp_path / "installed", tmp_path / "calls"
+    if case == "the environment is the lock":
+        state.touch()
+    (venv / ".installed-stamp").touch()  # newer than the Makefile's other prerequisites
+    done = subprocess.run(
+        ["make", "-C", str(tmp_path), "install", f"PYTHON={fake}"],
+        capture_output=True,
+        text=True,
+        env={**os.environ, "FAKE_LOG": str(log), "FAKE_STATE": str(state)},
+    )
+    assert done.returncode == 0, done.stdout + done.stderr
+    calls = log.read_text().splitlines() if log.exists() else []
+    installs = [c for c in calls if c.startswith("-m pip install")]
+    if case == "the environment is the lock":
+        assert calls == ["tools/lock_check.py --installed"]
+        return
+    assert installs, calls  # the lock installed again
+    assert calls[-1] == "tools/lock_check.py --installed"  # and checked after
+    assert (venv / "bin" / "python").exists()
+    assert "make install: installing the lock again" in done.stdout
+
+
+def test_the_check_of_the_environment_names_what_differs(tmp_path):
+    """tools/lock_check.py --installed: 0 for this environment (the lock), 1 and one line
+    naming the distribution for a lock it is not."""
+    tool = [sys.executable, str(ROOT / "tools" / "lock_check.py"), "--installed"]
+    assert subprocess.run(tool, capture_output=True).returncode == 0
+    (tmp_path / "requirements.lock").write_text(
+        LOCK.read_text().replace("\nnumpy==", "\nnumpy==0.0.1+x\n    # was ", 1)
+    )
+    done = subprocess.run([*tool, "--root", str(tmp_path)], capture_output=True, text=True)
+    assert done.returncode == 1
+    assert done.stderr.count("\n") == 1 and "numpy" in done.stderr and "0.0.1+x" in done.stderr

@@ -4,6 +4,7 @@ Usage::
 
     python3 tools/lock_check.py            # make install runs it first: exit 2 if not
     python3 tools/lock_check.py --write    # make lock runs it after uv: record the hash
+    .venv/bin/python tools/lock_check.py --installed   # is .venv the lock? exit 1 if not
 
 The lock records the SHA-256 of the dependencies pyproject.toml declared when it was made
 (``project.dependencies`` and every extra of ``project.optional-dependencies``, as sorted
@@ -11,6 +12,12 @@ JSON) in one comment line.  An edit of those (a new dependency, another range) w
 ``make lock`` then stops ``make install`` in one line, before anything installs; an
 edit anywhere else in pyproject.toml (a comment, the description) does not.  Standard
 library only: it runs before the virtual environment exists.
+
+``--installed`` (run by the environment's interpreter, at every ``make install``) checks
+the environment instead of trusting the stamp: every distribution of the lock installed
+at its version and the project itself importable, else one line naming the first
+differences and exit 1 (``make install`` then installs the lock again).  Distributions
+installed beside the lock are left alone (installing the lock would not remove them).
 """
 
 from __future__ import annotations
@@ -55,12 +62,37 @@ def write(pyproject: Path, lock: Path) -> None:
     lock.write_text("\n".join(lines) + "\n")
 
 
+def installed_differences(lock: Path) -> list[str]:
+    """How the running environment differs from ``lock``: distributions of the lock
+    missing or at another version, and the project not installed (importable)."""
+    try:
+        from tennis_stroke.io.environment import installed, lock_differences
+    except ImportError as exc:
+        return [f"the project is not importable ({exc}): pip install -e . missing"]
+    out = list(lock_differences(lock, unlocked=False))
+    if "tennis-stroke" not in installed():
+        out.append("the project itself is not installed")
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--write", action="store_true", help="record the hash (make lock)")
+    parser.add_argument(
+        "--installed", action="store_true", help="is the running environment the lock?"
+    )
     parser.add_argument("--root", type=Path, default=ROOT, help="the project's folder")
     args = parser.parse_args(argv)
     pyproject, lock = args.root / "pyproject.toml", args.root / "requirements.lock"
+    if args.installed:
+        differ = installed_differences(lock)
+        if differ:
+            more = f" and {len(differ) - 3} more" if len(differ) > 3 else ""
+            sys.stderr.write(
+                f"lock_check: {sys.prefix} is not {lock.name}: {'; '.join(differ[:3])}{more}\n"
+            )
+            return 1
+        return 0
     try:
         if args.write:
             write(pyproject, lock)

@@ -2,6 +2,7 @@
 write finishes, no temporary file is left, the earlier file is kept, and the signal then
 takes effect; the command line ends with one line and 130 or 143."""
 
+import ast
 import os
 import signal
 import subprocess
@@ -11,6 +12,7 @@ import time
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import ROOT
 
 from tennis_stroke.io import netcdf
 from tennis_stroke.io.interrupts import (
@@ -169,3 +171,55 @@ def test_a_reused_pid_is_not_taken_for_the_snakemake_process():
     pid, start = mine.split(":")
     assert start.isdigit()
     assert _alive(mine) and not _alive(f"{pid}:{int(start) + 1}")
+
+
+#: A workflow job's script in miniature: signals made quiet first, then an import that
+#: takes a while (scipy's, in the claims job of issue 56).
+QUIET_SCRIPT = """
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()
+
+import slow_import
+"""
+
+
+@pytest.mark.signals
+@pytest.mark.parametrize(
+    "signum, status, line",
+    [
+        (signal.SIGINT, 130, "tennis-stroke job interrupted\n"),
+        (signal.SIGTERM, 143, "tennis-stroke job terminated\n"),
+    ],
+)
+def test_a_signal_while_a_job_imports_is_one_line(tmp_path, signum, status, line):
+    """Ctrl-C during `make report` printed 30 lines of traceback from inside scipy's import
+    in a job's script, before its logged block: now one line and the signal's status."""
+    (tmp_path / "slow_import.py").write_text(
+        'print("importing", flush=True)\nimport time\ntime.sleep(60)\n'
+    )
+    with subprocess.Popen(
+        [sys.executable, "-c", QUIET_SCRIPT],
+        env={**os.environ, "PYTHONPATH": str(tmp_path)},
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    ) as job:
+        assert job.stdout.readline() == "importing\n"
+        job.send_signal(signum)
+        _, stderr = job.communicate(timeout=30)
+    assert stderr == line
+    assert job.returncode == status
+
+
+def test_every_workflow_script_makes_signals_quiet_before_its_imports():
+    """Each script's first statements (after its docstring) make signals quiet; only
+    then does it import anything else (tests/io: the behaviour)."""
+    scripts = sorted((ROOT / "workflow" / "scripts").glob("*.py"))
+    assert len(scripts) >= 10
+    for path in scripts:
+        body = ast.parse(path.read_text()).body[1:3]  # after the docstring
+        assert [ast.unparse(node) for node in body] == [
+            "from tennis_stroke.io.interrupts import quiet_job_stops",
+            "quiet_job_stops()",
+        ], path.name

@@ -104,6 +104,20 @@ def test_failures_are_statuses(params, settings, status):
     assert math.isnan(res["v_out_kmh"])
 
 
+#: A stroke that cannot finish: the shoulder torque holds the arm back, phi never falls
+#: through 0 and every step is short (the slow-failing stroke of issue 56).
+NEVER_HITS = {"C1": -1e6}
+
+
+@pytest.mark.parametrize("max_steps", [2_000, SolverSettings().max_steps])
+def test_a_stroke_that_cannot_finish_ends_at_the_step_limit(max_steps):
+    """Such a stroke costs at most ``max_steps`` accepted steps (the default too): what
+    bounds the time a stop waits for the stroke under way (solve_coefficients)."""
+    res = strike(*FIG4_A, NEVER_HITS, SolverSettings(max_steps=max_steps))
+    assert res["status_name"] == "step_failure"
+    assert res["steps"] == max_steps
+
+
 #: Without torques, the rods fall from (70, -60) deg and move away from the ball.
 NO_APPROACH_CASE = (70.0, -60.0, {"C1": 0.0, "C2": 0.0})
 

@@ -16,13 +16,15 @@ def test_a_declared_scenario_is_run_by_name_for_its_page_and_article(tmp_path, m
     pages = "report/scenarios/heavy_racket"
     assert plan.overrides is None  # the workflow reads its declaration
     assert plan.targets == (f"{pages}/index.html", f"{pages}/article.pdf")
-    assert plan.snakemake_args(2) == ["--cores", "2", *plan.targets, "--quiet", "rules"]
+    resume = "--rerun-incomplete"  # what an interrupted run left is made again
+    assert plan.snakemake_args(2) == ["--cores", "2", *plan.targets, "--quiet", "rules", resume]
     assert plan.snakemake_args(3, dry_run=True) == [
         "--cores",
         "3",
         *plan.targets,
         "--quiet",
         "rules",
+        resume,
         "-n",
     ]
 
@@ -37,7 +39,8 @@ def test_a_new_scenario_gives_snakemake_its_overrides_and_only_its_figures():
         "results/scenarios/x/figures/fig09_v_tau.png",
     )
     args = plan.snakemake_args(4, dry_run=True)
-    assert args[: 2 + len(plan.targets) + 2] == ["--cores", "4", *plan.targets, "--quiet", "rules"]
+    start = ["--cores", "4", *plan.targets, "--quiet", "rules", "--rerun-incomplete"]
+    assert args[: len(start)] == start
     assert args[-3:-1] == ["--config", args[-2]] and args[-1] == "-n"
     key, _, flow = args[-2].partition("=")  # one argument: Snakemake reads it as YAML
     assert key == "scenarios" and yaml.safe_load(flow) == {"x": overrides}

@@ -18,7 +18,7 @@ from pathlib import Path
 
 import pytest
 import yaml
-from conftest import ROOT, planned_kinds, run_snakemake, snakemake_command, workdir
+from conftest import CHECKOUT, ROOT, planned_kinds, run_snakemake, snakemake_command, workdir
 from tiny import TINY, TINY_READINGS
 
 from tennis_stroke.experiments.specs import EXPERIMENTS
@@ -130,9 +130,6 @@ def dry_runs(snakefile, work, overrides):
     return json.loads(done.stdout)
 
 
-#: What a checkout needs to run the workflow (the package is imported from the
-#: environment; its sources are the simulations' inputs).
-CHECKOUT = ("Snakefile", "workflow", "src", "docs")
 #: A time before the tiny run (2001): the copied sources are older than every result.
 OLD = 1_000_000_000
 
@@ -583,59 +580,6 @@ def test_a_differing_installed_copy_is_refused_before_any_job(tiny_run, tmp_path
     ]
     dry = subprocess.run([*command, "-n"], capture_output=True, text=True, timeout=600, env=env)
     assert dry.returncode == 0 and "tennis-stroke warning: the jobs would import" in dry.stderr
-
-
-@pytest.mark.signals
-@pytest.mark.parametrize(
-    ("signum", "status", "line"),
-    [
-        (signal.SIGINT, 130, "tennis-stroke: interrupted"),
-        (signal.SIGTERM, 143, "tennis-stroke: terminated"),
-        (signal.SIGHUP, 143, "tennis-stroke: terminated"),
-    ],
-)
-def test_whatif_stopped_by_a_signal_leaves_no_lock(tmp_path, signum, status, line):
-    """Ctrl-C (the terminal's SIGINT to the command's process group), SIGTERM or a closed
-    terminal (SIGHUP) while `tennis-stroke whatif` runs the workflow: Snakemake gets the
-    signal once, stops its jobs and removes its locks, the command ends with one line
-    and the signal's status, and the next run needs no --unlock.  (subprocess.run killed
-    Snakemake 0.25 s after Ctrl-C, and at once on SIGTERM, before it removed its locks.)"""
-    checkout = tmp_path / "checkout"
-    checkout.mkdir()
-    for name in CHECKOUT:
-        (checkout / name).symlink_to(ROOT / name)
-    workdir(checkout, TINY, TINY_READINGS)
-    command = [str(Path(sys.executable).with_name("tennis-stroke")), "whatif", "sig"]
-    run = subprocess.Popen(
-        [*command, "--set", "M2=0.35", "--figure", "fig2", "--cores", "1"],
-        cwd=checkout,
-        start_new_session=True,  # its own process group, as a terminal's foreground job
-        # with a closed terminal's default: a run under nohup ignores SIGHUP, and passes that on
-        preexec_fn=lambda: signal.signal(signal.SIGHUP, signal.SIG_DFL),
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-    )
-    locks = checkout / ".snakemake" / "locks"
-    deadline = time.monotonic() + 120
-    while not (locks.is_dir() and any(locks.iterdir())):
-        assert run.poll() is None, run.communicate()
-        assert time.monotonic() < deadline, "Snakemake took no lock in 120 s"
-        time.sleep(0.05)
-    time.sleep(0.5)  # a job under way
-    os.killpg(run.pid, signum)
-    out, err = run.communicate(timeout=300)
-    assert run.returncode == status, err[-2000:]
-    assert err.strip().splitlines()[-1] == line and "Traceback" not in err, err[-2000:]
-    assert not list(locks.iterdir()), sorted(p.name for p in locks.iterdir())
-    again = subprocess.run(
-        [sys.executable, "-m", "snakemake", "-n", "--cores", "1", "results/claims.csv"],
-        cwd=checkout,
-        capture_output=True,
-        text=True,
-        timeout=300,
-    )
-    assert again.returncode == 0 and "LockException" not in again.stderr, again.stderr[-2000:]
 
 
 #: The line a failed or stopped run says when it puts earlier results back.

@@ -1,5 +1,9 @@
 """Write report/article.pdf and report/metadata.yaml from the results."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from pathlib import Path
 
 from tennis_stroke.pipeline.jobs import logged

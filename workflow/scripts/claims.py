@@ -5,6 +5,10 @@ the consistent readings and each deviation's evidence.  Beside the table, the re
 the configuration it was computed under (a scenario's, or where it departs from the
 paper's)."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.inference.paper_config import (
     configuration_record,
     load_paper_inputs,

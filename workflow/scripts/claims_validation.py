@@ -1,6 +1,10 @@
 """The targeted evaluation of the claims checked against the full maps on kept readings
 (config/readings.yaml, multiverse.validation), for one group of searched files."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.validation import validate
 from tennis_stroke.io.netcdf import load_result

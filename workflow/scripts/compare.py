@@ -1,6 +1,10 @@
 """Draw a scenario's figure against the paper's: shared scales and the difference (its
 registry entry, the paper's marks and the scenario's changes are params of the job)."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.compare import comparison
 from tennis_stroke.replication.registry import Figure

@@ -1,6 +1,10 @@
 """Draw one figure from its result files (its registry entry and the paper's values of
 the claims it marks are params of the job)."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.figures import draw
 from tennis_stroke.replication.registry import Figure

@@ -1,6 +1,10 @@
 """One map from its chunks; fails when its share of failed strokes is above the limit.
 A map of the table of experiments gets its labels from the units table again."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.io.failures import check_failure_share
 from tennis_stroke.io.netcdf import relabelled, write_netcdf
 from tennis_stroke.pipeline.chunks import gather_chunks

@@ -1,6 +1,10 @@
 """Identification as a fit (config/readings.yaml): fits, profiles and leave-one-out of
 both declared fit sets, one netCDF file each."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.inference.identification import run_identification, summary, to_datasets
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.pipeline.jobs import Timer, logged, save, settings

@@ -1,5 +1,9 @@
 """Build report/index.html from the figures, claims, ledger and run metadata."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.experiments.specs import INFERENCE_RESULTS, STUDY_RESULTS
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.report import build_report

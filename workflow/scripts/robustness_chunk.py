@@ -1,5 +1,9 @@
 """The robustness analysis, step 2: every claim under one chunk of the kept readings."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.robustness import evaluate_readings
 from tennis_stroke.io.netcdf import load_result

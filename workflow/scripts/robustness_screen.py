@@ -1,6 +1,10 @@
 """The robustness analysis, step 1: the declared Sobol candidates screened against both
 fit sets, and the consistent readings kept (config/readings.yaml, multiverse)."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.inference.multiverse import best_fits, readings_dataset, screen
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.io.netcdf import load_result

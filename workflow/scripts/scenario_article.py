@@ -1,5 +1,9 @@
 """Write a scenario's article (report/scenarios/NAME/article.pdf) from its results."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.scenario_article import build_scenario_article
 

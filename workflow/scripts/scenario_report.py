@@ -1,6 +1,10 @@
 """Build a scenario's page: its overrides, the figures it changes beside the paper
 configuration's, every claim under both configurations."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.pipeline.jobs import logged
 from tennis_stroke.replication.scenario_report import build_scenario_report
 

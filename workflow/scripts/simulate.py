@@ -1,6 +1,10 @@
 """One row of the table of experiments (``tennis_stroke.experiments.specs``): its function
 on the config values the rule passes, for the whole file or one chunk of its first axis."""
 
+from tennis_stroke.io.interrupts import quiet_job_stops
+
+quiet_job_stops()  # from here on a signal ends the job in one line, also while importing
+
 from tennis_stroke.experiments.specs import EXPERIMENTS, compute
 from tennis_stroke.pipeline.jobs import Timer, chunk_position, logged, save, settings
 

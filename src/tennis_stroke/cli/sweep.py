@@ -14,10 +14,11 @@ import numpy as np
 from .parsing import add_model_options, angle_help, parse_set, solver_settings
 from .ranges import RANGE_FORMS, range_spec
 
-#: Strokes per thread in one call of the compiled solver during a sweep: a sweep runs in
-#: blocks so that Ctrl-C (handled between blocks) stops it within a fraction of a second
-#: (4096 strokes at about 16 us per stroke and thread, docs/performance.md: about
-#: 0.07 s).  Blocks never change a number: every stroke is computed on its own.
+#: Strokes per thread in one call of the compiled solver during a sweep: the memory of a
+#: batch's work arrays is that of one block, not of the grid.  (Ctrl-C stops a call at
+#: the next stroke of each thread, :func:`tennis_stroke.solver.stroke.solve_coefficients`,
+#: whatever a block's size.)  Blocks never change a number: every stroke is computed on
+#: its own.
 SWEEP_BLOCK_PER_THREAD = 4096
 
 
@@ -46,8 +47,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress):
-    """``strike_batch`` over the grid ``theta0 x delta0`` in blocks of ``block`` strokes
-    (Ctrl-C is handled between blocks); the result fields on the grid."""
+    """``strike_batch`` over the grid ``theta0 x delta0`` in blocks of ``block`` strokes;
+    the result fields on the grid."""
     from ..solver.stroke import strike_batch
 
     nd, n = delta0.size, theta0.size * delta0.size

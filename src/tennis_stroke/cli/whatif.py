@@ -37,15 +37,19 @@ def run(args: argparse.Namespace) -> int:
     import shlex
     from pathlib import Path
 
+    from .._cache import cache_problem
     from ..io.interrupts import run_forwarding
     from ..pipeline.whatif import plan_whatif
 
     if not Path("Snakefile").is_file():
         raise ValueError(f"no Snakefile in {Path.cwd()}: run whatif from the project's folder")
+    problem = cache_problem()  # Snakemake's own message is a long traceback
+    if problem:
+        raise ValueError(problem)
     plan = plan_whatif(args.name, args.set, args.figure)  # a refusal: one line
     snakemake = plan.snakemake_args(args.cores, args.dry_run)
     print("$ " + shlex.join(["snakemake", *snakemake]), flush=True)  # what reruns it
-    # Ctrl-C: Snakemake removes its locks, then we stop
+    # a signal goes on to Snakemake and its jobs, which stop; then we stop
     code = run_forwarding([sys.executable, "-m", "snakemake", *snakemake])
     if code == 0 and not args.dry_run:
         print("\n".join(plan.targets))

@@ -54,9 +54,10 @@ def lock_hash(path: str | Path = LOCK) -> str:
 
 
 @cache
-def lock_differences(path: str | Path = LOCK) -> tuple[str, ...]:
+def lock_differences(path: str | Path = LOCK, unlocked: bool = True) -> tuple[str, ...]:
     """How the running environment differs from the lock (empty: it is the lock): each
-    distribution installed at another version, missing, or installed but not locked."""
+    distribution installed at another version, missing, or (``unlocked``) installed but
+    not locked."""
     try:
         lock = locked(path)
     except OSError:
@@ -67,9 +68,9 @@ def lock_differences(path: str | Path = LOCK) -> tuple[str, ...]:
         for name, (version, _) in sorted(lock.items())
         if have.get(name) != version
     ]
-    out += [
-        f"{name} {have[name]} (not locked)" for name in sorted(set(have) - set(lock) - UNLOCKED)
-    ]
+    if unlocked:
+        extra = sorted(set(have) - set(lock) - UNLOCKED)
+        out += [f"{name} {have[name]} (not locked)" for name in extra]
     return tuple(out)
 
 

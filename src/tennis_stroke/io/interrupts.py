@@ -135,33 +135,96 @@ def stop_with_snakemake() -> Iterator[None]:
         done.set()
 
 
+def job_stop_status(exc: BaseException, log_path: str | None = None) -> int:
+    """Write the one line of a workflow job stopped by ``exc`` (KeyboardInterrupt or
+    :class:`Terminated`) to stderr, naming its log where it has one; returns its exit
+    status (130 or 143)."""
+    interrupted = isinstance(exc, KeyboardInterrupt)
+    where = f" (log in {log_path})" if log_path else ""
+    sys.stderr.write(f"tennis-stroke job {'interrupted' if interrupted else 'terminated'}{where}\n")
+    return EXIT_STATUS[signal.SIGINT if interrupted else signal.SIGTERM]
+
+
+def quiet_job_stops() -> None:
+    """From here to the end of this process (a workflow job's script calls it first,
+    before its imports, which take most of a short job's time): SIGTERM raises
+    :class:`Terminated`, and an interrupt nothing catches (Ctrl-C or SIGTERM during the
+    imports, say) ends the process with one line and the signal's exit status (130 or
+    143), never a traceback (``sys.excepthook``).  Inside the job's block,
+    :func:`tennis_stroke.pipeline.jobs.logged` catches them itself, naming the log."""
+    if threading.current_thread() is threading.main_thread():
+        signal.signal(signal.SIGTERM, _raise_terminated)
+    previous = sys.excepthook
+
+    def hook(kind, value, traceback) -> None:
+        if not issubclass(kind, KeyboardInterrupt | Terminated):
+            previous(kind, value, traceback)
+            return
+        status = job_stop_status(value)
+        for stream in (sys.stdout, sys.stderr):
+            with contextlib.suppress(Exception):
+                stream.flush()
+        os._exit(status)  # nothing is left to clean up: the exception reached the top
+
+    sys.excepthook = hook
+
+
 #: What a command that runs Snakemake for the user passes on of the signals it receives:
-#: Ctrl-C as Ctrl-C, a termination or a closed terminal as SIGTERM.  Snakemake stops on
-#: either, its jobs first, and removes its locks (``.snakemake/locks``).
+#: Ctrl-C as Ctrl-C, a termination or a closed terminal as SIGTERM.  Each goes to
+#: Snakemake's whole process group, its jobs included, as a terminal's Ctrl-C does: the
+#: jobs stop at once (Snakemake alone would wait for them: on SIGTERM it finishes the
+#: running jobs, on SIGINT it waits for them), Snakemake then stops and removes its locks
+#: (``.snakemake/locks``).
 FORWARDED = {
     signal.SIGINT: signal.SIGINT,
     signal.SIGTERM: signal.SIGTERM,
     signal.SIGHUP: signal.SIGTERM,
 }
+#: ``prctl`` option: the signal a process gets when its parent ends (Linux).
+PR_SET_PDEATHSIG = 1
+
+
+def _die_with_parent(parent: int):
+    """A ``preexec_fn`` for the child of process ``parent``: SIGKILL when the parent
+    ends, also by SIGKILL (Linux ``prctl(PR_SET_PDEATHSIG)``; elsewhere None, nothing)."""
+    import ctypes
+
+    try:
+        prctl = ctypes.CDLL(None, use_errno=True).prctl  # the C library's, on Linux
+    except (OSError, AttributeError):
+        return None
+
+    def child() -> None:
+        prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+        if os.getppid() != parent:  # the parent ended before prctl: end too
+            os.kill(os.getpid(), signal.SIGKILL)
+
+    return child
 
 
 def run_forwarding(command: list[str]) -> int:
-    """Run ``command`` (Snakemake) in a process group of its own and wait for it; a
-    SIGINT, SIGTERM or SIGHUP this process receives meanwhile is passed on once
-    (:data:`FORWARDED`) and the command is waited for, so it can stop its jobs and remove
-    its locks; then the signal ends this process as it would have (KeyboardInterrupt,
-    :class:`Terminated`).  Returns the command's exit status otherwise.  (A child left
-    in the terminal's group would get Ctrl-C twice, and ``subprocess.run`` kills it
-    0.25 s after Ctrl-C, before Snakemake removed its locks.)"""
+    """Run ``command`` (Snakemake) in a process group of its own and wait for it; each
+    SIGINT, SIGTERM or SIGHUP this process receives meanwhile is passed on to that
+    group (:data:`FORWARDED`) and the command is waited for, so its jobs stop and it
+    removes its locks; then the first signal ends this process as it would have
+    (KeyboardInterrupt, :class:`Terminated`).  Returns the command's exit status
+    otherwise.  (A child left in the terminal's group would get Ctrl-C twice, and
+    ``subprocess.run`` kills it 0.25 s after Ctrl-C, before Snakemake removed its locks.)
+
+    Should this process end without a signal it can handle (``kill -9``), the command
+    gets SIGKILL from the kernel (:func:`_die_with_parent`), and its jobs, which watch
+    their Snakemake (:func:`stop_with_snakemake`), stop within a second: nothing runs on
+    unseen, and the next run removes the locks left and reruns the jobs left incomplete
+    (``tennis_stroke.pipeline.checkout.hold_folder``, ``--rerun-incomplete``)."""
     import subprocess
 
     received: list[int] = []
-    proc = subprocess.Popen(command, process_group=0)
+    proc = subprocess.Popen(command, process_group=0, preexec_fn=_die_with_parent(os.getpid()))
 
     def forward(signum, frame) -> None:
-        if not received and proc.poll() is None:
-            proc.send_signal(FORWARDED[signum])
         received.append(signum)
+        with contextlib.suppress(ProcessLookupError, PermissionError):
+            os.killpg(proc.pid, FORWARDED[signum])
 
     main = threading.current_thread() is threading.main_thread()
     previous = {s: signal.getsignal(s) for s in FORWARDED} if main else {}

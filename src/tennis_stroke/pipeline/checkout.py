@@ -11,11 +11,18 @@ A non-editable install (``pip install .``) makes every job import the copy in
 site-packages, not the checkout's ``src/tennis_stroke``: an edit of the checkout would
 rerun jobs (their code inputs are the checkout's files) that then run the unedited copy.
 :func:`installed_difference` names the first module in which the two differ.
+
+One run at a time in a working folder (:func:`hold_folder`): Snakemake's own locks
+cannot tell a live run from a dead one, so a second run was told to ``--unlock`` the
+live run's locks, and a run killed with ``kill -9`` left locks that stopped the next.
 """
 
 from __future__ import annotations
 
+import fcntl
+import os
 import shlex
+import sys
 from pathlib import Path
 
 
@@ -56,3 +63,89 @@ def runs_no_code(argv: list[str]) -> bool:
         if short.isalpha() and set(short) & {"n", "t"}:  # -n, -t, or joined flags (-pn)
             return True
     return False
+
+
+#: Snakemake's folder in the working folder: its locks, its record of incomplete files.
+SNAKEMAKE_FOLDER = Path(".snakemake")
+#: Options of a Snakemake command line that only read the folder (besides a dry run).
+READING_OPTIONS = frozenset(
+    "--list-rules --list --list-target-rules --lt -l --lint --summary -S "
+    "--detailed-summary -D --dag --rulegraph --filegraph --d3dag --report "
+    "--list-changes --lc --list-input-changes --li --list-params-changes --lp "
+    "--list-code-changes --version -v --help -h --print-compilation".split()
+)
+#: The open folder whose ``flock`` this process holds until it ends (the kernel lets it
+#: go then, also after ``kill -9``).
+_HELD: list[int] = []
+
+
+def changes_folder(argv: list[str]) -> bool:
+    """Whether a Snakemake command line (``sys.argv[1:]``) is a run's that runs jobs or
+    otherwise writes the working folder (``--touch``, ``--unlock``, ...): not a dry run,
+    not a listing, not a job's own Snakemake (``--mode subprocess`` or ``remote``: its
+    run's process holds the folder)."""
+    for i, arg in enumerate(argv):
+        mode = argv[i + 1] if arg == "--mode" and i + 1 < len(argv) else arg[7:]
+        if arg.startswith("--mode") and mode != "default":
+            return False
+        if arg in ("--dry-run", "--dryrun") or arg.split("=")[0] in READING_OPTIONS:
+            return False
+        short = arg[1:] if arg.startswith("-") and not arg.startswith("--") else ""
+        if short.isalpha() and "n" in short:  # -n, or joined flags (-pn)
+            return False
+    return True
+
+
+def _holder(fd: int) -> int | None:
+    """The process holding the ``flock`` on open file ``fd``, or None: ``/proc/locks``
+    names each lock's holder and ``MAJOR:MINOR:INODE`` (by the inode only: an overlay
+    file system's device number there is not the one ``stat`` gives)."""
+    inode = str(os.fstat(fd).st_ino)
+    try:
+        lines = Path("/proc/locks").read_text().splitlines()
+    except OSError:
+        return None
+    for fields in (line.split() for line in lines):
+        if len(fields) > 5 and fields[1] == "FLOCK" and fields[5].rsplit(":", 1)[-1] == inode:
+            return int(fields[4]) if fields[4].isdigit() else None
+    return None
+
+
+def hold_folder(argv: list[str]) -> str | None:
+    """Make this Snakemake process (the run's, not a job's) the only one that writes the
+    working folder while it lives: it holds an exclusive ``flock`` on ``.snakemake``
+    (not inherited by its jobs; let go by the kernel when it ends, however it ends).
+    Another live run holding it: returns the line that says so (the caller refuses to
+    run).  None: Snakemake's locks left in the folder are those of a run that ended
+    without removing them (``kill -9``, a power cut), and are removed, as ``snakemake
+    --unlock`` would (one line says so).  A dry run or a listing
+    (:func:`changes_folder`) writes nothing and holds nothing; a file system without
+    ``flock`` leaves it all to Snakemake."""
+    if _HELD or not changes_folder(argv):  # held already (the Snakefile read again)
+        return None
+    SNAKEMAKE_FOLDER.mkdir(exist_ok=True)
+    fd = os.open(SNAKEMAKE_FOLDER, os.O_RDONLY)  # not inherited by the jobs (PEP 446)
+    try:
+        fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+    except BlockingIOError:
+        pid = _holder(fd)
+        os.close(fd)
+        who = f" (Snakemake, pid {pid})" if pid else ""
+        stop = f"kill -INT {pid}" if pid else "Ctrl-C in its terminal"
+        return (
+            f"another run is active in this folder{who}: wait for it to end, or stop it "
+            f"({stop}); its locks are live: do not --unlock them"
+        )
+    except OSError:
+        os.close(fd)
+        return None
+    _HELD.append(fd)
+    stale = sorted((SNAKEMAKE_FOLDER / "locks").glob("*.lock"))
+    for path in stale:
+        path.unlink(missing_ok=True)
+    if stale:
+        sys.stderr.write(
+            "tennis-stroke: removed the locks of an earlier run that ended without removing "
+            "them (no other run is active in this folder)\n"
+        )
+    return None

@@ -19,7 +19,7 @@ from pathlib import Path
 
 import xarray as xr
 
-from ..io.interrupts import Terminated, stop_with_snakemake, terminate_raises
+from ..io.interrupts import Terminated, job_stop_status, stop_with_snakemake, terminate_raises
 from ..io.netcdf import write_netcdf
 from ..solver.settings import SolverSettings
 from .chunks import mark_chunk
@@ -46,9 +46,7 @@ def logged(log_path: str | Path) -> Iterator[None]:
                 yield
                 print(time_split(entered))
         except (KeyboardInterrupt, Terminated) as exc:
-            name = "interrupted" if isinstance(exc, KeyboardInterrupt) else "terminated"
-            sys.stderr.write(f"tennis-stroke job {name} (log in {log_path})\n")
-            raise SystemExit(130 if name == "interrupted" else 143) from None
+            raise SystemExit(job_stop_status(exc, log_path)) from None
         except Exception as exc:
             traceback.print_exc(file=log)
             message = str(exc).splitlines()[0] if str(exc) else ""

@@ -28,7 +28,7 @@ from ..inference.reading_space import ReadingSpace, ReadingSpaceError, load_read
 from ..replication.marks import mark_values
 from ..replication.registry import FIGURES
 from . import params as job_params
-from .checkout import installed_difference, runs_no_code
+from .checkout import hold_folder, installed_difference, runs_no_code
 from .config_check import config_errors, numbers_from_strings, rows_per_job
 from .scenarios import (
     FOLDER,
@@ -102,7 +102,9 @@ def guard_checkout(basedir: Path, argv: list[str]) -> None:
     it would fail; a scenario's never stops the paper's run: a warning), and the jobs
     must run the checkout's code (an installed copy that differs would run stale code
     while the reruns follow the checkout's edits: refused when jobs would run, a warning
-    for a dry run or ``--touch``, which run no code)."""
+    for a dry run or ``--touch``, which run no code).  Last, one run at a time writes
+    the working folder (:func:`~tennis_stroke.pipeline.checkout.hold_folder`): another
+    one active is named, and the locks of a run that died are removed."""
     damaged = damaged_results()
     for path, problem in damaged:
         if path.startswith(f"results/{FOLDER}/"):
@@ -127,6 +129,9 @@ def guard_checkout(basedir: Path, argv: list[str]) -> None:
         if not runs_no_code(argv):
             raise PlanningError("", line)
         sys.stderr.write(f"tennis-stroke warning: {line}\n")
+    active = hold_folder(argv)
+    if active:
+        raise PlanningError("", active)
 
 
 def _regex(names) -> str:

@@ -43,9 +43,11 @@ class WhatIf:
 
     def snakemake_args(self, cores: int, dry_run: bool = False) -> list[str]:
         """Snakemake's arguments for the run (what follows ``snakemake``): the targets on
-        ``cores`` cores, the log of ``make report`` (one line per job), a new scenario's
-        overrides as ``--config``, and ``-n`` for a dry run."""
-        args = ["--cores", str(cores), *self.targets, "--quiet", "rules"]
+        ``cores`` cores, the log of ``make report`` (one line per job), the jobs an
+        interrupted run left incomplete run again (``--rerun-incomplete``, as ``make
+        report`` does: Snakemake refuses to start otherwise), a new scenario's overrides
+        as ``--config``, and ``-n`` for a dry run."""
+        args = ["--cores", str(cores), *self.targets, "--quiet", "rules", "--rerun-incomplete"]
         if self.overrides is not None:
             flow = yaml.safe_dump({self.name: self.overrides}, default_flow_style=True, width=10**6)
             args += ["--config", f"scenarios={flow.strip()}"]

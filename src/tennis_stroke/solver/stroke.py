@@ -280,13 +280,17 @@ def stroke_row(method, cf_row, st, out, history, stats):
 
 
 @njit(nogil=True, **JIT)
-def solve_rows(method, cf_rows, st, out, start, stop, history_capacity):
+def solve_rows(method, cf_rows, st, out, start, stop, history_capacity, halt):
     """Solve the strokes ``start:stop`` of ``cf_rows`` into the same rows of ``out``
-    (releases the GIL: threads run such ranges side by side)."""
+    (releases the GIL: threads run such ranges side by side).  Before each stroke it
+    looks at ``halt[0]``: set (by the caller, on a signal) it returns at once, the rows
+    not yet solved left as they were."""
     method = literally(method)  # compiled per method (solver/integrate.py)
     history = np.zeros((history_capacity + 1, HISTORY_COLS))
     stats = np.zeros(N_STATS)
     for i in range(start, stop):
+        if halt[0] != 0:
+            return
         stroke_row(method, cf_rows[i], st, out[i], history, stats)
 
 
@@ -315,18 +319,19 @@ def default_threads() -> int:
     return int(numba.config.NUMBA_NUM_THREADS)
 
 
-def _solve_block(method, cf_rows, st, out, history, n_threads, pool):
-    """Every stroke of ``cf_rows`` into ``out``: ranges of strokes, on ``pool``'s threads
-    when there is more than one."""
+def _solve_block(method, cf_rows, st, out, history, n_threads, pool, halt):
+    """Every stroke of ``cf_rows`` into ``out``: ranges of strokes (one range on one
+    thread) on ``pool``'s threads while this thread waits for them, where a signal is
+    handled; without ``pool`` (a single stroke) in this thread."""
     n = cf_rows.shape[0]
     n_ranges = min(max(n, 1), RANGES_PER_THREAD * n_threads) if n_threads > 1 else 1
     bounds = [(c * n // n_ranges, (c + 1) * n // n_ranges) for c in range(n_ranges)]
-    solve = specialised(solve_rows, method, cf_rows, st, out, 0, n, history)
+    solve = specialised(solve_rows, method, cf_rows, st, out, 0, n, history, halt)
     if pool is None:
         for a, b in bounds:
-            solve(cf_rows, st, out, a, b, history)
+            solve(cf_rows, st, out, a, b, history, halt)
         return
-    jobs = [pool.submit(solve, cf_rows, st, out, a, b, history) for a, b in bounds]
+    jobs = [pool.submit(solve, cf_rows, st, out, a, b, history, halt) for a, b in bounds]
     for job in jobs:
         job.result()
 
@@ -341,6 +346,12 @@ def solve_coefficients(
 
     Every stroke is computed on its own, so the result does not depend on the number of
     threads or on how the strokes are split among them.
+
+    A signal (Ctrl-C, or SIGTERM where it raises) stops the computation at the next
+    stroke of every thread: more than one stroke run on worker threads while this one
+    waits, where Python handles the signal; the exception then raised here sets the
+    ranges' ``halt`` flag, waits for the threads (each within one stroke, itself bounded
+    by ``settings.max_steps``) and propagates.  A single stroke runs in this thread.
 
     Parameters
     ----------
@@ -362,21 +373,24 @@ def solve_coefficients(
     cf_rows = np.ascontiguousarray(cf_rows, dtype=float)
     n = cf_rows.shape[0]
     out = np.empty((n, N_OUT))
+    halt = np.zeros(1, dtype=np.int64)  # set on a signal: every range stops
     with contextlib.ExitStack() as stack:
-        pool = None
-        if n_threads > 1 and n > 1:
-            pool = stack.enter_context(ThreadPoolExecutor(n_threads))
-        if not progress or n <= PROGRESS_BLOCK:
-            _solve_block(method, cf_rows, st, out, settings.history, n_threads, pool)
-            _EVALUATIONS[0] += int(out[:, O_NFEV].sum())
-            return out
-        from tqdm import tqdm
+        pool = stack.enter_context(ThreadPoolExecutor(n_threads)) if n > 1 else None
+        try:
+            blocks = [(0, n)]
+            if progress and n > PROGRESS_BLOCK:
+                from tqdm import tqdm
 
-        bar = stack.enter_context(tqdm(total=n, unit="stroke", leave=False))
-        for a in range(0, n, PROGRESS_BLOCK):
-            b = min(a + PROGRESS_BLOCK, n)
-            _solve_block(method, cf_rows[a:b], st, out[a:b], settings.history, n_threads, pool)
-            bar.update(b - a)
+                bar = stack.enter_context(tqdm(total=n, unit="stroke", leave=False))
+                blocks = [(a, min(a + PROGRESS_BLOCK, n)) for a in range(0, n, PROGRESS_BLOCK)]
+            for a, b in blocks:
+                block = (cf_rows[a:b], st, out[a:b], settings.history, n_threads, pool, halt)
+                _solve_block(method, *block)
+                if len(blocks) > 1:
+                    bar.update(b - a)
+        except BaseException:
+            halt[0] = 1  # the threads stop at their next stroke; the pool waits for them
+            raise
     _EVALUATIONS[0] += int(out[:, O_NFEV].sum())
     return out
 
