@@ -458,17 +458,47 @@ EXPERIMENTS: dict[str, Experiment] = {
             {
                 k: f"solver_study.{k}"
                 for k in (
-                    "strokes",
+                    "scenes",
+                    "scene_strokes",
                     "seed",
                     "compiled_tolerances",
                     "scipy_tolerances",
                     "rk4_steps",
+                    "scipy_methods",
+                    "state_times",
+                    "requirement",
                     "repeats",
                 )
             },
-            ("error_kmh", "us_per_stroke", "rhs_evals_per_stroke", "failed"),
+            (
+                "v_out_error",
+                "event_time_error",
+                "state_error",
+                "rhs_evals",
+                "us_per_stroke",
+                "us_per_stroke_low",
+                "us_per_stroke_high",
+                "failed",
+                "reference_failed",
+                "theta0",
+                "delta0",
+            ),
             "work-precision study",
             section="solver_study",
+            family="study",
+            model=False,
+        ),
+        Experiment(
+            "convergence",
+            "results/solver_study/convergence.nc",
+            "studies.convergence:convergence_study",
+            {
+                k: f"solver_study.convergence.{k}"
+                for k in ("theta0", "delta0", "t_end", "counts")
+            },
+            ("step", "omega_error", "slope", "order"),
+            "convergence study",
+            section="solver_study.convergence",
             family="study",
             model=False,
         ),
@@ -479,8 +509,9 @@ EXPERIMENTS: dict[str, Experiment] = {
             {
                 "k_contact": "solver_study.stability.k_contact",
                 "cases": "solver_study.stability.cases",
+                "paper_k": "k_sensitivity.k_contact",
             },
-            ("outcome", "v_exit", "duration", "energy_change", "expected_duration"),
+            ("outcome", "v_exit", "duration", "energy_change", "expected_duration", "setting"),
             "stability study",
             section="solver_study.stability",
             family="study",
