@@ -121,7 +121,11 @@ def _reference(strokes, params, state_times: int) -> dict[str, object]:
     ref["times"], ref["omegas"] = [], []
     for i, stroke in enumerate(_strokes(strokes, params)):
         t_c, t_end = ref["events"][i, 1], ref["events"][i, 2]
-        times = probe_times(t_end if ref["ok"][i] else 1.0, state_times)
+        if not ref["ok"][i]:  # not compared: no probe
+            ref["times"].append(None)
+            ref["omegas"].append(None)
+            continue
+        times = probe_times(t_end, state_times)
         ref["times"].append(times)
         ref["omegas"].append(omegas_at(method, REFERENCE_TOL, stroke, t_c, times, spring))
     ref["spring"] = spring

@@ -14,16 +14,24 @@ from .axes import axis_label
 
 #: One colour per outcome, in the order of the file's ``flag_meanings``.
 COLOURS = ["#2ca02c", "#bcbd22", "#1f77b4", "#ff7f0e", "#d62728", "#7f7f7f"]
+def _log_edges(k: np.ndarray) -> np.ndarray:
+    """Cell edges around log-spaced values: half-way between neighbours in log k."""
+    lk = np.log10(k)
+    half = np.diff(lk) / 2 if lk.size > 1 else np.array([1.0])
+    mids = lk[:-1] + half[: lk.size - 1]
+    return 10 ** np.concatenate([[lk[0] - half[0]], mids, [lk[-1] + half[-1]]])
+
+
 def _panel(ax, d: xr.Dataset, cases: np.ndarray, names: list[str], ylabel: str):
     part = d.isel(case=cases)
     mesh = ax.pcolormesh(
-        part["k_contact"].values,
-        np.arange(part.sizes["case"]),
+        _log_edges(part["k_contact"].values),
+        np.arange(part.sizes["case"] + 1) - 0.5,
         part["outcome"].values,
         cmap=ListedColormap(COLOURS[: len(names)]),
         vmin=-0.5,
         vmax=len(names) - 0.5,
-        shading="nearest",
+        shading="flat",
     )
     ax.set_xscale("log")
     labels = [str(c).replace(" @ ", ", ") for c in part["case"].values]
