@@ -31,7 +31,7 @@ def test_every_method_of_the_shipped_study_is_measured(measured):
 
 @pytest.mark.parametrize("method", ["tennis_stroke.DP54", "tennis_stroke.DOP853", "fixed.RK4"])
 def test_each_slope_is_its_order_within_the_margin(measured, method):
-    row = measured.sel(method=method)
+    row = measured.sel({"method": method})
     slope, order = float(row["slope"]), int(row["order"])
     assert abs(slope - order) <= MARGIN, (method, slope, order, row["omega_error"].values)
 

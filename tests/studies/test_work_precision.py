@@ -29,7 +29,7 @@ def test_every_error_per_stroke_per_scene_against_an_independent_reference(table
 
 
 def test_the_compiled_errors_fall_with_the_tolerance_in_every_measure(table):
-    worst = summary(table).sel(method="tennis_stroke.DOP853")
+    worst = summary(table).sel({"method": "tennis_stroke.DOP853"})
     for scene in SCENES:
         for name in ERRORS:
             tight, loose = (float(worst[f"{name}_worst"].sel(scene=scene, setting=s)) for s in (1e-9, 1e-4))
@@ -41,7 +41,7 @@ def test_the_compiled_errors_fall_with_the_tolerance_in_every_measure(table):
 def test_rk4_on_the_swing_scene_meets_the_ball_at_phi_zero(table):
     """Fixed-step RK4 follows the cheap rungs (no spring contact): its swing-only v_out is
     close to the reference's, where a spring contact would be km/h away."""
-    err = table["v_out_error"].sel(scene="swing", method="fixed.RK4", setting=1e-3)
+    err = table["v_out_error"].sel({"scene": "swing", "method": "fixed.RK4", "setting": 1e-3})
     assert float(err.max()) < 0.1
 
 

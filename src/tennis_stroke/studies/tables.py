@@ -49,10 +49,10 @@ def rule_table(ds: xr.Dataset) -> pd.DataFrame:
         at = {"scene": scene, "method": row["method"], "setting": row["setting"]}
         found = row["method"] != "none"
         for key in ("rhs_evals", "v_out_error_worst", "event_time_error_worst"):
-            row[key] = float(s[key].sel(**at)) if found else np.nan
+            row[key] = float(s[key].sel(at)) if found else np.nan
         there = {"scene": scene, **default}
         tried = default["setting"] in ds["setting"].values
-        row["default_rhs_evals"] = float(s["rhs_evals"].sel(**there)) if tried else np.nan
-        row["default_meets"] = bool(meets.sel(**there)) if tried else False
+        row["default_rhs_evals"] = float(s["rhs_evals"].sel(there)) if tried else np.nan
+        row["default_meets"] = bool(meets.sel(there)) if tried else False
         rows.append(row)
     return pd.DataFrame(rows)

@@ -18,7 +18,7 @@ def convergence(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     d = ds[0]
     fig, ax = plt.subplots(figsize=(7.5, 5.0))
     for i, method in enumerate(d["method"].values):
-        row = d.sel(method=method)
+        row = d.sel({"method": method})
         step, err = row["step"].values, row["omega_error"].values
         keep = np.isfinite(step) & np.isfinite(err)
         slope, order = float(row["slope"]), int(row["order"])

@@ -80,7 +80,8 @@ def work_precision(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
             ax.set_xscale("log")
             ax.set_yscale("log")
             for i, method in enumerate(d["method"].values):
-                _curves(ax, ds_r.sel(method=method), s.sel(method=method), col, i, str(method))
+                pick = {"method": method}
+                _curves(ax, ds_r.sel(pick), s.sel(pick), col, i, str(method))
             if required:
                 ax.axhline(d.attrs[required], color="grey", ls="--", lw=1)
             ax.set_ylabel(axis_label(d[error]), fontsize=7)
