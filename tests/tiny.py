@@ -37,7 +37,7 @@ TINY = {
         "strokes": 2,
         "seed": 1,
         "scene_strokes": 2,
-        "scenes": {"swing": {"contact_model": "swing_speed"}, "contact": {}},
+        "scenes": {"contact": {}, "swing": {"contact_model": "swing_speed"}},
         "compiled_tolerances": [1e-6, 5e-8],
         "scipy_methods": ["DOP853"],
         "scipy_tolerances": [1e-6],
