@@ -32,7 +32,9 @@ def test_the_compiled_errors_fall_with_the_tolerance_in_every_measure(table):
     worst = summary(table).sel({"method": "tennis_stroke.DOP853"})
     for scene in SCENES:
         for name in ERRORS:
-            tight, loose = (float(worst[f"{name}_worst"].sel(scene=scene, setting=s)) for s in (1e-9, 1e-4))
+            tight, loose = (
+                float(worst[f"{name}_worst"].sel(scene=scene, setting=s)) for s in (1e-9, 1e-4)
+            )
             assert tight < loose, (scene, name, tight, loose)
         evals = worst["rhs_evals"].sel(scene=scene)
         assert float(evals.sel(setting=1e-9)) > float(evals.sel(setting=1e-4))

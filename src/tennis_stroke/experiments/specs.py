@@ -492,10 +492,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             "convergence",
             "results/solver_study/convergence.nc",
             "studies.convergence:convergence_study",
-            {
-                k: f"solver_study.convergence.{k}"
-                for k in ("theta0", "delta0", "t_end", "counts")
-            },
+            {k: f"solver_study.convergence.{k}" for k in ("theta0", "delta0", "t_end", "counts")},
             ("step", "omega_error", "slope", "order"),
             "convergence study",
             section="solver_study.convergence",

@@ -6,10 +6,12 @@ reference's contact start ``t_c``, then (the spring contact only) the contact fr
 method's own state there, the ball put at the hitting point, to the last time.  The
 event times are measured on their own (:mod:`tennis_stroke.studies.work_precision`), so
 this error is the integration's alone, not a shifted event's.  scipy's methods are read
-on their dense output; the compiled integrators and fixed-step RK4 give none to Python
-and stop at each time instead (their last step before it shortened).  The state is the
-rods' angular velocities ``omega1, omega2`` (rad/s): the angles are their integrals,
-and ``v_out`` is made from them.
+on their dense output.  The compiled integrators give none to Python: each time is the
+end of a run of its own from its phase's start (stopping one run at every time would
+cap its steps at the times' spacing and flatter a loose tolerance).  Fixed-step RK4
+stops at each time (its steps do not grow; only the one before a time is shortened).
+The state is the rods' angular velocities ``omega1, omega2`` (rad/s): the angles are
+their integrals, and ``v_out`` is made from them.
 """
 
 from __future__ import annotations
@@ -120,40 +122,33 @@ def _rk4(_, h, cf, t_c, swing_t, contact_t) -> np.ndarray:
 
 
 def _compiled(name, tol, cf, t_c, swing_t, contact_t) -> np.ndarray:
+    """Each time is the end of a run of its own from its phase's start (the swing from
+    rest, the contact from the swing's state at ``t_c``), so no stop shortens the steps
+    before it: the state at each time is that of a free run ending there."""
     settings = SolverSettings(method=name, rtol=tol, atol=tol)
     ensure_compiled(f"contact:{name}", partial(exercise_contact, name))
-    state = {
-        "t": 0.0,
-        "y": to_trig(np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])),
-        "h": settings.first_step,
-        "failed": False,
-    }
-    fixed = (coefficient_tuple(cf), False, settings.as_array())
-    fixed += (np.zeros(N_STATS), np.zeros((1, HISTORY_COLS)))
-    entry = None
+    cft, st = coefficient_tuple(cf), settings.as_array()
+    entry = []
 
-    def advance(contact: bool, t_stop: float, h_max: float) -> None:
-        nonlocal entry
-        if state["failed"] or t_stop <= state["t"]:
-            return
-        args = (contact, state["t"], state["y"], t_stop, state["h"], h_max, *fixed)
-        entry = entry or specialised(run_phases, METHOD_IDS[name], *args)
-        status, state["t"], state["y"], state["h"] = entry(*args)
-        state["failed"] = status == PHASE_FAIL
+    def run(contact: bool, t: float, y: tuple, t_stop: float, h: float, h_max: float):
+        args = (contact, t, y, t_stop, h, h_max, cft, False, st)
+        args += (np.zeros(N_STATS), np.zeros((1, HISTORY_COLS)))
+        if not entry:
+            entry.append(specialised(run_phases, METHOD_IDS[name], *args))
+        status, _, y, h = entry[0](*args)
+        return (None if status == PHASE_FAIL else y), h
 
-    out = []
-    for time in swing_t:
-        advance(False, time, np.inf)
-        out.append((state["y"][OMEGA1], state["y"][OMEGA2]))
+    def omegas(y) -> tuple[float, float]:
+        return (np.nan, np.nan) if y is None else (y[OMEGA1], y[OMEGA2])
+
+    start = to_trig(np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0]))
+    out = [omegas(run(False, 0.0, start, time, settings.first_step, np.inf)[0]) for time in swing_t]
     if contact_t.size:
-        advance(False, t_c, np.inf)
-        y = np.array(state["y"])
-        angles, cap = _ball_on(cf, t_c, y[[THETA, PHI, OMEGA1, OMEGA2]])
-        state["y"], state["h"] = to_trig(angles), min(state["h"], cap)
-        for time in contact_t:
-            advance(True, time, cap)
-            out.append((state["y"][OMEGA1], state["y"][OMEGA2]))
-    out = np.array(out, dtype=float).reshape(-1, 2)
-    if state["failed"]:
-        out[:] = np.nan
-    return out
+        y, h = run(False, 0.0, start, t_c, settings.first_step, np.inf)
+        if y is None:
+            out += [(np.nan, np.nan)] * contact_t.size
+        else:
+            angles, cap = _ball_on(cf, t_c, np.array(y)[[THETA, PHI, OMEGA1, OMEGA2]])
+            ball = to_trig(angles)
+            out += [omegas(run(True, t_c, ball, time, min(h, cap), cap)[0]) for time in contact_t]
+    return np.array(out, dtype=float).reshape(-1, 2)

@@ -175,7 +175,7 @@ def work_precision(
     compiled_tols: Sequence[float],
     scipy_tols: Sequence[float],
     rk4_steps: Sequence[float],
-    scipy_methods: Sequence[str] = ("RK45", "DOP853", "LSODA", "Radau", "BDF"),
+    scipy_methods: Sequence[str] = ("RK45", "DOP853", "LSODA", "Radau"),
     state_times: int = 16,
     requirement: Mapping[str, float] | None = None,
     repeats: int = 3,

@@ -14,6 +14,8 @@ from .axes import axis_label
 
 #: One colour per outcome, in the order of the file's ``flag_meanings``.
 COLOURS = ["#2ca02c", "#bcbd22", "#1f77b4", "#ff7f0e", "#d62728", "#7f7f7f"]
+
+
 def _log_edges(k: np.ndarray) -> np.ndarray:
     """Cell edges around log-spaced values: half-way between neighbours in log k."""
     lk = np.log10(k)
@@ -70,16 +72,26 @@ def stability(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     )
     for ax, (cases, label) in zip(axes[:, 0], groups, strict=True):
         _panel(ax, d, cases, names, label)
-    meanings = dict(
-        part.split(": ", 1) for part in d["outcome"].attrs.get("outcome_meanings", "").split("; ")
-    ) if d["outcome"].attrs.get("outcome_meanings") else {}
+    meanings = (
+        dict(
+            part.split(": ", 1)
+            for part in d["outcome"].attrs.get("outcome_meanings", "").split("; ")
+        )
+        if d["outcome"].attrs.get("outcome_meanings")
+        else {}
+    )
     handles = [
         Patch(facecolor=COLOURS[i], label=f"{n}: {meanings.get(n, n)}") for i, n in enumerate(names)
     ]
     if "paper_k_contact" in d.attrs:
         low, high = np.asarray(d.attrs["paper_k_contact"], dtype=float)
         handles.append(
-            Patch(facecolor="none", edgecolor="k", hatch="//", label=f"paper's k: {low:g}-{high:g} N/m")
+            Patch(
+                facecolor="none",
+                edgecolor="k",
+                hatch="//",
+                label=f"paper's k: {low:g}-{high:g} N/m",
+            )
         )
     axes[0, 0].legend(
         handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0
