@@ -16,7 +16,7 @@ def convergence(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     colour per method, its fitted slope beside its theoretical order in the legend, and
     a dotted line of the theoretical slope through each method's last point."""
     d = ds[0]
-    fig, ax = plt.subplots(figsize=(7.5, 5.0))
+    fig, ax = plt.subplots(figsize=(9.0, 5.5))
     for i, method in enumerate(d["method"].values):
         row = d.sel({"method": method})
         step, err = row["step"].values, row["omega_error"].values
@@ -36,9 +36,9 @@ def convergence(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     ax.grid(True, which="major", lw=0.3, alpha=0.5)
     ax.legend(fontsize=8, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0)
     ax.set_title(
-        f"{title}\nswing from rest, theta0 = {d.attrs['theta0_deg']:g} deg, delta0 = "
-        f"{d.attrs['delta0_deg']:g} deg, to {d.attrs['t_end_s']:g} s; dotted: the "
-        "theoretical slope",
+        f"{title}\nthe swing from rest at theta0 = {d.attrs['theta0_deg']:g} deg, "
+        f"delta0 = {d.attrs['delta0_deg']:g} deg,\nto {d.attrs['t_end_s']:g} s; dotted: "
+        "the theoretical slope",
         fontsize=9,
     )
     return fig

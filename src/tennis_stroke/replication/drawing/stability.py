@@ -65,7 +65,7 @@ def stability(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     fig, axes = plt.subplots(
         len(groups),
         1,
-        figsize=(9.0, 0.32 * sum(heights) + 2.6),
+        figsize=(12.0, 0.32 * sum(heights) + 2.6),
         sharex=True,
         squeeze=False,
         gridspec_kw={"height_ratios": heights},
