@@ -41,7 +41,7 @@ def test_stability_has_a_panel_per_kind_of_method_with_named_axes_and_a_named_ba
     try:
         panels = [ax for ax in fig.axes if ax.get_xlabel()]
         assert len(panels) == 2
-        assert panels[0].get_ylabel() == "method, tolerance rtol = atol (1)"
+        assert panels[0].get_ylabel() == "method, tolerance\nrtol = atol (1)"
         assert panels[1].get_ylabel() == "RK4 step (s)"
         for ax in panels:
             assert ax.get_xlabel().endswith("(N/m)") and ax.get_xscale() == "log"

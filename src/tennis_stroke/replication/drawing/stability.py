@@ -57,15 +57,15 @@ def stability(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
     names = d["outcome"].attrs["flag_meanings"].split()
     fixed = np.array([str(c).startswith("fixed.") for c in d["case"].values])
     groups = [
-        (np.flatnonzero(~fixed), "method, tolerance rtol = atol (1)"),
+        (np.flatnonzero(~fixed), "method, tolerance\nrtol = atol (1)"),
         (np.flatnonzero(fixed), "RK4 step (s)"),
     ]
     groups = [(cases, label) for cases, label in groups if cases.size]
-    heights = [max(cases.size, 2) for cases, _ in groups]
+    heights = [max(cases.size, 3) for cases, _ in groups]
     fig, axes = plt.subplots(
         len(groups),
         1,
-        figsize=(12.0, 0.32 * sum(heights) + 2.6),
+        figsize=(12.0, 0.32 * sum(heights) + 2.8),
         sharex=True,
         squeeze=False,
         gridspec_kw={"height_ratios": heights},
