@@ -36,10 +36,21 @@ TINY = {
     "solver_study": {
         "strokes": 2,
         "seed": 1,
-        "compiled_tolerances": [1e-6, 1e-8],
+        "scene_strokes": 2,
+        "scenes": {"contact": {}, "swing": {"contact_model": "swing_speed"}},
+        "compiled_tolerances": [1e-6, 5e-8],
+        "scipy_methods": ["DOP853"],
         "scipy_tolerances": [1e-6],
         "rk4_steps": [1e-3],
+        "state_times": 4,
+        "requirement": {"v_out": 1e-4, "event_time": 1e-6},
         "repeats": 1,
+        "convergence": {
+            "theta0": 100.0,
+            "delta0": 40.0,
+            "t_end": 0.15,
+            "counts": {"DP54": [10, 20], "RK4": [10, 20]},
+        },
         "stability": {
             "k_contact": {"start": 2.0, "stop": 7.0, "num": 2},
             "cases": [["tennis_stroke.DOP853", 5e-8], ["fixed.RK4", 1e-3]],

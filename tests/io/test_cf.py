@@ -63,7 +63,7 @@ def _table():
     """A table as the studies write it: a string axis, and flags on a float variable."""
     ds = xr.Dataset(
         {
-            "error_kmh": (("method", "setting"), np.ones((2, 2)), cf_attrs("error_kmh")),
+            "v_out_error": (("method", "setting"), np.ones((2, 2)), cf_attrs("v_out_error")),
             "outcome": (
                 ("method", "setting"),
                 np.array([[0.0, 1.0], [1.0, np.nan]]),

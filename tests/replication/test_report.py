@@ -107,7 +107,11 @@ def test_the_studies_are_read_by_their_keys(tiny_run):
     files = {k: str(tiny_run / v) for k, v in STUDY_RESULTS.items()}
     error, tables = studies_section(files)
     assert error == float(load_result(files["ladder"]).attrs["max_error_impact_kmh"])
-    assert [t["title"].split(":")[0] for t in tables] == ["The optimum of Figs. 5-6", "Stability"]
+    assert [t["title"].split(":")[0] for t in tables] == [
+        "A rule for a new scene",
+        "The optimum of Figs. 5-6",
+        "Stability",
+    ]
     assert all("<table" in t["html"] for t in tables)
     assert studies_section({}) == (None, [])
     assert [t["title"][:9] for t in studies_section({"stability": files["stability"]})[1]] == [

@@ -1,13 +1,92 @@
-"""The work-precision table: its shape and the order of its errors."""
+"""The work-precision study per scene: its layout, its errors against the independent
+reference falling with the tolerance, and the rule table read from fixed data."""
 
-from tennis_stroke.studies.sampling import sample_strokes
+import numpy as np
+import pytest
+import xarray as xr
+
+from tennis_stroke.studies.tables import ERRORS, rule_table, summary
 from tennis_stroke.studies.work_precision import work_precision
 
+SCENES = {"swing": {"contact_model": "swing_speed"}, "contact": {}}
 
-def test_work_precision_table_shape_and_order():
-    s = sample_strokes(2, seed=2)
-    ds = work_precision(s, [1e-4, 1e-8], [1e-6], [1e-3], scipy_methods=("DOP853",), repeats=1)
-    assert ds["error_kmh"].dims == ("method", "setting")
-    compiled = ds["error_kmh"].isel(method=1)
-    assert float(compiled.sel(setting=1e-8)) < float(compiled.sel(setting=1e-4))
-    assert float(ds["failed"].sum()) == 0
+
+@pytest.fixture(scope="module")
+def table():
+    return work_precision(
+        SCENES, 2, 2, [1e-4, 1e-9], [1e-6], [1e-3], ("DOP853",), state_times=4, repeats=1
+    )
+
+
+def test_every_error_per_stroke_per_scene_against_an_independent_reference(table):
+    assert table.attrs["reference"].startswith("scipy DOP853")
+    for name in (*ERRORS, "rhs_evals"):
+        assert table[name].dims == ("scene", "method", "setting", "stroke")
+    assert list(table["scene"].values) == list(SCENES)
+    run = table["failed"].notnull()
+    assert float(table["failed"].where(run).sum()) == 0
+    assert int(run.sum()) == 2 * (2 * 2 + 1 + 1)  # scenes x (compiled 2 x 2, scipy, RK4)
+
+
+def test_the_compiled_errors_fall_with_the_tolerance_in_every_measure(table):
+    worst = summary(table).sel({"method": "tennis_stroke.DOP853"})
+    for scene in SCENES:
+        for name in ERRORS:
+            tight, loose = (
+                float(worst[f"{name}_worst"].sel(scene=scene, setting=s)) for s in (1e-9, 1e-4)
+            )
+            assert tight < loose, (scene, name, tight, loose)
+        evals = worst["rhs_evals"].sel(scene=scene)
+        assert float(evals.sel(setting=1e-9)) > float(evals.sel(setting=1e-4))
+
+
+def test_rk4_on_the_swing_scene_meets_the_ball_at_phi_zero(table):
+    """Fixed-step RK4 follows the cheap rungs (no spring contact): its swing-only v_out is
+    close to the reference's, where a spring contact would be km/h away."""
+    err = table["v_out_error"].sel({"scene": "swing", "method": "fixed.RK4", "setting": 1e-3})
+    assert float(err.max()) < 0.1
+
+
+def _fixed(v_out, events, evals, failed):
+    dims = ("scene", "method", "setting", "stroke")
+    shape = (1, 2, 2, 3)
+    data = {
+        "v_out_error": (dims, np.broadcast_to(np.array(v_out)[None, :, :, None], shape)),
+        "event_time_error": (dims, np.broadcast_to(np.array(events)[None, :, :, None], shape)),
+        "state_error": (dims, np.zeros(shape)),
+        "rhs_evals": (dims, np.broadcast_to(np.array(evals)[None, :, :, None], shape)),
+        "failed": (dims[:3], np.array(failed, dtype=float)[None]),
+    }
+    coords = {
+        "scene": ["contact"],
+        "method": ["tennis_stroke.DOP853", "scipy.RK45"],
+        "setting": [1e-4, 5e-8],
+        "stroke": np.arange(3),
+    }
+    attrs = {
+        "required_v_out_error_kmh": 1e-4,
+        "required_event_time_error_s": 1e-6,
+        "default_method": "tennis_stroke.DOP853",
+        "default_setting": 5e-8,
+    }
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
+def test_the_rule_is_the_cheapest_setting_meeting_both_requirements():
+    """RK45 at 1e-4 is cheapest but misses the event times; DOP853 at 1e-4 meets both
+    but lost a stroke; so RK45 at 5e-8 (cheaper than DOP853 at 5e-8) is the rule."""
+    ds = _fixed(
+        v_out=[[1e-5, 1e-7], [1e-5, 1e-8]],
+        events=[[1e-7, 1e-9], [1e-5, 1e-9]],
+        evals=[[100, 400], [50, 300]],
+        failed=[[1, 0], [0, 0]],
+    )
+    [row] = rule_table(ds).to_dict("records")
+    assert (row["method"], row["setting"], row["rhs_evals"]) == ("scipy.RK45", 5e-8, 300)
+    assert row["default_meets"] and row["default_rhs_evals"] == 400
+
+
+def test_a_scene_no_setting_meets_says_none():
+    ds = _fixed([[1.0, 1.0], [1.0, 1.0]], [[0, 0], [0, 0]], [[1, 2], [3, 4]], [[0, 0], [0, 0]])
+    [row] = rule_table(ds).to_dict("records")
+    assert row["method"] == "none" and not row["default_meets"]

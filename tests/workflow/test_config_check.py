@@ -112,6 +112,22 @@ BAD = [  # (path, value, fragment of the message)
         [["fixed.RK4", 0.0]],
         "'solver_study.stability.cases.0.1': 0.0 is less than or equal to the minimum",
     ),
+    # a work-precision scene: each value checked by the model's own bounds
+    (
+        ("solver_study", "scenes", "stiff", "k_contact"),
+        -1.0,
+        "'solver_study.scenes.stiff': ",
+    ),
+    (
+        ("solver_study", "scenes", "elbow", "psi_F_deg"),
+        [360.0, 0.0],
+        "'solver_study.scenes.elbow.psi_F_deg': range [360.0, 0.0] has its low end above",
+    ),
+    (
+        ("solver_study", "scipy_methods"),
+        ["RK45", "RK5"],
+        "'solver_study.scipy_methods.1': 'RK5' is not one of",
+    ),
     # the model ladder: checked by the code that will run its rungs
     (("model_ladder", "reference"), "paper", "model_ladder.reference 'paper' is not a rung"),
     (

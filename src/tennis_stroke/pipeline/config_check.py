@@ -140,11 +140,33 @@ def _solver_errors(config: Mapping) -> Iterator[str]:
             yield (
                 f"config key 'solver_study.compiled_tolerances.{i}': {exc} (rule: solver settings)"
             )
+    for name, scene in (study.get("scenes") or {}).items():
+        yield from _scene_errors(name, scene)
     for i, case in enumerate((study.get("stability") or {}).get("cases") or []):
         try:
             check_case(*case)
         except ValueError as exc:
             yield f"config key 'solver_study.stability.cases.{i}': {exc} (rule: methods)"
+
+
+def _scene_errors(name: str, scene: Mapping) -> Iterator[str]:
+    """A work-precision scene's parameters, each value (both ends of a range) checked by
+    the model's own bounds; a range's low end at most its high end."""
+    key = f"solver_study.scenes.{name}"
+    for end in (0, 1):
+        values = {}
+        for k, v in scene.items():
+            if isinstance(v, list):
+                if v[0] > v[1]:
+                    yield f"config key '{key}.{k}': range {v} has its low end above its high end"
+                    return
+                v = v[end]
+            values[k] = v
+        try:
+            resolve_params(values)
+        except (ParameterError, TypeError, ValueError) as exc:
+            yield f"config key {key!r}: {exc} (rule: model parameters)"
+            return
 
 
 def _n(count: int) -> str:

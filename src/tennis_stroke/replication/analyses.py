@@ -14,6 +14,7 @@ import pandas as pd
 import xarray as xr
 
 from ..io.netcdf import load_result
+from ..studies.tables import rule_table
 from .claims import tally
 from .formats import _table
 from .ladder import claims_by_rung, experiments_by_rung, findings, verdict
@@ -184,10 +185,30 @@ def _stability_table(ds: xr.Dataset) -> dict:
     }
 
 
+def _rule_table(ds: xr.Dataset) -> dict:
+    """The work-precision study's rule table: per scene, the cheapest method and setting
+    that meets the requested accuracy (:func:`tennis_stroke.studies.tables.rule_table`),
+    beside the default settings' cost."""
+    table = rule_table(ds).set_index("scene")
+    return {
+        "title": "A rule for a new scene: the cheapest method and tolerance (or RK4 step) "
+        f"whose worst of {ds.sizes['stroke']} strokes per scene meets "
+        f"{ds.attrs['required_v_out_error_kmh']:g} km/h in v_out and "
+        f"{ds.attrs['required_event_time_error_s']:g} s in the event times, against "
+        f"{ds.attrs['reference']}; cost in median right-hand-side evaluations per stroke; "
+        f"the default is {ds.attrs['default_method']} at {ds.attrs['default_setting']:g}",
+        "html": _table(table, float_format=lambda x: f"{x:.3g}", na_rep="-"),
+    }
+
+
 #: The studies' tables on the page, in its order: the study (its key in the table of
 #: experiments, :data:`~tennis_stroke.experiments.specs.STUDY_RESULTS`) and the function
 #: that makes its title and table.
-STUDY_TABLES = {"optimum_cost": _optimum_table, "stability": _stability_table}
+STUDY_TABLES = {
+    "work_precision": _rule_table,
+    "optimum_cost": _optimum_table,
+    "stability": _stability_table,
+}
 #: The study whose file gives the model ladder's largest v_out error (km/h), its
 #: attribute ``max_error_impact_kmh``.
 LADDER_STUDY = "ladder"

@@ -256,7 +256,7 @@ FIGURES: dict[str, Figure] = {
             "study",
             ("work_precision",),
             "work_precision",
-            "Work-precision: error against cost per stroke",
+            "Work-precision per scene: error against cost per stroke",
         ),
         Figure(
             "study02_stability",
@@ -271,6 +271,13 @@ FIGURES: dict[str, Figure] = {
             ("ladder",),
             "ladder",
             "Model ladder: instantaneous impact vs spring contact",
+        ),
+        Figure(
+            "study04_convergence",
+            "study",
+            ("convergence",),
+            "convergence",
+            "Measured orders: error at fixed steps against the step",
         ),
     ]
 }

@@ -244,6 +244,29 @@ def _run(t, y, t_stop, cf, contact, events, method, rtol, atol, max_step, segmen
             return t, y, hit, nfev, True
 
 
+def dense_phase(
+    cf: np.ndarray,
+    t: float,
+    y: np.ndarray,
+    t_stop: float,
+    contact: bool,
+    method: str,
+    rtol: float,
+    atol: float,
+    max_step: float = np.inf,
+) -> tuple[ReferenceStroke, np.ndarray, bool]:
+    """One phase kind (the swing, or the contact with ``contact``) from ``(t, y)`` (angle
+    layout) to ``t_stop`` (s) through the torque switches, no event: ``(dense, y, ok)``,
+    the phase's dense output (:meth:`ReferenceStroke.sample`; its ``result`` holds
+    ``rhs_evals``), the state at ``t_stop`` and whether ``solve_ivp`` succeeded."""
+    dense = ReferenceStroke({})
+    _, y, _, nfev, ok = _run(
+        t, y, t_stop, cf, contact, None, method, rtol, atol, max_step, dense.segments
+    )
+    dense.result["rhs_evals"] = nfev
+    return dense, y, ok
+
+
 def free_swing(
     theta0_deg: float,
     delta0_deg: float,

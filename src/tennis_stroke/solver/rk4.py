@@ -24,6 +24,7 @@ from ..model.dynamics import (
     A_OMEGA2,
     A_PHI,
     A_THETA,
+    CF_CONTACT_MODEL,
     CF_LEAD,
     CF_PHI0,
     CF_THETA0,
@@ -35,8 +36,10 @@ from ..model.dynamics import (
     next_switch,
     rebound_speed_kmh,
     swing_event_angles,
+    to_trig,
     wrist_torque,
 )
+from ..model.impact import instant_contact
 from ..model.params import resolve_params
 from .compiled import ensure_compiled
 from .results import NO_APPROACH, NO_PHI_ZERO, NO_RELEASE, OK, STATUS_NAMES, STEP_FAILURE
@@ -126,27 +129,40 @@ def fixed_step_stroke(
     """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (a code of
     :data:`FIXED_STATUS_NAMES`: ``OK``, ``MISSED_CONTACT``, ``NO_PHI_ZERO``,
     ``NO_APPROACH``, ``STEP_FAILURE`` for a non-finite state, or ``NO_RELEASE``),
-    ``v_out_kmh`` and ``rhs_evals``.
+    ``v_out_kmh``, the event times ``t_phi0``, ``t_contact_start`` and ``t_separation``
+    (s) and ``rhs_evals``.
 
     The contact state at ``t_c`` is the RK4 state of the step before, advanced by one
-    step of the remaining size.
+    step of the remaining size.  The cheap rungs of the model ladder (``contact_model``
+    other than ``spring``) meet the ball at ``phi = 0`` in no time
+    (:func:`~tennis_stroke.model.impact.instant_contact`), as on the other paths.
     """
     cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
     out = {"status": OK, "v_out_kmh": math.nan, "rhs_evals": 0}
+    out |= dict.fromkeys(("t_phi0", "t_contact_start", "t_separation"), math.nan)
     y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
     t0, y, hit, evals = fixed_phase(cf, 0.0, y0, t_max, h, False, swing_event_angles)
     out["rhs_evals"] += evals
     if not hit:
         out["status"] = NO_PHI_ZERO if np.all(np.isfinite(y)) else STEP_FAILURE
         return out
-    t_c = t0 - cf[CF_LEAD]
-    _, yc, _, evals = fixed_phase(cf, 0.0, y0, t_c, h, False)
-    out["rhs_evals"] += evals
+    out["t_phi0"] = t0
+    instant = cf[CF_CONTACT_MODEL] != 0.0
+    t_c = t0 if instant else t0 - cf[CF_LEAD]
+    yc = y
+    if not instant:
+        _, yc, _, evals = fixed_phase(cf, 0.0, y0, t_c, h, False)
+        out["rhs_evals"] += evals
+    out["t_contact_start"] = t_c
     st, sp = math.sin(yc[A_THETA]), math.sin(yc[A_PHI])
     ct, cp = math.cos(yc[A_THETA]), math.cos(yc[A_PHI])
     s, w = incoming_ball(t_c, st, sp, cf)
     if approach_rate(st, ct, sp, cp, yc[A_OMEGA1], yc[A_OMEGA2], w, cf) <= 0.0:
         out["status"] = NO_APPROACH
+        return out
+    if instant:
+        out["v_out_kmh"] = instant_contact(t_c, to_trig(yc), cf)[0]
+        out["t_separation"] = t_c
         return out
     y = np.array([*yc, s, w])
     missed, _, evals = contact_missed(cf, t_c, y, h, t_max)
@@ -159,6 +175,7 @@ def fixed_step_stroke(
     if not hit or not np.all(np.isfinite(y)):
         out["status"] = STEP_FAILURE if not np.all(np.isfinite(y)) else NO_RELEASE
         return out
+    out["t_separation"] = t_s
     out["v_out_kmh"] = rebound_speed_kmh(t_s, y[A_BALL_W], cf)
     return out
 

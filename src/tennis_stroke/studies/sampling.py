@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 
 from ..solver.results import OK
@@ -42,3 +44,31 @@ def sample_strokes(n: int, seed: int = 20261121) -> dict[str, np.ndarray]:
 def stroke_params(strokes: dict[str, np.ndarray]) -> dict[str, np.ndarray]:
     """The model parameters of sampled strokes (one value per stroke)."""
     return {k: strokes[k] for k in STROKE_PARAMS}
+
+
+def sample_scene(
+    n: int, seed: int, scene: Mapping[str, object]
+) -> tuple[dict[str, np.ndarray], dict[str, object]]:
+    """``n`` strokes of a scene of the work-precision study, all ``ok``: the initial
+    angles and :data:`STROKE_PARAMS` drawn uniformly from :data:`STROKE_SPACE` as in
+    :func:`sample_strokes`, and the scene's parameters, each a value (``k_contact:
+    19000``, ``contact_model: swing_speed``) or a range ``[low, high]`` drawn uniformly
+    too (``psi_F_deg: [0, 360]``).
+
+    Returns ``(strokes, params)``: the drawn values by name (one per stroke), and the
+    model parameters of the strokes (the drawn ones as arrays, the scene's fixed values).
+    """
+    ranges = {k: tuple(v) for k, v in scene.items() if isinstance(v, list | tuple)}
+    fixed = {k: v for k, v in scene.items() if k not in ranges}
+    space = {**STROKE_SPACE, **ranges}
+    rng = np.random.default_rng(seed)
+    out = {k: [] for k in space}
+    while len(out["theta0"]) < n:
+        draw = {k: rng.uniform(*r) for k, r in space.items()}
+        params = {**{k: draw[k] for k in (*STROKE_PARAMS, *ranges)}, **fixed}
+        res = strike_batch(draw["theta0"], draw["delta0"], params, REFERENCE)
+        if res["status"] == OK:
+            for k in out:
+                out[k].append(draw[k])
+    strokes = {k: np.array(v) for k, v in out.items()}
+    return strokes, {**{k: strokes[k] for k in (*STROKE_PARAMS, *ranges)}, **fixed}

@@ -43,6 +43,16 @@ OUTCOMES = ("ok", "inaccurate", "missed_contact", "energy_created", "blow_up", "
 ENERGY_TOLERANCE = 1e-3
 #: Exit-speed error (m/s) above which a run is "inaccurate".
 SPEED_TOLERANCE = 1e-3
+#: What each outcome means (the file's ``outcome`` attribute ``outcome_meanings``, the
+#: figure's legend; checked in this order, the first that applies).
+OUTCOME_MEANINGS = {
+    "blow_up": "the state overflowed, or the energy changed more than tenfold",
+    "missed_contact": "a step jumped over the contact (or it lasted < 0.1 of its closed form)",
+    "event_error": "no separation found",
+    "energy_created": f"the energy grew by more than {ENERGY_TOLERANCE:g} (relative)",
+    "inaccurate": "the exit speed is off the closed form (two-body collision)",
+    "ok": "none of these",
+}
 #: The isolated contact: no torques, the elbow still, the rods at these angles (rad),
 #: the ball arriving at this speed (m/s).
 STILL = {"C1": 0.0, "C2": 0.0, "vx_t1": 0.0, "vx_t2": 0.0, "vy_t1": 0.0, "vy_t2": 0.0}
@@ -146,8 +156,14 @@ def _outcome(y, out, missed, failed, duration, expected, v_ref) -> str:
     return "ok"
 
 
-def stability_map(cases: Sequence[tuple[str, float]], k_values: np.ndarray) -> xr.Dataset:
-    """Outcome of the isolated contact for each (method, setting) case and stiffness ``k``."""
+def stability_map(
+    cases: Sequence[tuple[str, float]],
+    k_values: np.ndarray,
+    paper_k: Sequence[float] | None = None,
+) -> xr.Dataset:
+    """Outcome of the isolated contact for each (method, setting) case and stiffness ``k``;
+    ``paper_k``, the paper's range of ``k`` (N/m, low and high), is kept as the attribute
+    ``paper_k_contact`` for the figure's band."""
     for method, setting in cases:
         check_case(method, setting)
     labels = [f"{m} @ {v:g}" for m, v in cases]
@@ -174,12 +190,23 @@ def stability_map(cases: Sequence[tuple[str, float]], k_values: np.ndarray) -> x
     )
     ds["outcome"].attrs["flag_values"] = np.arange(len(OUTCOMES))
     ds["outcome"].attrs["flag_meanings"] = " ".join(OUTCOMES)
+    ds["outcome"].attrs["outcome_meanings"] = "; ".join(
+        f"{k}: {OUTCOME_MEANINGS[k]}" for k in OUTCOMES
+    )
+    ds["setting"] = ("case", [float(v) for _, v in cases], cf_attrs("setting"))
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
+    if paper_k is not None:
+        ds.attrs["paper_k_contact"] = [float(k) for k in paper_k]
     return ds
 
 
-def stability_study(k_contact: Mapping[str, float], cases: Sequence[Sequence]) -> xr.Dataset:
+def stability_study(
+    k_contact: Mapping[str, float],
+    cases: Sequence[Sequence],
+    paper_k: Sequence[float] | None = None,
+) -> xr.Dataset:
     """The stability map from the config (``solver_study.stability``): ``k_contact`` as
-    ``{start, stop, num}`` of log10 k (N/m), ``cases`` as ``[method, setting]`` pairs."""
+    ``{start, stop, num}`` of log10 k (N/m), ``cases`` as ``[method, setting]`` pairs,
+    ``paper_k`` the paper's range of k (``k_sensitivity.k_contact``)."""
     k = np.logspace(k_contact["start"], k_contact["stop"], k_contact["num"])
-    return stability_map([(str(m), float(v)) for m, v in cases], k)
+    return stability_map([(str(m), float(v)) for m, v in cases], k, paper_k)

@@ -19,14 +19,42 @@ TIMING_STROKES = 4000
 TIMING = {"timing": "wall-clock measurement: differs between runs"}
 
 
-def median_time(fn: Callable[[], object], repeats: int) -> tuple[float, object]:
-    """Median wall time (s) of ``repeats`` calls of ``fn`` and the last call's result."""
+def timed(fn: Callable[[], object], repeats: int) -> tuple[np.ndarray, object]:
+    """Wall times (s) of ``repeats`` calls of ``fn`` and the last call's result."""
     times, out = [], None
     for _ in range(repeats):
         start = time.perf_counter()
         out = fn()
         times.append(time.perf_counter() - start)
+    return np.array(times), out
+
+
+def median_time(fn: Callable[[], object], repeats: int) -> tuple[float, object]:
+    """Median wall time (s) of ``repeats`` calls of ``fn`` and the last call's result."""
+    times, out = timed(fn, repeats)
     return float(np.median(times)), out
+
+
+def compiled_costs(
+    theta0: np.ndarray,
+    delta0: np.ndarray,
+    params: Mapping[str, object],
+    settings: SolverSettings | None,
+    repeats: int,
+    strokes: int = TIMING_STROKES,
+) -> tuple[np.ndarray, dict[str, np.ndarray]]:
+    """Microseconds per stroke of the compiled solver on one thread, one per repeat, and
+    the results.
+
+    The strokes (one parameter value per stroke) are repeated up to ``strokes`` and timed
+    as one batch ``repeats`` times; the results returned are those of the given strokes.
+    """
+    n = theta0.size
+    reps = max(1, strokes // n)
+    big = {k: np.tile(v, reps) if np.ndim(v) else v for k, v in params.items()}  # options
+    th, de = np.tile(theta0, reps), np.tile(delta0, reps)
+    walls, res = timed(lambda: strike_batch(th, de, big, settings, threads=1), repeats)
+    return walls / th.size * 1e6, {k: v[:n] for k, v in res.items()}
 
 
 def compiled_cost(
@@ -36,15 +64,8 @@ def compiled_cost(
     settings: SolverSettings | None,
     repeats: int,
 ) -> tuple[float, dict[str, np.ndarray]]:
-    """Microseconds per stroke of the compiled solver on one thread, and the results.
-
-    The strokes (one parameter value per stroke) are repeated up to
-    :data:`TIMING_STROKES` and timed as one batch (median of ``repeats``); the results
-    returned are those of the given strokes.
-    """
-    n = theta0.size
-    reps = max(1, TIMING_STROKES // n)
-    big = {k: np.tile(v, reps) if np.ndim(v) else v for k, v in params.items()}  # options
-    th, de = np.tile(theta0, reps), np.tile(delta0, reps)
-    wall, res = median_time(lambda: strike_batch(th, de, big, settings, threads=1), repeats)
-    return wall / th.size * 1e6, {k: v[:n] for k, v in res.items()}
+    """Microseconds per stroke of the compiled solver on one thread (the median of
+    ``repeats`` batches of :data:`TIMING_STROKES` strokes, :func:`compiled_costs`), and
+    the results of the given strokes."""
+    us, res = compiled_costs(theta0, delta0, params, settings, repeats)
+    return float(np.median(us)), res

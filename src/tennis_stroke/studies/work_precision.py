@@ -1,10 +1,19 @@
-"""Work-precision: every integrator over a sweep of tolerances (or steps) on one seeded
-set of strokes.
+"""Work-precision per scene: every integrator over a sweep of tolerances (or steps), on
+seeded strokes of each scene, against an independent reference.
 
-Error = largest |v_out - reference| (km/h) against the compiled DOP853 at rtol = atol =
-1e-13 (:data:`~tennis_stroke.studies.sampling.REFERENCE`); cost = microseconds per
-stroke (compiled: median of repeats of a batch on one thread; scipy and fixed-step RK4:
-median over the strokes) and right-hand-side evaluations per stroke.
+A scene (config ``solver_study.scenes``) is a set of model parameters over the sampled
+strokes (:func:`~tennis_stroke.studies.sampling.sample_scene`): the swing only, the
+paper's spring contact, the Sec. VI elbow force, a stiff contact.  The reference is
+scipy's :data:`REFERENCE_METHOD` at rtol = atol = :data:`REFERENCE_TOL` on the
+independent path (:mod:`tennis_stroke.solver.reference`: the model, not the compiled
+code under test).  Per stroke, three errors: ``v_out`` (km/h); the event times (s), the
+largest error of :data:`EVENTS`; the state along the stroke (rad/s), the RMS over
+``state_times`` fixed times of the error of ``(omega1, omega2)``
+(:mod:`tennis_stroke.studies.probe`).  The cost of record is the right-hand-side
+evaluations per stroke, the same on every machine; beside it the wall time per stroke
+on the machine that ran it (compiled: ``repeats`` timed batches, the median and the
+fastest and slowest; scipy and RK4: each stroke timed once, the median and quartiles
+over the strokes).
 """
 
 from __future__ import annotations
@@ -22,108 +31,240 @@ from ..solver.reference import solve_stroke
 from ..solver.results import OK
 from ..solver.rk4 import fixed_step_stroke
 from ..solver.settings import SolverSettings
-from ..solver.stroke import strike_batch
 from .methods import parse_method
-from .sampling import REFERENCE, sample_strokes, stroke_params
-from .timing import TIMING, compiled_cost
+from .probe import omegas_at, probe_times
+from .sampling import REFERENCE, sample_scene
+from .tables import ERRORS, rule_table
+from .timing import TIMING, compiled_costs
+
+#: The independent reference: scipy's ``solve_ivp`` method and its rtol = atol.
+REFERENCE_METHOD, REFERENCE_TOL = "DOP853", 1e-13
+#: The event times whose largest error is a stroke's event-time error.
+EVENTS = ("t_phi0", "t_contact_start", "t_separation")
+#: Strokes per timed batch of the compiled solver here (its fixed cost, about 1 ms,
+#: then weighs under 2 % of a batch at the loosest tolerance).
+TIMING_BATCH = 512
+#: The compiled method whose settings are the default (:class:`SolverSettings`).
+DEFAULT_METHOD = f"tennis_stroke.{SolverSettings.method}"
 
 
-def work_precision(
-    strokes: Mapping[str, np.ndarray],
-    compiled_tols: Sequence[float],
-    scipy_tols: Sequence[float],
-    rk4_steps: Sequence[float],
-    scipy_methods: Sequence[str] = ("RK45", "DOP853", "LSODA", "Radau"),
-    repeats: int = 3,
-) -> xr.Dataset:
-    """The work-precision table: dims ``method`` x ``setting``.
-
-    ``setting`` is the tolerance (rtol = atol) of adaptive methods and the step (s) of
-    fixed-step RK4; absent combinations are NaN.
-    """
-    params = stroke_params(strokes)
-    th, de = strokes["theta0"], strokes["delta0"]
-    n = th.size
-    ref = strike_batch(th, de, params, REFERENCE)["v_out_kmh"]
-    methods = [
+def _methods(scipy_methods: Sequence[str]) -> list[str]:
+    return [
         "tennis_stroke.DP54",
         "tennis_stroke.DOP853",
         *(f"scipy.{m}" for m in scipy_methods),
         "fixed.RK4",
     ]
-    settings_axis = sorted({*compiled_tols, *scipy_tols, *rk4_steps}, reverse=True)
-    shape = (len(methods), len(settings_axis))
-    err, cost, evals, failed = (np.full(shape, np.nan) for _ in range(4))
-    for mi, method in enumerate(methods):
-        family, name = parse_method(method)
-        values = {"tennis_stroke": compiled_tols, "scipy": scipy_tols, "fixed": rk4_steps}[family]
-        for value in values:
-            si = settings_axis.index(value)
-            if family == "tennis_stroke":
-                st = SolverSettings(method=name, rtol=value, atol=value)
-                cost[mi, si], res = compiled_cost(th, de, params, st, repeats)
-                v, nfev, ok = res["v_out_kmh"], res["rhs_evals"], res["status"] == OK
-            else:
-                per, v, nfev, ok = [], np.full(n, np.nan), np.zeros(n), np.zeros(n, bool)
-                for i in range(n):
-                    p = {k: float(params[k][i]) for k in params}
-                    start = time.perf_counter()
-                    if family == "scipy":
-                        r = solve_stroke(
-                            th[i], de[i], p, method=name, rtol=value, atol=value
-                        ).result
-                        ok[i] = r["status"] == OK
-                    else:
-                        r = fixed_step_stroke(th[i], de[i], p, value)
-                        ok[i] = r["status"] == OK
-                    per.append(time.perf_counter() - start)
-                    v[i], nfev[i] = r["v_out_kmh"], r["rhs_evals"]
-                cost[mi, si] = float(np.median(per)) * 1e6
-            failed[mi, si] = float(np.sum(~ok))
-            err[mi, si] = float(np.nanmax(np.abs(v - ref))) if ok.any() else np.nan
-            evals[mi, si] = float(np.mean(nfev))
-    coords = {
-        "method": ("method", methods, cf_attrs("method")),
-        "setting": (
-            "setting",
-            np.array(settings_axis),
-            cf_attrs("setting"),
-        ),
+
+
+def _one(method: str, setting: float, stroke) -> dict[str, float]:
+    """One stroke ``(theta0, delta0, params)`` by a scipy method or fixed-step RK4."""
+    family, name = parse_method(method)
+    if family == "scipy":
+        return solve_stroke(*stroke, method=name, rtol=setting, atol=setting).result
+    return fixed_step_stroke(*stroke, setting)
+
+
+def _strokes(strokes: Mapping[str, np.ndarray], params: Mapping[str, object]) -> list:
+    """The strokes as ``(theta0, delta0, params)``, one value of each parameter (an
+    array's element, or the scene's fixed value)."""
+
+    def value(v, i):
+        return v if isinstance(v, str) or np.ndim(v) == 0 else float(np.asarray(v)[i])
+
+    return [
+        (
+            float(strokes["theta0"][i]),
+            float(strokes["delta0"][i]),
+            {k: value(v, i) for k, v in params.items()},
+        )
+        for i in range(strokes["theta0"].size)
+    ]
+
+
+def _run(method, setting, strokes, params, repeats) -> dict[str, np.ndarray]:
+    """Every stroke by ``method`` at ``setting``: ``v_out``, the event times (n, 3),
+    ``ok``, ``rhs_evals`` and the wall time per stroke ``us`` (median, low, high)."""
+    family, name = parse_method(method)
+    if family == "tennis_stroke":
+        th, de = strokes["theta0"], strokes["delta0"]
+        st = SolverSettings(method=name, rtol=setting, atol=setting)
+        us, res = compiled_costs(th, de, params, st, repeats, TIMING_BATCH)
+        return {
+            "v_out": res["v_out_kmh"],
+            "events": np.column_stack([res[e] for e in EVENTS]),
+            "ok": res["status"] == OK,
+            "rhs_evals": res["rhs_evals"].astype(float),
+            "us": np.array([np.median(us), us.min(), us.max()]),
+        }
+    rows, per = [], []
+    for stroke in _strokes(strokes, params):
+        start = time.perf_counter()
+        rows.append(_one(method, setting, stroke))
+        per.append(time.perf_counter() - start)
+    per = np.array(per) * 1e6
+    return {
+        "v_out": np.array([r["v_out_kmh"] for r in rows], dtype=float),
+        "events": np.array([[r[e] for e in EVENTS] for r in rows], dtype=float),
+        "ok": np.array([r["status"] == OK for r in rows]),
+        "rhs_evals": np.array([r["rhs_evals"] for r in rows], dtype=float),
+        "us": np.array([np.median(per), *np.quantile(per, [0.25, 0.75])]),
     }
-    dims = ("method", "setting")
-    ds = xr.Dataset(
-        {
-            "error_kmh": (dims, err, cf_attrs("error_kmh")),
-            "us_per_stroke": (
-                dims,
-                cost,
-                cf_attrs("us_per_stroke", **TIMING),
-            ),
-            "rhs_evals_per_stroke": (dims, evals, cf_attrs("rhs_evals_per_stroke")),
-            "failed": (dims, failed, cf_attrs("failed")),
+
+
+def _reference(strokes, params, state_times: int) -> dict[str, object]:
+    """The reference of every stroke: ``v_out``, event times, ``ok`` and the probe's
+    times and ``omega1, omega2`` there (:mod:`tennis_stroke.studies.probe`)."""
+    method = f"scipy.{REFERENCE_METHOD}"
+    ref = _run(method, REFERENCE_TOL, strokes, params, 1)
+    spring = params.get("contact_model", "spring") == "spring"
+    ref["times"], ref["omegas"] = [], []
+    for i, stroke in enumerate(_strokes(strokes, params)):
+        t_c, t_end = ref["events"][i, 1], ref["events"][i, 2]
+        if not ref["ok"][i]:  # not compared: no probe
+            ref["times"].append(None)
+            ref["omegas"].append(None)
+            continue
+        times = probe_times(t_end, state_times)
+        ref["times"].append(times)
+        ref["omegas"].append(omegas_at(method, REFERENCE_TOL, stroke, t_c, times, spring))
+    ref["spring"] = spring
+    return ref
+
+
+def _errors(method, setting, strokes, params, ref) -> tuple[np.ndarray, ...]:
+    """Per stroke: the three :data:`ERRORS`, the evaluations, and the timing."""
+    run = _run(method, setting, strokes, params, ref["repeats"])
+    ok = run["ok"] & ref["ok"]
+    v_err = np.where(ok, np.abs(run["v_out"] - ref["v_out"]), np.nan)
+    ev = np.abs(run["events"] - ref["events"])
+    ev_err = np.where(ok, np.max(np.where(ok[:, None], ev, 0.0), axis=1), np.nan)
+    state = np.full(v_err.shape, np.nan)
+    for i, stroke in enumerate(_strokes(strokes, params)):
+        if ok[i]:
+            t_c = ref["events"][i, 1]
+            om = omegas_at(method, setting, stroke, t_c, ref["times"][i], ref["spring"])
+            state[i] = np.sqrt(np.mean(np.sum((om - ref["omegas"][i]) ** 2, axis=1)))
+    failed = float(np.sum(~run["ok"] & ref["ok"]))
+    evals = np.where(run["ok"], run["rhs_evals"], np.nan)
+    return v_err, ev_err, state, evals, run["us"], failed
+
+
+def _scene(strokes, params, methods, values, settings_axis, state_times, repeats):
+    """The per-stroke arrays of one scene: (method, setting, stroke) each."""
+    n = strokes["theta0"].size
+    ref = _reference(strokes, params, state_times) | {"repeats": repeats}
+    shape = (len(methods), len(settings_axis))
+    per = {k: np.full((*shape, n), np.nan) for k in (*ERRORS, "rhs_evals")}
+    timing = np.full((*shape, 3), np.nan)
+    failed = np.full(shape, np.nan)
+    for mi, method in enumerate(methods):
+        for value in values[parse_method(method)[0]]:
+            si = settings_axis.index(value)
+            *errs, evals, us, failed[mi, si] = _errors(method, value, strokes, params, ref)
+            for key, arr in zip((*ERRORS, "rhs_evals"), (*errs, evals), strict=True):
+                per[key][mi, si] = arr
+            timing[mi, si] = us
+    return per, timing, failed, int(np.sum(~ref["ok"]))
+
+
+def work_precision(
+    scenes: Mapping[str, Mapping[str, object]],
+    strokes: int,
+    seed: int,
+    compiled_tols: Sequence[float],
+    scipy_tols: Sequence[float],
+    rk4_steps: Sequence[float],
+    scipy_methods: Sequence[str] = ("RK45", "DOP853", "LSODA", "Radau"),
+    state_times: int = 16,
+    requirement: Mapping[str, float] | None = None,
+    repeats: int = 3,
+) -> xr.Dataset:
+    """The work-precision table of every scene: dims ``scene`` x ``method`` x
+    ``setting`` (x ``stroke`` for the errors and evaluations).
+
+    ``setting`` is the tolerance (rtol = atol) of adaptive methods and the step (s) of
+    fixed-step RK4; absent combinations are NaN.  ``requirement``: ``v_out`` (km/h) and
+    ``event_time`` (s), the accuracy the rule table asks (:func:`rule_table`).
+    """
+    requirement = dict(requirement or {"v_out": 1e-4, "event_time": 1e-6})
+    methods = _methods(scipy_methods)
+    settings_axis = sorted({*compiled_tols, *scipy_tols, *rk4_steps}, reverse=True)
+    values = {"tennis_stroke": compiled_tols, "scipy": scipy_tols, "fixed": rk4_steps}
+    parts, drawn = [], {}
+    for name, scene in scenes.items():
+        sample, params = sample_scene(strokes, seed, scene)
+        parts.append(_scene(sample, params, methods, values, settings_axis, state_times, repeats))
+        drawn[name] = sample
+    return _dataset(list(scenes), methods, settings_axis, parts, drawn, requirement, scenes)
+
+
+def _dataset(scenes, methods, settings_axis, parts, drawn, requirement, scene_params):
+    dims = ("scene", "method", "setting")
+    per = {k: np.stack([p[0][k] for p in parts]) for k in parts[0][0]}
+    timing = np.stack([p[1] for p in parts])
+    data = {
+        **{k: ((*dims, "stroke"), v, cf_attrs(k)) for k, v in per.items()},
+        "us_per_stroke": (dims, timing[..., 0], cf_attrs("us_per_stroke", **TIMING)),
+        "us_per_stroke_low": (dims, timing[..., 1], cf_attrs("us_per_stroke_low", **TIMING)),
+        "us_per_stroke_high": (dims, timing[..., 2], cf_attrs("us_per_stroke_high", **TIMING)),
+        "failed": (dims, np.stack([p[2] for p in parts]), cf_attrs("failed")),
+        "reference_failed": ("scene", [p[3] for p in parts], cf_attrs("reference_failed")),
+        **{
+            k: (("scene", "stroke"), np.stack([drawn[s][k] for s in scenes]), cf_attrs(k))
+            for k in ("theta0", "delta0")
         },
-        coords=coords,
-        attrs={"strokes": n, "reference": "compiled DOP853, rtol = atol = 1e-13"},
-    )
+    }
+    coords = {
+        "scene": ("scene", scenes, cf_attrs("scene")),
+        "method": ("method", methods, cf_attrs("method")),
+        "setting": ("setting", np.array(settings_axis), cf_attrs("setting")),
+        "stroke": ("stroke", np.arange(per["v_out_error"].shape[-1]), cf_attrs("stroke")),
+    }
+    ds = xr.Dataset(data, coords=coords)
     ds.attrs.update(provenance(resolve_params(), REFERENCE))
-    ds.attrs["solver_settings_of"] = "the reference; each method's settings are the setting axis"
+    ds.attrs.update(
+        strokes=ds.sizes["stroke"],
+        reference=f"scipy {REFERENCE_METHOD}, rtol = atol = {REFERENCE_TOL:g}",
+        solver_settings_of="the sampling of the strokes; each method's is the setting axis",
+        required_v_out_error_kmh=float(requirement["v_out"]),
+        required_event_time_error_s=float(requirement["event_time"]),
+        default_method=DEFAULT_METHOD,
+        default_setting=float(SolverSettings.rtol),
+        **{f"scene_{s}": _shown(scene_params[s]) for s in scenes},
+    )
+    for row in rule_table(ds).itertuples():
+        ds.attrs[f"rule_{row.scene}"] = f"{row.method} @ {row.setting:g}"
     return ds
 
 
+def _shown(scene: Mapping[str, object]) -> str:
+    return "; ".join(f"{k} = {v}" for k, v in scene.items()) or "the paper's defaults"
+
+
 def work_precision_study(
-    strokes: int,
+    scenes: Mapping[str, Mapping[str, object]],
+    scene_strokes: int,
     seed: int,
     compiled_tolerances: Sequence[float],
     scipy_tolerances: Sequence[float],
     rk4_steps: Sequence[float],
+    scipy_methods: Sequence[str],
+    state_times: int,
+    requirement: Mapping[str, float],
     repeats: int,
 ) -> xr.Dataset:
-    """The work-precision table from the config (``solver_study``): ``strokes`` seeded
-    random strokes (:func:`tennis_stroke.studies.sampling.sample_strokes`)."""
+    """The work-precision table from the config (``solver_study``): ``scene_strokes``
+    seeded strokes per scene (:func:`tennis_stroke.studies.sampling.sample_scene`)."""
     return work_precision(
-        sample_strokes(strokes, seed),
+        scenes,
+        scene_strokes,
+        seed,
         compiled_tolerances,
         scipy_tolerances,
         rk4_steps,
-        repeats=repeats,
+        scipy_methods,
+        state_times,
+        requirement,
+        repeats,
     )
