@@ -50,6 +50,7 @@ def claims_readings(ds: Sequence[xr.Dataset], title: str) -> plt.Figure:
         bars.errorbar(
             mid, j + 0.5, xerr=[[mid - low], [high - mid]], fmt="o", ms=3, color="k", capsize=2
         )
+    bars.set_ylabel("held-out claim (as left)", fontsize=7)
     bars.set_xlim(-0.05, 1.05)
     bars.set_xlabel(f"pass share ({100 * CONFIDENCE:.0f} % interval)", fontsize=8)
     bars.tick_params(labelsize=7)
