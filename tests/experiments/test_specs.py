@@ -41,7 +41,11 @@ def test_every_row_reads_keys_of_the_shipped_config(key):
     assert set(args) == set(e.args)
     if e.chunks:
         assert e.rows in e.args and e.row_count(args) >= 1
-        assert e.chunks.split(".")[1] in SCHEMA["properties"]["chunks"]["properties"]
+        assert 1 <= e.requested_chunks(CONFIG)
+        if e.chunks == e.key_of(e.rows):  # one job per entry of its axis (the scenes)
+            assert e.requested_chunks(CONFIG) == e.row_count(args) > 1
+        else:
+            assert e.chunks.split(".")[1] in SCHEMA["properties"]["chunks"]["properties"]
     value_at(CONFIG, e.section)  # the key its messages name exists
     assert e.path == RESULT_FILES[key] and e.path.startswith("results/")
 

@@ -4,7 +4,10 @@ reference falling with the tolerance, and the rule table read from fixed data.""
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import assert_same_results
 
+from tennis_stroke.io.netcdf import write_netcdf
+from tennis_stroke.pipeline.chunks import gather_chunks, mark_chunk
 from tennis_stroke.studies.tables import ERRORS, rule_table, summary
 from tennis_stroke.studies.work_precision import work_precision
 
@@ -90,3 +93,21 @@ def test_a_scene_no_setting_meets_says_none():
     ds = _fixed([[1.0, 1.0], [1.0, 1.0]], [[0, 0], [0, 0]], [[1, 2], [3, 4]], [[0, 0], [0, 0]])
     [row] = rule_table(ds).to_dict("records")
     assert row["method"] == "none" and not row["default_meets"]
+
+
+def test_one_job_per_scene_gathers_to_the_whole_table_bit_for_bit(table, tmp_path):
+    """The workflow runs each scene as a chunk of its own (``rows``) and gathers them:
+    every variable but the wall times (a ``timing`` attribute: not compared) and every
+    attribute but the chunks' own equal the whole table's."""
+    paths = []
+    for i in reversed(range(len(SCENES))):
+        part = work_precision(
+            SCENES, 2, 2, [1e-4, 1e-9], [1e-6], [1e-3], ("DOP853",), state_times=4, repeats=1,
+            rows=(i, len(SCENES)),
+        )
+        assert list(part["scene"].values) == [list(SCENES)[i]]
+        part = mark_chunk(part, i, len(SCENES))
+        assert part.attrs["chunk_dim"] == "scene"
+        paths.append(write_netcdf(part, tmp_path / f"{i}-of-{len(SCENES)}.nc"))
+    whole = write_netcdf(table, tmp_path / "whole.nc")
+    assert_same_results(gather_chunks(paths), whole, also_differ=["chunk_count"])

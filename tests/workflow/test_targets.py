@@ -6,6 +6,10 @@ built from."""
 import re
 from pathlib import Path
 
+import yaml
+from conftest import ROOT
+
+from tennis_stroke.experiments.specs import EXPERIMENTS
 from tennis_stroke.pipeline.targets import targets
 
 #: What the plan writes besides the targets: the chunks of the maps and of the
@@ -47,6 +51,19 @@ def test_the_report_draws_every_figure_of_the_paper(report_plan):
     drawn = [p for rule, _, outputs in report_plan.jobs if rule == "figure" for p in outputs]
     for number in PAPER_FIGURES:
         assert [p for p in drawn if p.startswith(f"results/figures/fig{number:02d}_")], number
+
+
+def test_the_work_precision_study_runs_one_job_per_scene(report_plan):
+    """Its scenes were one job, the workflow's longest: now each scene of the config is
+    a chunk job of its own, and one gathering writes the study's file."""
+    scenes = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())["solver_study"]["scenes"]
+    row = EXPERIMENTS["work_precision"]
+    folder = f"results/chunks/{row.stem}/"
+    parts = sorted(o for _, _, out in report_plan.jobs for o in out if o.startswith(folder))
+    n = len(scenes)
+    assert n > 1 and parts == [f"{folder}{i}-of-{n}.nc" for i in range(n)]
+    assert all(report_plan.writers(p) == ["simulate_chunk"] for p in parts)
+    assert report_plan.writers(row.path) == ["gather_map"]
 
 
 def test_damaged_results_are_listed_and_a_results_file_is_one(tmp_path):

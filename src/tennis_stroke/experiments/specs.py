@@ -67,10 +67,11 @@ SEC5_SETS = {"L1": "stroke.L1", "C2": "stroke.C2", "tau": "stroke.tau_L"}
 
 
 def _points(value) -> int:
-    """Points of an axis: a range's grid size, a list's length, else 1."""
+    """Points of an axis: a range's grid size, a list's length, a mapping's entries (a
+    study's scenes), else 1."""
     if isinstance(value, Mapping) and "step" in value:
         return axis_size(value)
-    if isinstance(value, list | tuple):
+    if isinstance(value, list | tuple | Mapping):
         return len(value)
     return 1
 
@@ -83,8 +84,9 @@ class Experiment:
     directory; ``function``: ``module:function`` below ``tennis_stroke``; ``args``:
     argument -> config key (or a mapping of names to keys); ``family``: ``paper`` (the
     paper's experiments: rerun by the robustness analysis) or ``study``; ``chunks``: the
-    config key of the chunk count (None: one job), ``rows`` the argument whose axis is
-    split; ``strokes``: the strokes of the unchunked job's batches run at once, from its
+    config key of the chunk count (None: one job), or the key of the split axis itself
+    for one job per entry (the work-precision study's scenes), ``rows`` the argument
+    whose axis is split; ``strokes``: the strokes of the unchunked job's batches run at once, from its
     arguments (None: no estimate); ``gathered``: the gathered map holds one result per
     stroke of the first batch (its memory is estimated); ``samples``: the (stroke, time)
     points of its sampled curves, from its arguments (None: no curves); ``variables``: the
@@ -159,6 +161,13 @@ class Experiment:
     def row_count(self, arguments: Mapping) -> int:
         """Points of the axis it is chunked along (1 for an unchunked row)."""
         return _points(arguments[self.rows]) if self.rows else 1
+
+    def requested_chunks(self, config: Mapping) -> int:
+        """The chunk count ``config`` asks of a chunked row: the value at ``chunks``, or
+        one per entry of the split axis where ``chunks`` is that axis' own key."""
+        if self.chunks == self.key_of(self.rows):
+            return self.row_count(self.arguments(config))
+        return int(value_at(config, self.chunks))
 
     def callable(self) -> Callable:
         module, name = self.function.split(":")
@@ -482,11 +491,15 @@ EXPERIMENTS: dict[str, Experiment] = {
                 "reference_failed",
                 "theta0",
                 "delta0",
+                "scene_params",
+                "rule",
             ),
             "work-precision study",
             section="solver_study",
             family="study",
             model=False,
+            chunks="solver_study.scenes",  # one job per scene
+            rows="scenes",
         ),
         Experiment(
             "convergence",

@@ -98,6 +98,8 @@ OTHER_VARIABLES: dict[str, tuple[str, str]] = {
     "us_per_stroke_high": ("us", "wall time per stroke, high end of its spread"),
     "failed": ("1", "strokes without status ok"),
     "reference_failed": ("1", "strokes the reference did not finish ok (not compared)"),
+    "scene_params": ("1", "the scene's model parameters (a value, or [low, high] drawn uniformly)"),
+    "rule": ("1", "cheapest method @ setting meeting the required accuracy (rule table)"),
     "step": ("s", "fixed step"),
     "point": ("1", "index of the step of a method"),
     "order": ("1", "theoretical order of the method"),

@@ -21,7 +21,7 @@ from pathlib import Path
 
 from .._imports import PACKAGE as INSTALLED
 from ..experiments.grids import chunk_count
-from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, RESULT_FILES, sorted_data, value_at
+from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, RESULT_FILES, sorted_data
 from ..inference.claims import claim_errors, load_claims
 from ..inference.paper_config import PaperConfigError, load_paper_inputs
 from ..inference.reading_space import ReadingSpace, ReadingSpaceError, load_reading_space
@@ -245,7 +245,7 @@ class Runs:
             spec = self.space.raw["multiverse"]
             return spec["chunks"], spec["readings"]
         experiment = CHUNKED[name]
-        requested = value_at(configuration, experiment.chunks)
+        requested = experiment.requested_chunks(configuration)
         return requested, experiment.row_count(experiment.arguments(configuration))
 
     def chunk_files(self, wildcards) -> list[str]:

@@ -24,6 +24,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
+from ..experiments.grids import select_rows
 from ..io.netcdf import provenance
 from ..io.units import cf_attrs
 from ..model.params import resolve_params
@@ -179,6 +180,7 @@ def work_precision(
     state_times: int = 16,
     requirement: Mapping[str, float] | None = None,
     repeats: int = 3,
+    rows: tuple[int, int] | None = None,
 ) -> xr.Dataset:
     """The work-precision table of every scene: dims ``scene`` x ``method`` x
     ``setting`` (x ``stroke`` for the errors and evaluations).
@@ -186,17 +188,20 @@ def work_precision(
     ``setting`` is the tolerance (rtol = atol) of adaptive methods and the step (s) of
     fixed-step RK4; absent combinations are NaN.  ``requirement``: ``v_out`` (km/h) and
     ``event_time`` (s), the accuracy the rule table asks (:func:`rule_table`).
+    ``rows = (index, count)``: only that chunk of the scenes, in their order (each
+    scene is computed on its own: the chunks, gathered, equal the whole bit for bit).
     """
     requirement = dict(requirement or {"v_out": 1e-4, "event_time": 1e-6})
     methods = _methods(scipy_methods)
     settings_axis = sorted({*compiled_tols, *scipy_tols, *rk4_steps}, reverse=True)
     values = {"tennis_stroke": compiled_tols, "scipy": scipy_tols, "fixed": rk4_steps}
+    names = [str(n) for n in select_rows(np.array(list(scenes), dtype=object), rows)]
     parts, drawn = [], {}
-    for name, scene in scenes.items():
-        sample, params = sample_scene(strokes, seed, scene)
+    for name in names:
+        sample, params = sample_scene(strokes, seed, scenes[name])
         parts.append(_scene(sample, params, methods, values, settings_axis, state_times, repeats))
         drawn[name] = sample
-    return _dataset(list(scenes), methods, settings_axis, parts, drawn, requirement, scenes)
+    return _dataset(names, methods, settings_axis, parts, drawn, requirement, scenes)
 
 
 def _dataset(scenes, methods, settings_axis, parts, drawn, requirement, scene_params):
@@ -214,6 +219,7 @@ def _dataset(scenes, methods, settings_axis, parts, drawn, requirement, scene_pa
             k: (("scene", "stroke"), np.stack([drawn[s][k] for s in scenes]), cf_attrs(k))
             for k in ("theta0", "delta0")
         },
+        "scene_params": ("scene", [_shown(scene_params[s]) for s in scenes], cf_attrs("scene_params")),
     }
     coords = {
         "scene": ("scene", scenes, cf_attrs("scene")),
@@ -231,10 +237,10 @@ def _dataset(scenes, methods, settings_axis, parts, drawn, requirement, scene_pa
         required_event_time_error_s=float(requirement["event_time"]),
         default_method=DEFAULT_METHOD,
         default_setting=float(SolverSettings.rtol),
-        **{f"scene_{s}": _shown(scene_params[s]) for s in scenes},
     )
-    for row in rule_table(ds).itertuples():
-        ds.attrs[f"rule_{row.scene}"] = f"{row.method} @ {row.setting:g}"
+    # a scene's rule reads that scene alone: the same in a chunk as in the whole file
+    rules = [f"{r.method} @ {r.setting:g}" for r in rule_table(ds).itertuples()]
+    ds["rule"] = ("scene", rules, cf_attrs("rule"))
     return ds
 
 
@@ -253,9 +259,11 @@ def work_precision_study(
     state_times: int,
     requirement: Mapping[str, float],
     repeats: int,
+    rows: tuple[int, int] | None = None,
 ) -> xr.Dataset:
     """The work-precision table from the config (``solver_study``): ``scene_strokes``
-    seeded strokes per scene (:func:`tennis_stroke.studies.sampling.sample_scene`)."""
+    seeded strokes per scene (:func:`tennis_stroke.studies.sampling.sample_scene`);
+    the workflow runs one job per scene (``rows``, the chunk of the scenes)."""
     return work_precision(
         scenes,
         scene_strokes,
@@ -267,4 +275,5 @@ def work_precision_study(
         state_times,
         requirement,
         repeats,
+        rows,
     )
