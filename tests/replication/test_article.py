@@ -41,6 +41,7 @@ def test_the_article_holds_the_counts_and_every_claim_s_value(tiny_run):
     reproduce = f"{status.get('pass', 0)} claims reproduce"
     assert f"{len(table)} quantitative and qualitative claims" in text and reproduce in text
     assert f"{status.get('known_deviation', 0)} deviate" in text
+    assert "A rule for a new scene: the cheapest method" in text  # the study's rule table
     for claim in table.to_dict("records"):
         assert claim["id"].replace("_", "") in text.replace("_", "").replace(" ", ""), claim["id"]
         assert _number(float(claim["reproduced_value"])) in text, claim["id"]

@@ -86,6 +86,43 @@ def _result(path, commit):
     return str(path)
 
 
+def _work_precision(path):
+    """A made-up work-precision file: on ``contact`` scipy RK45 at 5e-8 is the cheapest
+    setting meeting both requirements (DOP853 at 1e-4 misses v_out, RK45 at 1e-4 the
+    event times); on ``swing`` no setting meets them."""
+    dims = ("scene", "method", "setting", "stroke")
+    shape = (2, 2, 2, 3)
+
+    def per_stroke(values):
+        return (dims, np.broadcast_to(np.array(values)[:, :, :, None], shape).copy())
+
+    ok = [[[1e-3, 1e-5], [1e-5, 2e-5]], [[1e-2, 1e-2], [1e-2, 1e-2]]]
+    ds = xr.Dataset(
+        {
+            "v_out_error": per_stroke(ok),
+            "event_time_error": per_stroke([[[1e-7, 1e-9], [1e-5, 1e-8]]] * 2),
+            "state_error": per_stroke(np.zeros((2, 2, 2))),
+            "rhs_evals": per_stroke([[[160.0, 283.0], [108.0, 150.0]]] * 2),
+            "failed": (dims[:3], np.zeros((2, 2, 2))),
+        },
+        coords={
+            "scene": ["contact", "swing"],
+            "method": ["tennis_stroke.DOP853", "scipy.RK45"],
+            "setting": [1e-4, 5e-8],
+            "stroke": np.arange(3),
+        },
+        attrs={
+            "required_v_out_error_kmh": 1e-4,
+            "required_event_time_error_s": 1e-6,
+            "reference": "scipy DOP853, rtol = atol = 1e-13",
+            "default_method": "tennis_stroke.DOP853",
+            "default_setting": 5e-8,
+        },
+    )
+    ds.to_netcdf(path, engine="netcdf4")
+    return str(path)
+
+
 @pytest.fixture
 def inputs(tmp_path):
     """Claims table, the paper's figures and two result files of one commit."""
@@ -98,6 +135,7 @@ def inputs(tmp_path):
             _png(folder / "figures" / f"{n}.png", 10 * i) for i, n in enumerate(PAPER_FIGURES)
         ],
         "results": [_result(folder / f"r{i}.nc", COMMIT_A) for i in range(2)],
+        "work_precision": _work_precision(folder / "work_precision.nc"),
         "output_pdf": str(tmp_path / "report" / "article.pdf"),
         "output_metadata": str(tmp_path / "report" / "metadata.yaml"),
     }
@@ -120,6 +158,19 @@ def test_the_article_has_equations_a_discussion_and_a_conclusion(inputs):
     assert DEVIATING["id"] in text.replace(" ", "")
     held = sum(1 for c in DECLARED)  # no fit set in the made-up table
     assert f"reproduces {held - 1} of its {held} held-out claims" in text
+
+
+def test_the_article_shows_the_rule_table_of_the_integrator_s_settings(inputs):
+    """The report's rule table (its caption and each scene's cheapest setting, cost and
+    errors, the default's cost) from the work-precision file, not typed into the text."""
+    build_article(**inputs)
+    text = _text(inputs["output_pdf"]).replace("\u2019", "'")
+    assert "The integrator's settings" in text
+    assert "A rule for a new scene: the cheapest method and tolerance" in text
+    assert "whose worst of 3 strokes per scene meets 0.0001 km/h in v_out" in text
+    cells = text.replace(" ", "")
+    assert "contactscipy.RK45@5e-08" + "1502e-051e-08meetsit,283" in cells
+    assert "swingnone---missesit,283" in cells
 
 
 def test_figures_carry_the_paper_s_numbers_only(inputs):

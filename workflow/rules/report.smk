@@ -130,6 +130,7 @@ rule article:
         claims="results/claims.csv",
         statements="config/claims.yaml",
         results=list(PAPER_RESULTS.values()),
+        work_precision=STUDY_RESULTS["work_precision"],
         code=CODE("article.py"),
         template=CODE.checkout_file(
             "src/tennis_stroke/replication/templates/article.typ"

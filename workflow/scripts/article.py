@@ -20,4 +20,5 @@ with logged(snakemake.log[0]):
         job_seconds=job_seconds(Path(snakemake.params.benchmarks)),
         lock=snakemake.input.lock,
         pyproject=snakemake.input.pyproject,
+        work_precision=snakemake.input.work_precision,
     )

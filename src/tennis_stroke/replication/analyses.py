@@ -185,18 +185,26 @@ def _stability_table(ds: xr.Dataset) -> dict:
     }
 
 
+def rule_caption(ds: xr.Dataset) -> str:
+    """What the work-precision study's rule table is, from its file (the page's title of
+    it and the article's caption)."""
+    return (
+        "A rule for a new scene: the cheapest method and tolerance (or RK4 step) "
+        f"whose worst of {ds.sizes['stroke']} strokes per scene meets "
+        f"{ds.attrs['required_v_out_error_kmh']:g} km/h in v_out and "
+        f"{ds.attrs['required_event_time_error_s']:g} s in the event times, against "
+        f"{ds.attrs['reference']}; cost in median right-hand-side evaluations per stroke; "
+        f"the default is {ds.attrs['default_method']} at {ds.attrs['default_setting']:g}"
+    )
+
+
 def _rule_table(ds: xr.Dataset) -> dict:
     """The work-precision study's rule table: per scene, the cheapest method and setting
     that meets the requested accuracy (:func:`tennis_stroke.studies.tables.rule_table`),
     beside the default settings' cost."""
     table = rule_table(ds).set_index("scene")
     return {
-        "title": "A rule for a new scene: the cheapest method and tolerance (or RK4 step) "
-        f"whose worst of {ds.sizes['stroke']} strokes per scene meets "
-        f"{ds.attrs['required_v_out_error_kmh']:g} km/h in v_out and "
-        f"{ds.attrs['required_event_time_error_s']:g} s in the event times, against "
-        f"{ds.attrs['reference']}; cost in median right-hand-side evaluations per stroke; "
-        f"the default is {ds.attrs['default_method']} at {ds.attrs['default_setting']:g}",
+        "title": rule_caption(ds),
         "html": _table(table, float_format=lambda x: f"{x:.3g}", na_rep="-"),
     }
 

@@ -42,6 +42,8 @@ from ..io.config_files import load_yaml
 from ..io.environment import canonical, locked
 from ..io.netcdf import load_result, write_bytes_whole
 from ..model.params import READINGS
+from ..studies.tables import rule_table
+from .analyses import rule_caption
 from .article_equations import EquationError, equations
 from .claims import ClaimsTableError, checked_table, tally
 from .formats import ReportInputError, _timings
@@ -282,14 +284,40 @@ def _fact_text(label: str, values: Sequence[tuple[str, list[str]]], files: int) 
     return f"{label}: a mix of {len(values)}: " + "; ".join(parts)
 
 
+def _shown(value: float, digits: int) -> str:
+    return "-" if not np.isfinite(value) else f"{value:.{digits}g}"
+
+
+def rule_section(work_precision: str) -> dict:
+    """The work-precision study's rule table as the article shows it: the report's
+    (:func:`~.analyses.rule_caption`, :func:`~tennis_stroke.studies.tables.rule_table`),
+    its caption and one row per scene, every value a string."""
+    ds = load_result(work_precision)
+    rows = [
+        {
+            "scene": r.scene,
+            "rule": "none" if r.method == "none" else f"{r.method} @ {r.setting:g}",
+            "evals": _shown(r.rhs_evals, 3),
+            "v_out": _shown(r.v_out_error_worst, 2),
+            "events": _shown(r.event_time_error_worst, 2),
+            "default": f"{'meets' if r.default_meets else 'misses'} it, "
+            f"{_shown(r.default_rhs_evals, 3)}",
+        }
+        for r in rule_table(ds).itertuples()
+    ]
+    return {"caption": rule_caption(ds), "rows": rows}
+
+
 def article_data(
     claims_csv: str,
     claims_yaml: str,
     figures: Mapping[str, str],
     results: Sequence[str],
     job_seconds: float | None = None,
+    work_precision: str | None = None,
 ) -> dict:
-    """Everything the article states, from the result files (the template's data)."""
+    """Everything the article states, from the result files (the template's data);
+    ``work_precision``: the study's file, whose rule table it shows (None: no table)."""
     try:
         table = checked_table(claims_csv, load_claims(claims_yaml))
     except ClaimsTableError as exc:
@@ -322,6 +350,7 @@ def article_data(
         "provenance": facts,
         "provenance_mixed": [f["label"] for f in facts if f["mixed"]],
         "job_seconds": "-" if job_seconds is None else f"{job_seconds:.0f}",
+        "rule": None if work_precision is None else rule_section(work_precision),
     }
 
 
@@ -440,18 +469,20 @@ def build_article(
     repository: str = "",
     lock: str | Path | None = None,
     pyproject: str | Path | None = None,
+    work_precision: str | None = None,
 ) -> None:
     """Write the article (``output_pdf``) and its ``metadata.yaml`` from the results
     (``lock``, ``pyproject``: ``requirements.lock`` and ``pyproject.toml``, whose
-    runtime dependencies it lists).  A provenance fact the result files do not share is
-    stated as a mix in the article and said on stderr."""
-    _require(claims_csv, claims_yaml, *figures, *results)
+    runtime dependencies it lists; ``work_precision``: the study's file, for the rule
+    table of the integrator's settings).  A provenance fact the result files do not
+    share is stated as a mix in the article and said on stderr."""
+    _require(claims_csv, claims_yaml, *figures, *results, *([work_precision] if work_precision else []))
     shown = {
         Path(p).stem: p
         for p in figures
         if Path(p).stem in FIGURES and FIGURES[Path(p).stem].of_paper
     }
-    data = article_data(claims_csv, claims_yaml, shown, results, job_seconds)
+    data = article_data(claims_csv, claims_yaml, shown, results, job_seconds, work_precision)
     for label in data["provenance_mixed"]:
         print(f"warning: the result files record more than one {label}", file=sys.stderr)
     _typeset(TEMPLATE, data, list(shown.values()), output_pdf)
