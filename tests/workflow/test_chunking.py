@@ -2,6 +2,7 @@
 
 import numpy as np
 import pytest
+import xarray as xr
 from conftest import assert_same_results
 
 from tennis_stroke import SolverSettings
@@ -106,3 +107,21 @@ def test_a_garbage_chunk_file_is_named(tmp_path):
     bad.write_bytes(b"garbage")
     with pytest.raises(ChunkError, match=f"chunk file {str(bad)!r} cannot be read"):
         gather_chunks([bad])
+
+
+def test_strings_longer_than_the_first_chunk_s_are_gathered_whole(tmp_path):
+    """A string variable or coordinate (the work-precision study's scenes) read back from
+    a chunk file keeps that file's string width in its encoding: written with it, the
+    gathered file cut every longer string of the later chunks."""
+    texts, names = ["short", "a much longer description"], ["a", "longer_name"]
+    paths = []
+    for i in range(2):
+        ds = xr.Dataset(
+            {"text": ("scene", [texts[i]]), "x": ("scene", [float(i)])},
+            coords={"scene": [names[i]]},
+        )
+        paths.append(write_netcdf(mark_chunk(ds, i, 2), tmp_path / f"{i}-of-2.nc"))
+    gathered = write_netcdf(gather_chunks(paths), tmp_path / "gathered.nc")
+    with xr.open_dataset(gathered) as back:
+        assert list(back["text"].values) == texts
+        assert list(back["scene"].values) == names

@@ -95,6 +95,10 @@ def gather_chunks(paths: Sequence[str | Path]) -> xr.Dataset:
         )
     except ValueError as exc:
         raise ChunkError(f"chunks do not fit together: {str(exc).splitlines()[0]}") from None
+    for var in ds.variables.values():
+        if var.dtype.kind in "OSU":  # the first chunk's string width would cut the others'
+            for key in ("dtype", "char_dim_name"):
+                var.encoding.pop(key, None)
     for key in ("chunk_dim", "chunk_index"):
         ds.attrs.pop(key)
     ds.attrs["chunk_wall_times_s"] = np.asarray(wall_times)
