@@ -8,8 +8,8 @@ from conftest import assert_same_results
 
 from tennis_stroke.io.netcdf import write_netcdf
 from tennis_stroke.pipeline.chunks import gather_chunks, mark_chunk
-from tennis_stroke.studies.tables import ERRORS, rule_table, summary
-from tennis_stroke.studies.work_precision import work_precision
+from tennis_stroke.studies.tables import ERRORS, meets, rule_table, summary
+from tennis_stroke.studies.work_precision import UNTIL_MET, work_precision
 
 SCENES = {"swing": {"contact_model": "swing_speed"}, "contact": {}}
 
@@ -102,7 +102,15 @@ def test_one_job_per_scene_gathers_to_the_whole_table_bit_for_bit(table, tmp_pat
     paths = []
     for i in reversed(range(len(SCENES))):
         part = work_precision(
-            SCENES, 2, 2, [1e-4, 1e-9], [1e-6], [1e-3], ("DOP853",), state_times=4, repeats=1,
+            SCENES,
+            2,
+            2,
+            [1e-4, 1e-9],
+            [1e-6],
+            [1e-3],
+            ("DOP853",),
+            state_times=4,
+            repeats=1,
             rows=(i, len(SCENES)),
         )
         assert list(part["scene"].values) == [list(SCENES)[i]]
@@ -111,3 +119,43 @@ def test_one_job_per_scene_gathers_to_the_whole_table_bit_for_bit(table, tmp_pat
         paths.append(write_netcdf(part, tmp_path / f"{i}-of-{len(SCENES)}.nc"))
     whole = write_netcdf(table, tmp_path / "whole.nc")
     assert_same_results(gather_chunks(paths), whole, also_differ=["chunk_count"])
+
+
+def test_scipy_and_rk4_stop_at_their_first_setting_that_meets_the_requirement():
+    """A tighter setting of a method with Python right-hand sides costs more and cannot
+    be the rule: each runs its settings from the loosest up to the first that meets the
+    requirement; the compiled methods run all of theirs."""
+    ds = work_precision(
+        {"swing": SCENES["swing"]},
+        2,
+        2,
+        [1e-4, 1e-9],
+        [1e-6, 1e-8],
+        [1e-3, 5e-4],
+        ("Radau",),
+        state_times=4,
+        repeats=1,
+    )
+    s = summary(ds).sel(scene="swing")
+    required = {"v_out": 1e-4, "event_time": 1e-6}
+    met = meets(
+        s["v_out_error_worst"],
+        s["event_time_error_worst"],
+        ds["failed"].sel(scene="swing"),
+        required,
+    )
+    ran = ds["failed"].sel(scene="swing").notnull()
+    cut = 0
+    for method in ds["method"].values:
+        family = str(method).split(".")[0]
+        settings = [
+            v for v in ds["setting"].values if bool(ran.sel({"method": method, "setting": v}))
+        ]
+        tried = sorted(settings, reverse=True)
+        if family not in UNTIL_MET:
+            assert len(tried) == 2, method
+            continue
+        first = next((v for v in tried if bool(met.sel({"method": method, "setting": v}))), None)
+        assert first is not None and tried[-1] == first, (method, tried)
+        cut += 2 - len(tried)
+    assert cut == 2  # Radau at 1e-8 and RK4 at 5e-4 were not run

@@ -476,7 +476,9 @@ def build_article(
     runtime dependencies it lists; ``work_precision``: the study's file, for the rule
     table of the integrator's settings).  A provenance fact the result files do not
     share is stated as a mix in the article and said on stderr."""
-    _require(claims_csv, claims_yaml, *figures, *results, *([work_precision] if work_precision else []))
+    _require(
+        claims_csv, claims_yaml, *figures, *results, *([work_precision] if work_precision else [])
+    )
     shown = {
         Path(p).stem: p
         for p in figures

@@ -5,6 +5,7 @@ accuracy).  Plain xarray and pandas, no solver: the figures and the page import 
 from __future__ import annotations
 
 import warnings
+from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
@@ -24,6 +25,17 @@ def summary(ds: xr.Dataset) -> xr.Dataset:
     return xr.Dataset(out)
 
 
+def meets(v_out_worst, event_time_worst, failed, requirement: Mapping[str, float]):
+    """Whether a setting meets ``requirement`` (``v_out`` km/h, ``event_time`` s): its
+    worst errors over the strokes within both, and no failed stroke (arrays or
+    DataArrays, element by element; a NaN worst error never meets it)."""
+    return (
+        (v_out_worst <= requirement["v_out"])
+        & (event_time_worst <= requirement["event_time"])
+        & (failed == 0)
+    )
+
+
 def rule_table(ds: xr.Dataset) -> pd.DataFrame:
     """For each scene, the cheapest method and setting (fewest median right-hand-side
     evaluations per stroke) whose worst errors over the strokes meet the file's
@@ -31,15 +43,15 @@ def rule_table(ds: xr.Dataset) -> pd.DataFrame:
     default settings' own cost and whether they meet it.  A scene no setting meets has
     ``method`` "none"."""
     s = summary(ds)
-    meets = (
-        (s["v_out_error_worst"] <= ds.attrs["required_v_out_error_kmh"])
-        & (s["event_time_error_worst"] <= ds.attrs["required_event_time_error_s"])
-        & (ds["failed"] == 0)
-    )
+    required = {
+        "v_out": ds.attrs["required_v_out_error_kmh"],
+        "event_time": ds.attrs["required_event_time_error_s"],
+    }
+    met = meets(s["v_out_error_worst"], s["event_time_error_worst"], ds["failed"], required)
     default = {"method": ds.attrs["default_method"], "setting": ds.attrs["default_setting"]}
     rows = []
     for scene in ds["scene"].values:
-        cost = s["rhs_evals"].sel(scene=scene).where(meets.sel(scene=scene))
+        cost = s["rhs_evals"].sel(scene=scene).where(met.sel(scene=scene))
         row = {"scene": str(scene), "method": "none", "setting": np.nan}
         if bool(cost.notnull().any()):
             best = cost.argmin(dim=("method", "setting"))
@@ -53,6 +65,6 @@ def rule_table(ds: xr.Dataset) -> pd.DataFrame:
         there = {"scene": scene, **default}
         tried = default["setting"] in ds["setting"].values
         row["default_rhs_evals"] = float(s["rhs_evals"].sel(there)) if tried else np.nan
-        row["default_meets"] = bool(meets.sel(there)) if tried else False
+        row["default_meets"] = bool(met.sel(there)) if tried else False
         rows.append(row)
     return pd.DataFrame(rows)

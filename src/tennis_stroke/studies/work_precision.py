@@ -35,7 +35,7 @@ from ..solver.settings import SolverSettings
 from .methods import parse_method
 from .probe import omegas_at, probe_times
 from .sampling import REFERENCE, sample_scene
-from .tables import ERRORS, rule_table
+from .tables import ERRORS, meets, rule_table
 from .timing import TIMING, compiled_costs
 
 #: The independent reference: scipy's ``solve_ivp`` method and its rtol = atol.
@@ -45,6 +45,11 @@ EVENTS = ("t_phi0", "t_contact_start", "t_separation")
 #: Strokes per timed batch of the compiled solver here (its fixed cost, about 1 ms,
 #: then weighs under 2 % of a batch at the loosest tolerance).
 TIMING_BATCH = 512
+#: The families whose sweep stops at the first setting (from the loosest) that meets the
+#: requirement: their right-hand sides run in Python, and a tighter setting of the same
+#: method costs more evaluations (in every sweep measured), so it is not the rule
+#: table's cheapest.  The compiled methods run every setting (the default's among them).
+UNTIL_MET = ("scipy", "fixed")
 #: The compiled method whose settings are the default (:class:`SolverSettings`).
 DEFAULT_METHOD = f"tennis_stroke.{SolverSettings.method}"
 
@@ -151,8 +156,15 @@ def _errors(method, setting, strokes, params, ref) -> tuple[np.ndarray, ...]:
     return v_err, ev_err, state, evals, run["us"], failed
 
 
-def _scene(strokes, params, methods, values, settings_axis, state_times, repeats):
-    """The per-stroke arrays of one scene: (method, setting, stroke) each."""
+def _worst(errors: np.ndarray) -> float:
+    """The worst error over the compared strokes (NaN where none was compared)."""
+    return float(np.nanmax(errors)) if np.any(~np.isnan(errors)) else np.nan
+
+
+def _scene(strokes, params, methods, values, settings_axis, state_times, repeats, requirement):
+    """The per-stroke arrays of one scene: (method, setting, stroke) each.  Each method
+    runs its settings from the loosest; a family of :data:`UNTIL_MET` stops after the
+    first that meets ``requirement`` (:func:`~tennis_stroke.studies.tables.meets`)."""
     n = strokes["theta0"].size
     ref = _reference(strokes, params, state_times) | {"repeats": repeats}
     shape = (len(methods), len(settings_axis))
@@ -160,12 +172,16 @@ def _scene(strokes, params, methods, values, settings_axis, state_times, repeats
     timing = np.full((*shape, 3), np.nan)
     failed = np.full(shape, np.nan)
     for mi, method in enumerate(methods):
-        for value in values[parse_method(method)[0]]:
+        family = parse_method(method)[0]
+        for value in sorted(values[family], reverse=True):
             si = settings_axis.index(value)
             *errs, evals, us, failed[mi, si] = _errors(method, value, strokes, params, ref)
             for key, arr in zip((*ERRORS, "rhs_evals"), (*errs, evals), strict=True):
                 per[key][mi, si] = arr
             timing[mi, si] = us
+            met = meets(_worst(errs[0]), _worst(errs[1]), failed[mi, si], requirement)
+            if family in UNTIL_MET and met:
+                break
     return per, timing, failed, int(np.sum(~ref["ok"]))
 
 
@@ -186,7 +202,8 @@ def work_precision(
     ``setting`` (x ``stroke`` for the errors and evaluations).
 
     ``setting`` is the tolerance (rtol = atol) of adaptive methods and the step (s) of
-    fixed-step RK4; absent combinations are NaN.  ``requirement``: ``v_out`` (km/h) and
+    fixed-step RK4; absent combinations are NaN (scipy's and RK4's settings tighter
+    than their first that meets ``requirement`` are not run: :data:`UNTIL_MET`).  ``requirement``: ``v_out`` (km/h) and
     ``event_time`` (s), the accuracy the rule table asks (:func:`rule_table`).
     ``rows = (index, count)``: only that chunk of the scenes, in their order (each
     scene is computed on its own: the chunks, gathered, equal the whole bit for bit).
@@ -199,7 +216,11 @@ def work_precision(
     parts, drawn = [], {}
     for name in names:
         sample, params = sample_scene(strokes, seed, scenes[name])
-        parts.append(_scene(sample, params, methods, values, settings_axis, state_times, repeats))
+        parts.append(
+            _scene(
+                sample, params, methods, values, settings_axis, state_times, repeats, requirement
+            )
+        )
         drawn[name] = sample
     return _dataset(names, methods, settings_axis, parts, drawn, requirement, scenes)
 
@@ -219,7 +240,11 @@ def _dataset(scenes, methods, settings_axis, parts, drawn, requirement, scene_pa
             k: (("scene", "stroke"), np.stack([drawn[s][k] for s in scenes]), cf_attrs(k))
             for k in ("theta0", "delta0")
         },
-        "scene_params": ("scene", [_shown(scene_params[s]) for s in scenes], cf_attrs("scene_params")),
+        "scene_params": (
+            "scene",
+            [_shown(scene_params[s]) for s in scenes],
+            cf_attrs("scene_params"),
+        ),
     }
     coords = {
         "scene": ("scene", scenes, cf_attrs("scene")),
