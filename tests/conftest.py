@@ -9,6 +9,7 @@ import shutil
 import signal
 import subprocess
 import sys
+import time
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -127,6 +128,35 @@ def run_snakemake(targets, workdir, *options, timeout=300):
     """Run :func:`snakemake_command`; returns the completed process."""
     command = snakemake_command(targets, workdir, *options)
     return subprocess.run(command, capture_output=True, text=True, timeout=timeout)
+
+
+def paused_write(target, workdir, pause: float, timeout: float = 300) -> subprocess.Popen:
+    """Force ``target``'s job in ``workdir`` on one core, its write paused ``pause`` s
+    (``io.netcdf.TEST_PAUSE_ENV``), in a session of its own (``os.killpg`` signals the
+    whole run), and return the running process once the job is inside its write (a
+    ``.tmp`` file under ``results/``).  Fails, the run killed, if it ends before writing
+    or writes nothing within ``timeout`` s."""
+    from tennis_stroke.io.netcdf import TEST_PAUSE_ENV
+
+    run = subprocess.Popen(
+        snakemake_command(target, workdir, "--cores", "1", "-f"),
+        start_new_session=True,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+        env={**os.environ, TEST_PAUSE_ENV: str(pause)},
+    )
+    deadline = time.monotonic() + timeout
+    try:
+        while not list((Path(workdir) / "results").rglob("*.tmp")):
+            assert run.poll() is None, "the run ended before its job wrote"
+            assert time.monotonic() < deadline, f"no write after {timeout:g} s"
+            time.sleep(0.01)
+    except BaseException:
+        if run.poll() is None:
+            os.killpg(run.pid, signal.SIGKILL)
+        raise
+    return run
 
 
 def assert_same_results(a, b, also_differ=()):

@@ -18,6 +18,7 @@ from conftest import (
     SCENARIO_PAGE,
     assert_same_results,
     file_states,
+    paused_write,
     planned_kinds,
     result_files,
     run_snakemake,
@@ -27,7 +28,6 @@ from conftest import (
 from tiny import MAPS, ROBUSTNESS_CHUNKS, TINY, TINY_READINGS
 
 from tennis_stroke.experiments.specs import EXPERIMENTS, RESULT_FILES
-from tennis_stroke.io.netcdf import TEST_PAUSE_ENV
 from tennis_stroke.replication.claims import COLUMNS
 from tennis_stroke.replication.registry import FIGURES
 from tennis_stroke.replication.robustness import COLUMNS as ROBUSTNESS_COLUMNS
@@ -199,20 +199,8 @@ def test_a_signal_while_a_job_writes_ends_the_run_at_once(tmp_path, signum, line
     chunk = work / "results/chunks/torque_delay/fig9/0-of-1.nc"
     kept = chunk.read_bytes()
     pause = 3.0
-    run = subprocess.Popen(
-        snakemake_command(target, work, "--cores", "1", "-f"),
-        start_new_session=True,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        env={**os.environ, TEST_PAUSE_ENV: str(pause)},
-    )
-    deadline = time.monotonic() + 300
+    run = paused_write(target, work, pause)
     try:
-        while not list((work / "results").rglob("*.tmp")):
-            assert run.poll() is None, "the run ended before its job wrote"
-            assert time.monotonic() < deadline, "no write after 300 s"
-            time.sleep(0.01)
         assert not (work / target).exists()  # removed by Snakemake when the job started
         os.killpg(run.pid, signum)
         start = time.monotonic()

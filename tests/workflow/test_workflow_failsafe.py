@@ -13,16 +13,22 @@ import shutil
 import signal
 import subprocess
 import sys
-import time
 from pathlib import Path
 
 import pytest
 import yaml
-from conftest import CHECKOUT, ROOT, planned_kinds, run_snakemake, snakemake_command, workdir
+from conftest import (
+    CHECKOUT,
+    ROOT,
+    paused_write,
+    planned_kinds,
+    run_snakemake,
+    snakemake_command,
+    workdir,
+)
 from tiny import TINY, TINY_READINGS
 
 from tennis_stroke.experiments.specs import EXPERIMENTS
-from tennis_stroke.io.netcdf import TEST_PAUSE_ENV
 from tennis_stroke.pipeline.explain import rows_reading
 
 #: The workflow end to end: slow (pytest -m 'not slow' leaves it out).
@@ -639,20 +645,8 @@ def test_a_stopped_run_leaves_the_earlier_result_of_its_job(tmp_path, signum):
     first = run_snakemake(target, work, "--cores", "1", timeout=600)
     assert first.returncode == 0, first.stderr[-3000:]
     earlier = (work / target).read_bytes()
-    run = subprocess.Popen(
-        snakemake_command(target, work, "--cores", "1", "-f"),
-        start_new_session=True,
-        stdout=subprocess.PIPE,
-        stderr=subprocess.PIPE,
-        text=True,
-        env={**os.environ, TEST_PAUSE_ENV: "3"},
-    )
-    deadline = time.monotonic() + 300
+    run = paused_write(target, work, 3)
     try:
-        while not list((work / "results").rglob("*.tmp")):
-            assert run.poll() is None, "the run ended before its job wrote"
-            assert time.monotonic() < deadline, "no write after 300 s"
-            time.sleep(0.01)
         assert not (work / target).exists()  # removed by Snakemake when the job started
         os.killpg(run.pid, signum)
         _, stderr = run.communicate(timeout=120)
