@@ -366,12 +366,10 @@ def _cpu_seconds(pid: int) -> float:
 
 @pytest.mark.signals
 @pytest.mark.skipif(not os.path.exists("/proc/self/stat"), reason="needs /proc (Linux)")
-def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path):
+def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path, startup):
     """Ctrl-C while the sweep computes: exit 130 within a few seconds (a fail-safe bound,
     not a timing: the whole grid takes tens of seconds), one line, no output file."""
-    exe = os.path.join(os.path.dirname(sys.executable), "tennis-stroke")
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
-    startup = _startup_cpu_seconds(exe, tmp_path, env)
+    exe, env = SWEEP_EXE, SWEEP_ENV
     out = tmp_path / "big.nc"
     proc = subprocess.Popen(
         [
@@ -399,15 +397,22 @@ def test_ctrl_c_stops_a_sweep_at_once_with_one_line(tmp_path):
     assert not list(tmp_path.iterdir()), "no output file after Ctrl-C"
 
 
-def _startup_cpu_seconds(exe: str, tmp_path, env) -> float:
+#: The sweep command of the signal tests and its environment (one BLAS thread).
+SWEEP_EXE = os.path.join(os.path.dirname(sys.executable), "tennis-stroke")
+SWEEP_ENV = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
+
+
+@pytest.fixture(scope="module")
+def startup(tmp_path_factory) -> float:
     """CPU time of a tiny sweep, start-up and all (cache warm): beyond it, a process
-    of the same command is computing."""
-    tiny = [exe, "sweep", "--theta0", "60:61:2", "--delta0", "0:1:2", "--no-progress"]
-    subprocess.run([*tiny, "--out", str(tmp_path / "warm.nc")], env=env, timeout=600, check=True)
+    of the same command is computing.  Measured once per worker for the signal tests
+    (each measured its own: two processes more per test)."""
+    out = tmp_path_factory.mktemp("startup") / "warm.nc"
+    tiny = [SWEEP_EXE, "sweep", "--theta0", "60:61:2", "--delta0", "0:1:2", "--no-progress"]
+    subprocess.run([*tiny, "--out", str(out)], env=SWEEP_ENV, timeout=600, check=True)
     before = resource.getrusage(resource.RUSAGE_CHILDREN)
-    subprocess.run([*tiny, "--out", str(tmp_path / "warm.nc")], env=env, timeout=600, check=True)
+    subprocess.run([*tiny, "--out", str(out)], env=SWEEP_ENV, timeout=600, check=True)
     after = resource.getrusage(resource.RUSAGE_CHILDREN)
-    (tmp_path / "warm.nc").unlink()
     return after.ru_utime + after.ru_stime - before.ru_utime - before.ru_stime
 
 
@@ -439,16 +444,14 @@ def _signal_when_computing(proc: subprocess.Popen, startup: float, signum: int):
     ],
 )
 def test_a_sweep_of_strokes_that_fail_slowly_stops_within_a_stroke(
-    tmp_path, threads, signum, status, line
+    tmp_path, startup, threads, signum, status, line
 ):
     """Strokes that cannot finish run to the step limit (100,000 steps each): a signal
     stopped the sweep only after its block of strokes (8192 per thread: 76 s after
     SIGINT in issue 56).  The compiled solver looks for a stop before every stroke, so
     the sweep ends within about one stroke (a fail-safe bound below, not a timing: the
     1681 strokes take tens of seconds)."""
-    exe = os.path.join(os.path.dirname(sys.executable), "tennis-stroke")
-    env = {**os.environ, "OPENBLAS_NUM_THREADS": "1"}
-    startup = _startup_cpu_seconds(exe, tmp_path, env)
+    exe, env = SWEEP_EXE, SWEEP_ENV
     grid = ["--theta0", "60:120:41", "--delta0", "0:100:41", "--set", "C1=-1e6"]
     proc = subprocess.Popen(
         [exe, "sweep", *grid, "--threads", str(threads), "--no-progress"]
@@ -562,8 +565,22 @@ def test_claims_command_without_a_table_is_one_line(tmp_path, capsys):
     assert err.count("\n") == 1 and "does not exist" in err
 
 
-def test_identify_prints_the_fits_and_the_default(capsys):
-    assert main(["identify", "--rows", "2"]) == 0
+def test_identify_prints_the_fits_and_the_default(tmp_path, capsys, monkeypatch):
+    """The command on the declared fit sets and their claims, each discrete reading
+    narrowed to one choice, one start per fit and the shortest profiles the schema
+    allows (what the identification finds is tests/inference/test_identification.py's
+    and the workflow's): each fit set printed with its default and a leave-one-out line
+    per fit claim."""
+    space = yaml.safe_load((ROOT / "config" / "readings.yaml").read_text())
+    for reading in [*space["model"].values(), *space["quoting"].values()]:
+        reading["choices"] = reading["choices"][:1]
+    for fit in ("model", "elbow_force"):
+        space["fits"][fit]["starts"] = 1
+    space["fits"]["profile_points"] = 3
+    readings = tmp_path / "readings.yaml"
+    readings.write_text(yaml.safe_dump(space, sort_keys=False))
+    monkeypatch.chdir(ROOT)  # the claims and config at their default paths
+    assert main(["identify", "--rows", "2", "--readings", str(readings)]) == 0
     out = capsys.readouterr().out
     assert out.count("== fit set") == 2
     assert out.count("default by the declared rule") == 2

@@ -222,6 +222,7 @@ def _rules(stats: str) -> set[str]:
     return set(re.findall(r"^(\w+)\s+\d+\s*$", stats, re.M)) - {"total"}
 
 
+@pytest.mark.workflow  # three dry runs of the workflow
 def test_the_readme_scenario_commands_plan_what_they_say(tmp_path):
     """Each command of the README's scenario block, the `whatif` ones as dry runs in a
     fresh working folder with the project's config and workflow (the checkout's own
