@@ -159,6 +159,42 @@ def paused_write(target, workdir, pause: float, timeout: float = 300) -> subproc
     return run
 
 
+def work_precision_table(v_out, events, evals, failed, scenes=("contact",)):
+    """A made-up work-precision table: the v_out and event-time errors, evaluations and
+    failed strokes per (scene, method, setting), each array of that shape, the same for
+    each of 3 strokes; methods compiled DOP853 and scipy RK45 at the settings 1e-4 and
+    5e-8, the default DOP853 at 5e-8, the requirement 1e-4 km/h and 1e-6 s."""
+    import xarray as xr
+
+    dims = ("scene", "method", "setting", "stroke")
+    shape = (len(scenes), 2, 2, 3)
+
+    def per_stroke(values):
+        return (dims, np.broadcast_to(np.asarray(values, dtype=float)[..., None], shape).copy())
+
+    data = {
+        "v_out_error": per_stroke(v_out),
+        "event_time_error": per_stroke(events),
+        "state_error": (dims, np.zeros(shape)),
+        "rhs_evals": per_stroke(evals),
+        "failed": (dims[:3], np.asarray(failed, dtype=float)),
+    }
+    coords = {
+        "scene": list(scenes),
+        "method": ["tennis_stroke.DOP853", "scipy.RK45"],
+        "setting": [1e-4, 5e-8],
+        "stroke": np.arange(3),
+    }
+    attrs = {
+        "required_v_out_error_kmh": 1e-4,
+        "required_event_time_error_s": 1e-6,
+        "reference": "scipy DOP853, rtol = atol = 1e-13",
+        "default_method": "tennis_stroke.DOP853",
+        "default_setting": 5e-8,
+    }
+    return xr.Dataset(data, coords=coords, attrs=attrs)
+
+
 def assert_same_results(a, b, also_differ=()):
     """Two results (datasets or netCDF paths) are the same
     (:func:`tennis_stroke.io.compare.result_differences`)."""

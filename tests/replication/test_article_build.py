@@ -13,7 +13,7 @@ import pypdf
 import pytest
 import xarray as xr
 import yaml
-from conftest import ROOT
+from conftest import ROOT, work_precision_table
 from PIL import Image
 
 from tennis_stroke.inference.claims import load_claims
@@ -90,34 +90,12 @@ def _work_precision(path):
     """A made-up work-precision file: on ``contact`` scipy RK45 at 5e-8 is the cheapest
     setting meeting both requirements (DOP853 at 1e-4 misses v_out, RK45 at 1e-4 the
     event times); on ``swing`` no setting meets them."""
-    dims = ("scene", "method", "setting", "stroke")
-    shape = (2, 2, 2, 3)
-
-    def per_stroke(values):
-        return (dims, np.broadcast_to(np.array(values)[:, :, :, None], shape).copy())
-
-    ok = [[[1e-3, 1e-5], [1e-5, 2e-5]], [[1e-2, 1e-2], [1e-2, 1e-2]]]
-    ds = xr.Dataset(
-        {
-            "v_out_error": per_stroke(ok),
-            "event_time_error": per_stroke([[[1e-7, 1e-9], [1e-5, 1e-8]]] * 2),
-            "state_error": per_stroke(np.zeros((2, 2, 2))),
-            "rhs_evals": per_stroke([[[160.0, 283.0], [108.0, 150.0]]] * 2),
-            "failed": (dims[:3], np.zeros((2, 2, 2))),
-        },
-        coords={
-            "scene": ["contact", "swing"],
-            "method": ["tennis_stroke.DOP853", "scipy.RK45"],
-            "setting": [1e-4, 5e-8],
-            "stroke": np.arange(3),
-        },
-        attrs={
-            "required_v_out_error_kmh": 1e-4,
-            "required_event_time_error_s": 1e-6,
-            "reference": "scipy DOP853, rtol = atol = 1e-13",
-            "default_method": "tennis_stroke.DOP853",
-            "default_setting": 5e-8,
-        },
+    ds = work_precision_table(
+        v_out=[[[1e-3, 1e-5], [1e-5, 2e-5]], [[1e-2, 1e-2], [1e-2, 1e-2]]],
+        events=[[[1e-7, 1e-9], [1e-5, 1e-8]]] * 2,
+        evals=[[[160.0, 283.0], [108.0, 150.0]]] * 2,
+        failed=np.zeros((2, 2, 2)),
+        scenes=("contact", "swing"),
     )
     ds.to_netcdf(path, engine="netcdf4")
     return str(path)

@@ -3,8 +3,7 @@ reference falling with the tolerance, and the rule table read from fixed data.""
 
 import numpy as np
 import pytest
-import xarray as xr
-from conftest import assert_same_results
+from conftest import assert_same_results, work_precision_table
 
 from tennis_stroke.io.netcdf import write_netcdf
 from tennis_stroke.pipeline.chunks import gather_chunks, mark_chunk
@@ -51,28 +50,8 @@ def test_rk4_on_the_swing_scene_meets_the_ball_at_phi_zero(table):
 
 
 def _fixed(v_out, events, evals, failed):
-    dims = ("scene", "method", "setting", "stroke")
-    shape = (1, 2, 2, 3)
-    data = {
-        "v_out_error": (dims, np.broadcast_to(np.array(v_out)[None, :, :, None], shape)),
-        "event_time_error": (dims, np.broadcast_to(np.array(events)[None, :, :, None], shape)),
-        "state_error": (dims, np.zeros(shape)),
-        "rhs_evals": (dims, np.broadcast_to(np.array(evals)[None, :, :, None], shape)),
-        "failed": (dims[:3], np.array(failed, dtype=float)[None]),
-    }
-    coords = {
-        "scene": ["contact"],
-        "method": ["tennis_stroke.DOP853", "scipy.RK45"],
-        "setting": [1e-4, 5e-8],
-        "stroke": np.arange(3),
-    }
-    attrs = {
-        "required_v_out_error_kmh": 1e-4,
-        "required_event_time_error_s": 1e-6,
-        "default_method": "tennis_stroke.DOP853",
-        "default_setting": 5e-8,
-    }
-    return xr.Dataset(data, coords=coords, attrs=attrs)
+    """One scene (``contact``) of :func:`conftest.work_precision_table`."""
+    return work_precision_table(*(np.asarray(a)[None] for a in (v_out, events, evals, failed)))
 
 
 def test_the_rule_is_the_cheapest_setting_meeting_both_requirements():
