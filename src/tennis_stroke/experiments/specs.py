@@ -86,13 +86,14 @@ class Experiment:
     paper's experiments: rerun by the robustness analysis) or ``study``; ``chunks``: the
     config key of the chunk count (None: one job), or the key of the split axis itself
     for one job per entry (the work-precision study's scenes), ``rows`` the argument
-    whose axis is split; ``strokes``: the strokes of the unchunked job's batches run at once, from its
-    arguments (None: no estimate); ``gathered``: the gathered map holds one result per
-    stroke of the first batch (its memory is estimated); ``samples``: the (stroke, time)
-    points of its sampled curves, from its arguments (None: no curves); ``variables``: the
-    file's data variables; ``label``: what a message calls it, ``section`` the config key it names;
-    ``rule``: the row's name in the workflow's plans and tests (default: the key);
-    ``bounds``: argument (``force.F0`` inside a mapping argument) -> the model parameter
+    whose axis is split; ``strokes``: the strokes of the unchunked job's batches run at
+    once, from its arguments (None: no estimate); ``gathered``: the gathered map holds
+    one result per stroke of the first batch (its memory is estimated); ``samples``: the
+    (stroke, time) points of its sampled curves, from its arguments (None: no curves);
+    ``variables``: the file's data variables; ``label``: what a message calls it,
+    ``section`` the config key it names; ``rule``: the row's name in the workflow's
+    plans and tests (default: the key); ``bounds``: argument (``force.F0`` inside a
+    mapping argument) -> the model parameter
     (:data:`tennis_stroke.model.params.PARAMETERS`) whose unit and bounds its values
     have, checked before any job; ``sets``: the model parameters the row's function sets
     itself at every stroke, each with the argument it takes it from (an axis or a value

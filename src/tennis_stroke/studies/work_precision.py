@@ -203,8 +203,9 @@ def work_precision(
 
     ``setting`` is the tolerance (rtol = atol) of adaptive methods and the step (s) of
     fixed-step RK4; absent combinations are NaN (scipy's and RK4's settings tighter
-    than their first that meets ``requirement`` are not run: :data:`UNTIL_MET`).  ``requirement``: ``v_out`` (km/h) and
-    ``event_time`` (s), the accuracy the rule table asks (:func:`rule_table`).
+    than their first that meets ``requirement`` are not run: :data:`UNTIL_MET`).
+    ``requirement``: ``v_out`` (km/h) and ``event_time`` (s), the accuracy the rule
+    table asks (:func:`rule_table`).
     ``rows = (index, count)``: only that chunk of the scenes, in their order (each
     scene is computed on its own: the chunks, gathered, equal the whole bit for bit).
     """
