@@ -15,6 +15,7 @@ file records ``chunk_count`` and the chunks' wall times.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Sequence
 from pathlib import Path
 
@@ -41,6 +42,24 @@ def mark_chunk(ds: xr.Dataset, index: int, count: int) -> xr.Dataset:
 
 def _same(a, b) -> bool:
     return bool(np.array_equal(np.asarray(a), np.asarray(b)))
+
+
+def _fit_string_width(var: xr.Variable) -> None:
+    """Drop a string encoding (read from the first chunk) narrower than the gathered
+    strings: written with it, a longer string of a later chunk was cut (a fixed-width
+    ``dtype``) or renamed its dimension with a warning (``char_dim_name``).  A width that
+    fits is kept, so a file whose first chunk held the longest strings is written as
+    before."""
+    if var.dtype.kind not in "OSU" or var.size == 0:
+        return
+    texts = [str(v) for v in np.asarray(var.values).ravel()]
+    dtype = var.encoding.get("dtype")
+    if dtype is not None and np.dtype(dtype).kind == "U":
+        if np.dtype(dtype).itemsize // 4 < max(map(len, texts)):  # characters
+            var.encoding.pop("dtype")
+    width = re.fullmatch(r"string(\d+)", str(var.encoding.get("char_dim_name", "")))
+    if width and int(width[1]) < max(len(t.encode()) for t in texts):  # bytes
+        var.encoding.pop("char_dim_name")
 
 
 def gather_chunks(paths: Sequence[str | Path]) -> xr.Dataset:
@@ -96,9 +115,7 @@ def gather_chunks(paths: Sequence[str | Path]) -> xr.Dataset:
     except ValueError as exc:
         raise ChunkError(f"chunks do not fit together: {str(exc).splitlines()[0]}") from None
     for var in ds.variables.values():
-        if var.dtype.kind in "OSU":  # the first chunk's string width would cut the others'
-            for key in ("dtype", "char_dim_name"):
-                var.encoding.pop(key, None)
+        _fit_string_width(var)
     for key in ("chunk_dim", "chunk_index"):
         ds.attrs.pop(key)
     ds.attrs["chunk_wall_times_s"] = np.asarray(wall_times)
