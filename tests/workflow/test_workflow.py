@@ -59,8 +59,10 @@ def test_every_result_file_has_cf_metadata_and_provenance(tiny_run):
     files = sorted((tiny_run / "results").rglob("*.nc"))
     expected = len(RESULT_FILES)
     assert len(result_files(tiny_run)) == expected
-    # one chunk per map by default; the robustness analysis as readings.yaml says
-    assert len(files) == expected + len(MAPS) + ROBUSTNESS_CHUNKS
+    # one chunk per map by default and per scene of the work-precision study; the
+    # robustness analysis as readings.yaml says
+    scenes = len(TINY["solver_study"]["scenes"])
+    assert len(files) == expected + len(MAPS) + scenes + ROBUSTNESS_CHUNKS
     for path in files:
         with xr.open_dataset(path) as ds:
             for name in [*ds.data_vars, *ds.coords]:
