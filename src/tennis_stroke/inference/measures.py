@@ -22,7 +22,6 @@ from typing import Literal
 
 import numpy as np
 import xarray as xr
-from scipy.interpolate import interp1d
 
 from ..solver.results import OK
 
@@ -243,6 +242,8 @@ def _of_stroke(ds: Stack, var: str, stroke: int) -> np.ndarray:
 def _linear(t: np.ndarray, values: np.ndarray, at: float) -> float:
     """``values(t)`` at ``at`` by linear interpolation, NaN outside ``t`` (what
     ``DataArray.interp`` computes: scipy's ``interp1d`` with these options)."""
+    from scipy.interpolate import interp1d  # here: the figure and report jobs load no scipy
+
     curve = interp1d(
         t,
         values,
