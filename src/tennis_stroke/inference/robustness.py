@@ -142,14 +142,13 @@ def evaluate_across(
             sizes = tuple(tuple(files[r, c][n].sizes.items()) for n in names)
             groups.setdefault(sizes, []).append(r)
         for group in map(tuple, groups.values()):
-            for n in names:
+            read = {}
+            for n in names:  # a file stacked once for a group of readings, for every claim
                 at = (n, key[2] if n in CURVE_FILES else None, group)
                 if at not in stacks:
                     stacks[at] = Stack([files[r, c][n] for r in group])
-            got = measure_stacks(
-                specs[key],
-                {n: stacks[n, key[2] if n in CURVE_FILES else None, group] for n in names},
-            )
+                read[n] = stacks[at]
+            got = measure_stacks(specs[key], read)
             for r, value in zip(group, got, strict=True):
                 values[r, users[r], key[0]] = value
     return values, cases
