@@ -58,3 +58,31 @@ FILES = {
 )
 def test_measure_reads_the_named_variable_at_its_selection(spec, expected):
     assert measure({"file": "f", **spec}, FILES) == expected
+
+
+def test_a_measure_across_readings_reads_each_reading_s_own_coordinate():
+    """Files stacked over readings (the robustness chunk's way): a decimal ``sel`` finds
+    its value on each reading's own axis, a named measurement gives one value per
+    reading, and called with a dataset it gives that one reading's float."""
+    from tennis_stroke.inference.claims import ClaimError, measure_stacks
+    from tennis_stroke.inference.measures import Stack, measure_optimum
+
+    one = xr.Dataset(
+        {
+            "w": ("tau", [10.0, 20.0, 30.0]),
+            "v_out": ("tau", [1.0, 3.0, 2.0]),
+            "status": ("tau", [0, 0, 0]),
+        },
+        coords={"tau": [0.0, 0.1, 0.2]},
+    )
+    other = one.assign_coords(tau=[0.1, 0.2, 0.3])  # the same values, another axis
+    files = {"f": Stack([one, other])}
+    got = measure_stacks({"file": "f", "var": "w", "sel": {"tau": 0.1}}, files)
+    assert got.tolist() == [20.0, 10.0]
+    assert measure_stacks({"file": "f", "function": "optimum", "coord": "tau"}, files).tolist() == [
+        0.1,
+        0.2,
+    ]
+    assert measure_optimum(other, "tau") == 0.2  # a dataset: one reading, a float
+    with pytest.raises(ClaimError, match=r"f: no tau = 0 on its axis \(nearest 0.1\)"):
+        measure_stacks({"file": "f", "var": "w", "sel": {"tau": 0.0}}, files)

@@ -12,7 +12,7 @@ from conftest import ROOT
 
 from tennis_stroke.experiments.specs import PAPER_RESULTS
 from tennis_stroke.inference.claims import ClaimError, claim_errors, load_claims, measure
-from tennis_stroke.inference.measures import MEASUREMENTS
+from tennis_stroke.inference.measures import MEASUREMENTS, Stack
 
 CLAIMS = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())
 
@@ -208,7 +208,7 @@ def test_the_known_files_are_the_registry_s_paper_results(tmp_path):
     assert claim_errors(path, [*PAPER_RESULTS, "work_precision"]) == []
 
 
-KNOWN_ANNOTATIONS = (xr.Dataset, float, int, str, bool)
+KNOWN_ANNOTATIONS = (Stack, float, int, str, bool)
 
 
 @pytest.mark.parametrize("name", sorted(MEASUREMENTS))
@@ -220,7 +220,7 @@ def test_every_measurement_says_what_it_takes(name):
     for p in parameters:
         literal = typing.get_origin(p.annotation) is typing.Literal
         assert literal or p.annotation in KNOWN_ANNOTATIONS, (name, p.name, p.annotation)
-        kinds.append(p.annotation is xr.Dataset)
+        kinds.append(p.annotation is Stack)
     assert kinds[0] and kinds == sorted(kinds, reverse=True), name
 
 

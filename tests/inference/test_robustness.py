@@ -199,3 +199,71 @@ def test_one_reading_end_to_end_equals_the_claims_of_its_files(space, claims):
         instants = {"fig4_theta": "phi0", "fig4_omega": "contact", **case}
         table = evaluate(ev.quoted_claims(claims, small, instants), files)
         np.testing.assert_array_equal(values[i], table["reproduced_value"].to_numpy())
+
+
+def _each_alone(claims, space, results, readings, cases) -> np.ndarray:
+    """Every claim (reading x variant x claim) as the claims job measures it: one claim
+    on one reading's files (claims.measure), variant by variant."""
+    from tennis_stroke.inference.claims import measure
+
+    out = np.full((len(readings), len(cases), len(claims)), np.nan)
+    quoting = space.raw["quoting"]
+    for r, (files, reading) in enumerate(zip(results, readings, strict=True)):
+        fixed = {g: reading[g] for g in quoting if g in reading}
+        for v, case in enumerate(cases):
+            instants = {**fixed, **{g: case[g] for g in CLAIM_LEVEL if g in quoting}}
+            read = ev.files_of_reading(files, case["figure_curves"], reading["fig6_L1_max"])
+            for j, claim in enumerate(ev.quoted_claims(claims, space, instants)):
+                out[r, v, j] = measure(claim["measure"], read)
+    return out
+
+
+def test_claims_across_readings_equal_each_reading_measured_alone(space, claims):
+    """Every claim under every variant, measured across readings at once
+    (evaluate_across: the readings stacked, each distinct measure once), equals bit for
+    bit the claims job's path, each claim measured on one reading's files alone: on the
+    targeted files of thirteen seeded readings (every discrete reading and every unknown
+    drawn at random, on the tiny grids; the thirteenth ends Figs. 5-6's axis at its first
+    L1, so its file has another size and goes to a stack of its own), and on the full
+    maps of three of them (optima at other grid points from reading to reading)."""
+    import copy
+
+    from snakemake.utils import validate
+    from tiny import TINY, TINY_READINGS
+
+    from tennis_stroke.inference.targeted import targeted_files_of
+
+    config = copy.deepcopy(TINY)
+    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    raw = dict(space.raw)
+    raw["multiverse"] = {
+        **raw["multiverse"],
+        "resolution": TINY_READINGS["multiverse"]["resolution"],
+    }
+    small = type(space)(raw, space.discrete, space.continuous, space.fits)
+    rng = np.random.default_rng(55)
+    readings = []
+    for _ in range(12):
+        reading = {k: str(rng.choice(v)) for k, v in small.discrete.items() if k not in CLAIM_LEVEL}
+        reading.update({k: float(u.from_unit(rng.uniform())) for k, u in small.continuous.items()})
+        readings.append(reading)
+    readings.append({**readings[0], "fig6_L1_max": 0.25})  # the tiny L1 grid: 0.2, 0.5
+    pairs = [mv.experiment_config(config, small, r) for r in readings]
+    settings = SolverSettings(**config["solver"])
+    curves = small.discrete["figure_curves"]
+    targeted = targeted_files_of(
+        [c for c, _ in pairs],
+        [m for _, m in pairs],
+        settings,
+        curves,
+        [r["fig6_L1_max"] for r in readings],
+    )
+    assert targeted[-1]["ml"].sizes["L1"] == 1 < targeted[0]["ml"].sizes["L1"]
+    maps = [mv.paper_results(c, m, settings, curves) for c, m in pairs[:3]]
+    for results, chosen in ((targeted, readings), (maps, readings[:3])):
+        together, cases = ev.evaluate_across(claims, small, results, chosen)
+        alone = _each_alone(claims, small, results, chosen, cases)
+        assert np.array_equal(together.view(np.uint64), alone.view(np.uint64))  # bit for bit
+        # the readings differ: most claims take more than one value across them
+        varied = [len(np.unique(together[:, :, j])) > 1 for j in range(len(claims))]
+        assert sum(varied) > len(claims) // 2

@@ -8,7 +8,8 @@ the reproduced value from the results, either a variable of a file
 (``{function, file, ...}``).  Qualitative claims are measurements returning 1 (true) or
 0 (false), with ``paper_value: 1`` and ``tolerance: 0``.
 
-:func:`measure` computes a claim's value from the files, :func:`within` compares it with
+:func:`measure` computes a claim's value from the files (:func:`measure_stacks`: under
+many readings at once), :func:`within` compares it with
 the paper's; :func:`tennis_stroke.replication.claims.evaluate` makes the table written to
 ``results/claims.csv``.
 
@@ -30,7 +31,7 @@ import xarray as xr
 
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS
 from ..io.config_files import ConfigFileError, load_yaml
-from .measures import MEASUREMENTS
+from .measures import MEASUREMENTS, Stack, per_reading, pick
 
 EXPECTATIONS = ("reproduce", "known_deviation")
 #: The fields every claim has.
@@ -125,7 +126,16 @@ def cause(targeted, mapped, tolerance, half_step) -> np.ndarray:
 
 
 def measure(spec: Mapping, files: Mapping[str, xr.Dataset]) -> float:
-    """The value a claim's ``measure`` computes from the result files (by key)."""
+    """The value a claim's ``measure`` computes from the result files (by key) of one
+    reading: :func:`measure_stacks` of that one reading."""
+    names = spec["file"] if isinstance(spec["file"], list) else [spec["file"]]
+    return float(measure_stacks(spec, {n: Stack([files[n]]) for n in names})[0])
+
+
+def measure_stacks(spec: Mapping, files: Mapping[str, Stack]) -> np.ndarray:
+    """The values a claim's ``measure`` computes from the result files (by key) under
+    ``n`` readings, each file a :class:`~tennis_stroke.inference.measures.Stack`: one
+    value per reading."""
     spec = dict(spec)
     if "function" in spec:
         name = spec.pop("function")
@@ -134,12 +144,15 @@ def measure(spec: Mapping, files: Mapping[str, xr.Dataset]) -> float:
             raise ClaimError(f"unknown measurement {name!r}")
         names = spec.pop("file")
         names = names if isinstance(names, list) else [names]
-        return float(fn(*(files[n] for n in names), **spec))
-    da = files[spec["file"]][spec["var"]]
+        return np.asarray(fn(*(files[n] for n in names), **spec), dtype=float)
+    stack, var = files[spec["file"]], spec["var"]
+    value, dims = stack[var], list(stack.dims(var))
     if "sel" in spec:
-        da = da.isel(selection(da, spec["sel"], spec["file"]))
-    value = float(da)
-    return abs(value) if spec.get("abs") else value
+        for dim, index in selection(stack, var, spec["sel"], spec["file"]).items():
+            value = pick(value, 1 + dims.index(dim), index)
+            dims.remove(dim)
+    value = per_reading(value).astype(float)
+    return np.abs(value) if spec.get("abs") else value
 
 
 #: How close a ``sel`` value must be to a coordinate value (relative to the axis' span,
@@ -147,23 +160,29 @@ def measure(spec: Mapping, files: Mapping[str, xr.Dataset]) -> float:
 SEL_TOLERANCE = 1e-9
 
 
-def selection(da: xr.DataArray, sel: Mapping, file: str = "") -> dict[str, int]:
-    """A claim's ``sel`` as positions along ``da``'s dimensions: an integer is a position,
-    a decimal number (``delta0: 52.5``) a value of the dimension's coordinate, which must
-    hold it (within :data:`SEL_TOLERANCE`); raises :class:`ClaimError` naming the nearest
-    value otherwise."""
+def selection(stack: Stack, var: str, sel: Mapping, file: str = "") -> dict[str, np.ndarray]:
+    """A claim's ``sel`` as positions along the dimensions of variable ``var``, one per
+    reading of ``stack``: an integer is a position, a decimal number (``delta0: 52.5``) a
+    value of the dimension's coordinate, which must hold it (within
+    :data:`SEL_TOLERANCE`); raises :class:`ClaimError` naming the nearest value
+    otherwise."""
     out = {}
     for dim, value in sel.items():
+        if dim not in stack.dims(var):
+            raise ClaimError(f"{file}: {var} has no dimension {dim!r}")
         if isinstance(value, int):
-            out[dim] = value
+            out[dim] = np.full(stack.n, value)
             continue
-        if dim not in da.coords:
+        if dim not in stack:
             raise ClaimError(f"{file}: dimension {dim!r} has no coordinate to find {value} in")
-        axis = np.asarray(da[dim].values, float).ravel()
-        span = float(np.ptp(axis)) if axis.size > 1 else 1.0
-        i = int(np.argmin(np.abs(axis - value)))
-        if abs(axis[i] - value) > SEL_TOLERANCE * max(span, 1.0):
-            raise ClaimError(f"{file}: no {dim} = {value:g} on its axis (nearest {axis[i]:g})")
+        axis = np.asarray(stack[dim], float).reshape(stack.n, -1)
+        span = np.ptp(axis, axis=1) if axis.shape[1] > 1 else np.ones(stack.n)
+        i = np.argmin(np.abs(axis - value), axis=1)
+        nearest = axis[np.arange(stack.n), i]
+        far = np.abs(nearest - value) > SEL_TOLERANCE * np.maximum(span, 1.0)
+        if far.any():
+            shown = nearest[np.argmax(far)]
+            raise ClaimError(f"{file}: no {dim} = {value:g} on its axis (nearest {shown:g})")
         out[dim] = i
     return out
 
@@ -195,7 +214,7 @@ def _argument_errors(name: str, n_files: int, args: Mapping) -> Iterator[str]:
         return
     for key, value in bound.arguments.items():
         annotation = signature.parameters[key].annotation
-        if key in args and annotation is xr.Dataset:
+        if key in args and annotation is Stack:
             yield f"measurement {name!r}: {key!r} is a file (give it in 'file'), not an argument"
         elif key in args and not _fits(value, annotation):
             wanted = (
@@ -204,7 +223,7 @@ def _argument_errors(name: str, n_files: int, args: Mapping) -> Iterator[str]:
                 else f"a {annotation.__name__}"
             )
             yield f"measurement {name!r}: argument {key!r} = {value!r} is not {wanted}"
-        elif key not in args and annotation is not xr.Dataset:
+        elif key not in args and annotation is not Stack:
             yield f"measurement {name!r}: {key!r} is an argument, not a file"
 
 

@@ -1,19 +1,96 @@
-"""Measurements of the paper's claims: functions of result datasets returning a number.
+"""Measurements of the paper's claims: functions of result files returning a number for
+each reading.
 
 A claim of ``config/claims.yaml`` names one of :data:`MEASUREMENTS` (without the
 ``measure_`` prefix) and its arguments.  Qualitative claims are measurements returning 1
 (true) or 0 (false).  The figures use some of them to mark what the claims read.
+
+Each measurement reads one or more :class:`Stack` s: a result file under ``n`` readings,
+each variable an array with a leading reading axis, and returns ``n`` values, one per
+reading.  The robustness analysis measures a claim under every reading of a chunk in one
+call; the claims job, the ladder and the validation measure one reading, the case
+``n = 1``.  Called with datasets (``xr.Dataset``) instead, a measurement reads them as
+one reading and returns a float (:func:`one_or_many`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import functools
+import warnings
+from collections.abc import Callable, Sequence
 from typing import Literal
 
 import numpy as np
 import xarray as xr
 
 from ..solver.results import OK
+
+
+class Stack:
+    """One result file under ``n`` readings: each variable (a data variable or a
+    coordinate) an array whose first axis is the reading, stacked from the readings'
+    datasets when first read.  The datasets must have the same sizes (the readings whose
+    searches gave a different number of rows go to different stacks)."""
+
+    def __init__(self, datasets: Sequence[xr.Dataset]):
+        if not datasets:
+            raise ValueError("a stack needs at least one dataset")
+        self.datasets = list(datasets)
+        self.n = len(self.datasets)
+        self._arrays: dict[str, np.ndarray] = {}
+
+    @property
+    def data_vars(self) -> list[str]:
+        """The data variables' names (the first reading's order)."""
+        return list(self.datasets[0].data_vars)
+
+    def __contains__(self, name: str) -> bool:
+        return name in self.datasets[0].variables
+
+    def __getitem__(self, name: str) -> np.ndarray:
+        """Variable ``name`` of every reading, shape ``(n, *its shape)``."""
+        if name not in self._arrays:
+            self._arrays[name] = np.stack([ds.variables[name].values for ds in self.datasets])
+        return self._arrays[name]
+
+    def dims(self, name: str) -> tuple[str, ...]:
+        """The dimensions of variable ``name`` (after the reading axis)."""
+        return tuple(self.datasets[0].variables[name].dims)
+
+    def axis(self, name: str, dim: str) -> int:
+        """The axis of dimension ``dim`` in :meth:`__getitem__` ``(name)``."""
+        dims = self.dims(name)
+        if dim not in dims:
+            raise ValueError(f"variable {name!r} has no dimension {dim!r} (it has {dims})")
+        return 1 + dims.index(dim)
+
+
+def pick(values: np.ndarray, axis: int, index) -> np.ndarray:
+    """``values`` (reading first) at position ``index`` along ``axis``: one position for
+    every reading, or one per reading (an array of ``n``); the axis is dropped."""
+    index = np.broadcast_to(np.asarray(index, dtype=np.intp), values.shape[:1])
+    shape = [1] * values.ndim
+    shape[0] = values.shape[0]
+    return np.take_along_axis(values, index.reshape(shape), axis).squeeze(axis)
+
+
+def per_reading(values: np.ndarray) -> np.ndarray:
+    """One number per reading from ``values`` (reading first) that hold one each."""
+    return np.asarray(values).reshape(values.shape[0])
+
+
+def one_or_many(fn: Callable[..., np.ndarray]) -> Callable:
+    """A measurement of stacks (one value per reading) that also takes datasets: called
+    with ``xr.Dataset`` s it reads them as one reading and returns that reading's float."""
+
+    @functools.wraps(fn)
+    def measurement(*args, **kwargs):
+        if any(isinstance(a, xr.Dataset) for a in args):
+            stacks = (Stack([a]) if isinstance(a, xr.Dataset) else a for a in args)
+            return float(fn(*stacks, **kwargs)[0])
+        return fn(*args, **kwargs)
+
+    return measurement
 
 
 def valid_v_out(ds: xr.Dataset) -> xr.DataArray:
@@ -27,149 +104,254 @@ def valid_values(ds: xr.Dataset, var: str) -> xr.DataArray:
     return valid_v_out(ds) if var == "v_out" and "status" in ds else ds[var]
 
 
-def measure_delay_threshold(ds: xr.Dataset) -> float:
+def _valid(files: Stack) -> np.ndarray:
+    """:func:`valid_v_out` of every reading (v_out and status have the same dims)."""
+    return np.where(files["status"] == OK, files["v_out"], np.nan)
+
+
+def _half_tau_step(ds: Stack) -> np.ndarray:
+    """Half the step of the ``tau`` grid of every reading, shape ``(n, 1)``."""
+    tau = ds["tau"]
+    return 0.5 * (tau[:, 1] - tau[:, 0])[:, None]
+
+
+@one_or_many
+def measure_delay_threshold(ds: Stack) -> np.ndarray:
     """Fig. 7: the torque C2 above which the best delay is no longer 0 (N m).
 
     The first C2 of the grid from which on the best tau stays above 0 (more than half a
     tau step), interpolated half-way to the previous C2; C2 = 0 is skipped (v_out does not
     depend on tau there).
     """
-    c2 = ds["C2"].values
-    tau_step = float(ds["tau"][1] - ds["tau"][0])
-    positive = (ds["best_tau"].values > 0.5 * tau_step) & (c2 > 0)
-    for i in range(len(c2)):
-        if c2[i] > 0 and positive[i:].all():
-            return float(0.5 * (c2[i] + c2[i - 1])) if i > 0 else float(c2[i])
-    return float("nan")
+    c2 = ds["C2"]
+    positive = (ds["best_tau"] > _half_tau_step(ds)) & (c2 > 0)
+    # a row from which on every row is positive (and so C2 > 0)
+    stays = np.logical_and.accumulate(positive[:, ::-1], axis=1)[:, ::-1]
+    found = stays.any(axis=1)
+    first = np.argmax(stays, axis=1)
+    rows = np.arange(ds.n)
+    value = np.where(
+        first > 0, 0.5 * (c2[rows, first] + c2[rows, np.maximum(first - 1, 0)]), c2[rows, first]
+    )
+    return np.where(found, value, np.nan)
 
 
-def measure_below_threshold_tau_zero(ds: xr.Dataset) -> float:
+@one_or_many
+def measure_below_threshold_tau_zero(ds: Stack) -> np.ndarray:
     """Fig. 7: 1 if the best tau is 0 for every C2 in (0, threshold)."""
     thr = measure_delay_threshold(ds)
-    tau_step = float(ds["tau"][1] - ds["tau"][0])
-    sel = (ds["C2"] > 0) & (ds["C2"] < thr)
-    return float(bool((ds["best_tau"].where(sel, 0.0) <= 0.5 * tau_step).all()))
+    c2 = ds["C2"]
+    with np.errstate(invalid="ignore"):
+        sel = (c2 > 0) & (c2 < thr[:, None])
+    return np.all(np.where(sel, ds["best_tau"], 0.0) <= _half_tau_step(ds), axis=1).astype(float)
 
 
-def measure_optimum(ds: xr.Dataset, coord: str) -> float:
+def _extreme(ds: Stack, coord: str, sign: float) -> np.ndarray:
+    """The coordinate ``coord`` of the largest (``sign`` 1) or smallest (-1) v_out."""
+    v = _valid(ds)
+    flat = np.where(np.isnan(v), -sign * np.inf, v).reshape(ds.n, -1)
+    best = np.argmax(flat, axis=1) if sign > 0 else np.argmin(flat, axis=1)
+    index = np.unravel_index(best, v.shape[1:])[ds.axis("v_out", coord) - 1]
+    return pick(ds[coord], 1, index)
+
+
+@one_or_many
+def measure_optimum(ds: Stack, coord: str) -> np.ndarray:
     """The coordinate ``coord`` of the largest v_out of a map (grid point)."""
-    v = valid_v_out(ds)
-    index = np.unravel_index(int(np.argmax(v.fillna(-np.inf).values)), v.shape)
-    return float(ds[coord][index[v.dims.index(coord)]])
+    return _extreme(ds, coord, 1.0)
 
 
-def measure_minimum(ds: xr.Dataset, coord: str) -> float:
+@one_or_many
+def measure_minimum(ds: Stack, coord: str) -> np.ndarray:
     """The coordinate ``coord`` of the smallest v_out of a map (grid point)."""
-    v = valid_v_out(ds)
-    index = np.unravel_index(int(np.argmin(v.fillna(np.inf).values)), v.shape)
-    return float(ds[coord][index[v.dims.index(coord)]])
+    return _extreme(ds, coord, -1.0)
 
 
-def measure_fig9(ds: xr.Dataset, what: Literal["v_L", "v_H", "tau_H", "gain_percent"]) -> float:
+@one_or_many
+def measure_fig9(ds: Stack, what: Literal["v_L", "v_H", "tau_H", "gain_percent"]) -> np.ndarray:
     """Fig. 9: ``v_L`` (tau = 0), ``v_H`` (max), ``tau_H`` or the ``gain_percent``."""
-    d = ds.isel(delta0=0)
-    v_l = float(valid_v_out(d)[0])
-    v_h, tau_h = float(d["best_v_out"]), float(d["best_tau"])
-    return {"v_L": v_l, "v_H": v_h, "tau_H": tau_h, "gain_percent": 100 * (v_h / v_l - 1)}[what]
+
+    def first(name: str, values: np.ndarray) -> np.ndarray:
+        return pick(values, ds.axis(name, "delta0"), 0)
+
+    v_l = per_reading(first("v_out", _valid(ds))[:, 0])
+    v_h = per_reading(first("best_v_out", ds["best_v_out"]))
+    if what == "tau_H":
+        return per_reading(first("best_tau", ds["best_tau"]))
+    return {"v_L": v_l, "v_H": v_h, "gain_percent": 100 * (v_h / v_l - 1)}[what]
 
 
-def measure_best_delta0(ds: xr.Dataset, theta0: float) -> float:
+def nearest(axis: np.ndarray, value: float) -> np.ndarray:
+    """The position of the value nearest ``value`` in each reading's ``axis`` (reading
+    first; a tie goes to the later position, as ``sel(method="nearest")`` on a rising
+    axis)."""
+    gap = np.abs(axis - value)
+    return axis.shape[1] - 1 - np.argmin(gap[:, ::-1], axis=1)
+
+
+@one_or_many
+def measure_best_delta0(ds: Stack, theta0: float) -> np.ndarray:
     """Figs. 2-3: the best delta0 at ``theta0`` (the red line)."""
-    return float(ds["best_delta0"].sel(theta0=theta0, method="nearest"))
+    at = nearest(ds["theta0"], theta0)
+    return pick(ds["best_delta0"], ds.axis("best_delta0", "theta0"), at)
 
 
-def measure_best_delta0_decreases(ds: xr.Dataset) -> float:
+@one_or_many
+def measure_best_delta0_decreases(ds: Stack) -> np.ndarray:
     """Figs. 2-3: 1 if the best delta0 falls from theta0 = 60 to 90 to 120 degrees."""
     b = [measure_best_delta0(ds, t) for t in (60.0, 90.0, 120.0)]
-    return float(b[0] > b[1] > b[2])
+    return ((b[0] > b[1]) & (b[1] > b[2])).astype(float)
 
 
-def measure_delta0_smaller_for_longer_arm(short: xr.Dataset, long: xr.Dataset) -> float:
+@one_or_many
+def measure_delta0_smaller_for_longer_arm(short: Stack, long: Stack) -> np.ndarray:
     """Fig. 3 vs 2: 1 if the best delta0 is smaller for L1 = 0.4 m at 90 % of theta0."""
-    diff = long["best_delta0"].values - short["best_delta0"].values
-    return float(np.mean(diff < 0) >= 0.9)
+    diff = long["best_delta0"] - short["best_delta0"]
+    return (np.mean((diff < 0).reshape(diff.shape[0], -1), axis=1) >= 0.9).astype(float)
 
 
-def measure_stroke(ds: xr.Dataset, var: str, stroke: int, absolute: bool = False) -> float:
-    value = float(ds[var].isel(stroke=stroke))
-    return abs(value) if absolute else value
+@one_or_many
+def measure_stroke(ds: Stack, var: str, stroke: int, absolute: bool = False) -> np.ndarray:
+    """``var`` of stroke ``stroke`` (its size if ``absolute``)."""
+    value = per_reading(pick(ds[var], ds.axis(var, "stroke"), stroke)).astype(float)
+    return np.abs(value) if absolute else value
 
 
-def measure_greater(ds: xr.Dataset, var: str, first: int, second: int) -> float:
+@one_or_many
+def measure_greater(ds: Stack, var: str, first: int, second: int) -> np.ndarray:
     """1 if ``var`` of stroke ``first`` exceeds that of stroke ``second``."""
-    return float(measure_stroke(ds, var, first) > measure_stroke(ds, var, second))
+    return (measure_stroke(ds, var, first) > measure_stroke(ds, var, second)).astype(float)
 
 
-def measure_omega2_peak_greater(ds: xr.Dataset, first: int, second: int) -> float:
+@one_or_many
+def measure_omega2_peak_greater(ds: Stack, first: int, second: int) -> np.ndarray:
     """Fig. 4: 1 if the whole-stroke maximum of omega2 of ``first`` exceeds ``second``'s."""
-    peaks = ds["omega2"].max("t")
-    return float(float(peaks[first]) > float(peaks[second]))
+    peaks = np.fmax.reduce(ds["omega2"], axis=ds.axis("omega2", "t"))  # NaN skipped
+    dims = [d for d in ds.dims("omega2") if d != "t"]
+    at = 1 + dims.index("stroke")
+    return (per_reading(pick(peaks, at, first)) > per_reading(pick(peaks, at, second))).astype(
+        float
+    )
 
 
-def measure_omega2_rises_after_contact(ds: xr.Dataset, stroke: int) -> float:
+def _of_stroke(ds: Stack, var: str, stroke: int) -> np.ndarray:
+    """``var`` of stroke ``stroke`` (its other axes after the reading's)."""
+    return pick(ds[var], ds.axis(var, "stroke"), stroke)
+
+
+def _linear(t: np.ndarray, values: np.ndarray, at: float) -> float:
+    """``values(t)`` at ``at`` by linear interpolation, NaN outside ``t`` (what
+    ``DataArray.interp`` computes: scipy's ``interp1d`` with these options)."""
+    from scipy.interpolate import interp1d  # here: the figure and report jobs load no scipy
+
+    curve = interp1d(
+        t,
+        values,
+        kind="linear",
+        fill_value=(np.nan, np.nan),
+        bounds_error=False,
+        assume_sorted=True,
+        copy=False,
+    )
+    return float(curve(at))
+
+
+@one_or_many
+def measure_omega2_rises_after_contact(ds: Stack, stroke: int) -> np.ndarray:
     """Fig. 4: 1 if omega2 is larger 10 ms after separation than at the contact start."""
-    d = ds.isel(stroke=stroke)
-    later = float(d["omega2"].interp(t=float(d["t_separation"]) + 0.01))
-    return float(later > float(d["omega2_contact"]))
+    omega2 = _of_stroke(ds, "omega2", stroke)  # (n, t)
+    later = per_reading(_of_stroke(ds, "t_separation", stroke)) + 0.01
+    t = ds["t"]
+    value = np.array([_linear(t[r], omega2[r], later[r]) for r in range(ds.n)])
+    return (value > per_reading(_of_stroke(ds, "omega2_contact", stroke))).astype(float)
 
 
-def measure_peak_after_contact(ds: xr.Dataset, stroke: int) -> float:
+def _at_omega2_peak(ds: Stack, var: str, stroke: int) -> np.ndarray:
+    """``var`` (a curve, or the time ``t``) of stroke ``stroke`` when its omega2 is
+    largest (NaN skipped)."""
+    omega2 = _of_stroke(ds, "omega2", stroke)
+    peak = np.argmax(np.where(np.isnan(omega2), -np.inf, omega2), axis=1)
+    values = ds["t"] if var == "t" else _of_stroke(ds, var, stroke)
+    return pick(values, 1, peak)
+
+
+@one_or_many
+def measure_peak_after_contact(ds: Stack, stroke: int) -> np.ndarray:
     """Fig. 10: 1 if omega2 peaks after the contact start (the ball is hit before)."""
-    d = ds.isel(stroke=stroke)
-    t_peak = float(d["t"][int(np.argmax(d["omega2"].fillna(-np.inf).values))])
-    return float(t_peak > float(d["t_contact_start"]))
+    start = per_reading(_of_stroke(ds, "t_contact_start", stroke))
+    return (_at_omega2_peak(ds, "t", stroke) > start).astype(float)
 
 
-def measure_omega1_at_omega2_peak(ds: xr.Dataset, stroke: int) -> float:
+@one_or_many
+def measure_omega1_at_omega2_peak(ds: Stack, stroke: int) -> np.ndarray:
     """Fig. 10: |omega1| (rad/s) when omega2 has its maximum."""
-    d = ds.isel(stroke=stroke)
-    return abs(float(d["omega1"][int(np.argmax(d["omega2"].fillna(-np.inf).values))]))
+    return np.abs(_at_omega2_peak(ds, "omega1", stroke))
 
 
-def measure_contact_time_difference(ds: xr.Dataset) -> float:
+@one_or_many
+def measure_contact_time_difference(ds: Stack) -> np.ndarray:
     """Fig. 10: |t_c(tau_H) - t_c(tau_L)| (s)."""
-    return abs(float(ds["t_contact_start"][1] - ds["t_contact_start"][0]))
+    return np.abs(
+        per_reading(_of_stroke(ds, "t_contact_start", 1) - _of_stroke(ds, "t_contact_start", 0))
+    )
 
 
-def measure_k_spread(ds: xr.Dataset) -> float:
+@one_or_many
+def measure_k_spread(ds: Stack) -> np.ndarray:
     """Sec. II: the largest change of v_out over the spring constants of a
     ``(stroke, k_contact)`` map, per stroke in % of its largest v_out (the largest of
     the strokes)."""
-    v = valid_v_out(ds)
-    spread = (v.max("k_contact") - v.min("k_contact")) / v.max("k_contact") * 100.0
-    return float(spread.max())
+    v, k = _valid(ds), ds.axis("v_out", "k_contact")
+    top = np.fmax.reduce(v, axis=k)  # NaN skipped
+    spread = (top - np.fmin.reduce(v, axis=k)) / top * 100.0
+    return np.fmax.reduce(spread.reshape(ds.n, -1), axis=1)
 
 
-def measure_mass_trend(ds: xr.Dataset, m2: float, sign: Literal[-1, 1]) -> float:
+@one_or_many
+def measure_mass_trend(ds: Stack, m2: float, sign: Literal[-1, 1]) -> np.ndarray:
     """Fig. 5: 1 if the fastest v_out at ``M2`` changes with L1 (largest vs smallest) in
     the direction ``sign``."""
-    row = ds["v_out_best"].sel(M2=m2, method="nearest")
-    return float(np.sign(float(row[-1] - row[0])) == sign)
+    row = pick(ds["v_out_best"], ds.axis("v_out_best", "M2"), nearest(ds["M2"], m2))
+    return (np.sign(per_reading(row[:, -1] - row[:, 0])) == sign).astype(float)
 
 
-def measure_theta_c(ds: xr.Dataset, end: Literal["small", "large"]) -> float:
-    """Fig. 6: mean over M2 of theta_c at the smallest or largest L1 (degree)."""
-    return float(ds["theta_c"].isel(L1={"small": 0, "large": -1}[end]).mean())
-
-
-def measure_theta_c_decreases(ds: xr.Dataset) -> float:
-    """Fig. 6: 1 if theta_c at the largest L1 is below that at the smallest, for every M2."""
+def _theta_c_ends(ds: Stack) -> tuple[np.ndarray, np.ndarray]:
+    """theta_c at the smallest and at the largest L1, each ``(n, M2)``."""
+    at = ds.axis("theta_c", "L1")
     tc = ds["theta_c"]
-    return float(bool((tc.isel(L1=-1) < tc.isel(L1=0)).all()))
+    return pick(tc, at, 0).reshape(ds.n, -1), pick(tc, at, -1).reshape(ds.n, -1)
 
 
-def measure_table1_minimum(ds: xr.Dataset) -> float:
+@one_or_many
+def measure_theta_c(ds: Stack, end: Literal["small", "large"]) -> np.ndarray:
+    """Fig. 6: mean over M2 of theta_c at the smallest or largest L1 (degree)."""
+    values = _theta_c_ends(ds)[{"small": 0, "large": 1}[end]]
+    with warnings.catch_warnings():  # as xarray's mean: NaN skipped, silent if all are
+        warnings.filterwarnings("ignore", "Mean of empty slice", RuntimeWarning)
+        return np.nanmean(np.ascontiguousarray(values), axis=1)
+
+
+@one_or_many
+def measure_theta_c_decreases(ds: Stack) -> np.ndarray:
+    """Fig. 6: 1 if theta_c at the largest L1 is below that at the smallest, for every M2."""
+    small, large = _theta_c_ends(ds)
+    return np.all(large < small, axis=1).astype(float)
+
+
+@one_or_many
+def measure_table1_minimum(ds: Stack) -> np.ndarray:
     """Table I: 1 if psi_F = 275 deg gives the slowest rebound of the four cases."""
-    v = ds["v_out"].values
-    psi = ds["psi_F"].values
-    return float(np.nanargmin(v) == int(np.flatnonzero(psi == 275.0)[0]))
+    v, psi = ds["v_out"], ds["psi_F"]
+    if not (psi == 275.0).any(axis=1).all():
+        raise ValueError("Table I's strokes have no psi_F = 275 deg")
+    return (np.nanargmin(v, axis=1) == np.argmax(psi == 275.0, axis=1)).astype(float)
 
 
-#: Named measurements: function(datasets..., **args) -> float.  The parameters annotated
-#: ``xr.Dataset`` take the claim's files in order, the others its arguments; the
-#: annotations (``float``, ``int``, ``str``, ``Literal[...]``) are checked before any job
-#: (:func:`tennis_stroke.inference.claims.claim_errors`).
-MEASUREMENTS: dict[str, Callable[..., float]] = {
+#: Named measurements: function(stacks..., **args) -> one value per reading.  The
+#: parameters annotated :class:`Stack` take the claim's files in order, the others its
+#: arguments; the annotations (``float``, ``int``, ``str``, ``Literal[...]``) are checked
+#: before any job (:func:`tennis_stroke.inference.claims.claim_errors`).
+MEASUREMENTS: dict[str, Callable[..., np.ndarray]] = {
     name.removeprefix("measure_"): fn
     for name, fn in globals().items()
     if name.startswith("measure_") and callable(fn)

@@ -17,9 +17,10 @@ import xarray as xr
 from ..experiments.grids import select_rows
 from ..io.netcdf import labelled
 from ..solver.settings import SolverSettings
-from .claims import measure, within
+from .claims import claim_files, measure_stacks, within
 from .identification import quoted_variable
 from .labels import claim_facts, variable
+from .measures import Stack
 from .multiverse import experiment_configs
 from .reading_space import CLAIM_LEVEL, CURVE_FILES, ReadingSpace
 from .targeted import targeted_files_of
@@ -61,7 +62,9 @@ def files_of_reading(
         files[key] = results[f"{key}/{curves}"]
     if l1_max is not None and "ml" in files:
         ml = files["ml"]
-        files["ml"] = ml.isel(L1=np.flatnonzero(ml["L1"].values <= l1_max + 1e-9))
+        keep = ml["L1"].values <= l1_max + 1e-9
+        if not keep.all():  # the targeted file holds no L1 beyond the reading's end
+            files["ml"] = ml.isel(L1=np.flatnonzero(keep))
     return files
 
 
@@ -72,29 +75,83 @@ def evaluate_reading(
     reading: Mapping[str, object],
 ) -> tuple[np.ndarray, list[dict[str, str]]]:
     """Values of every claim (``variant x claim``) under ``reading`` (its discrete
-    readings and continuous unknowns) and every claim-level variant.
+    readings and continuous unknowns) and every claim-level variant: the case of one
+    reading of :func:`evaluate_across`."""
+    values, cases = evaluate_across(claims, space, [results], [reading])
+    return values[0], cases
+
+
+def _measured(
+    claims: Sequence[Mapping], space: ReadingSpace, readings: Sequence[Mapping[str, object]]
+) -> tuple[dict[tuple, dict[int, list[int]]], dict[tuple, Mapping], list[dict[str, str]]]:
+    """What :func:`evaluate_across` measures: each distinct thing a claim reads, keyed
+    ``(claim index, its measure, the curves if it reads a curve file)``, with the
+    readings that read it and, for each, the variants; the measure of each key; the
+    variants."""
+    cases = variants(space)
+    quoting = space.raw["quoting"]
+    reads_curves = [bool(set(claim_files(c)) & set(CURVE_FILES)) for c in claims]
+    tasks: dict[tuple, dict[int, list[int]]] = {}
+    specs: dict[tuple, Mapping] = {}
+    quoted: dict[tuple, list[tuple[str, Mapping]]] = {}
+    for v, case in enumerate(cases):
+        level = {g: case[g] for g in CLAIM_LEVEL if g in quoting}
+        for r, reading in enumerate(readings):
+            instants = {**{g: str(reading[g]) for g in quoting if g in reading}, **level}
+            at = tuple(sorted(instants.items()))
+            if at not in quoted:
+                quoted[at] = [
+                    (repr(sorted(c["measure"].items())), c["measure"])
+                    for c in quoted_claims(claims, space, instants)
+                ]
+            for j, (text, spec) in enumerate(quoted[at]):
+                key = (j, text, case["figure_curves"] if reads_curves[j] else None)
+                specs[key] = spec
+                tasks.setdefault(key, {}).setdefault(r, []).append(v)
+    return tasks, specs, cases
+
+
+def evaluate_across(
+    claims: Sequence[Mapping],
+    space: ReadingSpace,
+    results: Sequence[Mapping[str, xr.Dataset]],
+    readings: Sequence[Mapping[str, object]],
+) -> tuple[np.ndarray, list[dict[str, str]]]:
+    """Values of every claim (``reading x variant x claim``) under each of ``readings``
+    (``results[r]``: the files of reading ``r``) and every claim-level variant.
 
     A claim is measured once per distinct thing it reads: its measure (the quoted
-    variable of its instant) and, if it reads a curve file, the curves; the variants that
-    change neither reuse the value."""
-    fixed = {g: str(reading[g]) for g in space.raw["quoting"] if g in reading}
-    l1_max = reading.get("fig6_L1_max")
-    out, seen = [], {}
-    cases = variants(space)
-    for case in cases:
-        instants = {**fixed, **{g: case[g] for g in CLAIM_LEVEL if g in space.raw["quoting"]}}
-        files = files_of_reading(results, case["figure_curves"], l1_max)
-        row = []
-        for c in quoted_claims(claims, space, instants):
-            names = c["measure"]["file"]
-            names = names if isinstance(names, list) else [names]
-            curves = case["figure_curves"] if set(names) & set(CURVE_FILES) else None
-            key = (c["id"], repr(sorted(c["measure"].items())), curves)
-            if key not in seen:
-                seen[key] = measure(c["measure"], files)
-            row.append(seen[key])
-        out.append(np.array(row, dtype=float))
-    return np.array(out), cases
+    variable of its instant) and, if it reads a curve file, the curves; the variants
+    that change neither reuse the value.  Each is measured under all the readings that
+    read it in one call (:func:`~tennis_stroke.inference.claims.measure_stacks`), the
+    readings whose files have the same sizes stacked together."""
+    tasks, specs, cases = _measured(claims, space, readings)
+    values = np.full((len(readings), len(cases), len(claims)), np.nan)
+    curves = {c["figure_curves"] for c in cases}
+    files = {
+        (r, c): files_of_reading(res, c, reading.get("fig6_L1_max"))
+        for r, (res, reading) in enumerate(zip(results, readings, strict=True))
+        for c in curves
+    }
+    stacks: dict[tuple, Stack] = {}
+    for key, users in tasks.items():
+        names = claim_files({"measure": specs[key]})
+        c = key[2] or cases[0]["figure_curves"]
+        groups: dict[tuple, list[int]] = {}
+        for r in users:
+            sizes = tuple(tuple(files[r, c][n].sizes.items()) for n in names)
+            groups.setdefault(sizes, []).append(r)
+        for group in map(tuple, groups.values()):
+            read = {}
+            for n in names:  # a file stacked once for a group of readings, for every claim
+                at = (n, key[2] if n in CURVE_FILES else None, group)
+                if at not in stacks:
+                    stacks[at] = Stack([files[r, c][n] for r in group])
+                read[n] = stacks[at]
+            got = measure_stacks(specs[key], read)
+            for r, value in zip(group, got, strict=True):
+                values[r, users[r], key[0]] = value
+    return values, cases
 
 
 def readings_results(
@@ -153,10 +210,9 @@ def evaluate_readings(
     the targeted evaluation (:func:`tennis_stroke.inference.targeted.targeted_files_of`,
     every reading's searches in lockstep) on the rows of the multiverse's resolution over
     the workflow ``config``, the claims evaluated under every claim-level variant
-    (:func:`readings_results`)."""
+    (:func:`evaluate_across`, :func:`readings_results`)."""
     index = select_rows(np.arange(readings.sizes["reading"]), rows)
     cases = variants(space)
-    values = np.full((index.size, len(cases), len(claims)), np.nan)
     chosen, configs, models = experiment_configs(config, space, readings, index)
     found = targeted_files_of(
         configs,
@@ -166,6 +222,5 @@ def evaluate_readings(
         [r.get("fig6_L1_max") for r in chosen],
         threads,
     )
-    for n, (reading, results) in enumerate(zip(chosen, found, strict=True)):
-        values[n] = evaluate_reading(claims, space, results, reading)[0]
+    values = evaluate_across(claims, space, found, chosen)[0]
     return readings_results(claims, space, readings.isel(reading=index), values, cases)
