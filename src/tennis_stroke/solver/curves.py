@@ -30,7 +30,6 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from functools import partial
 
 import numpy as np
 from numba import literally, njit
@@ -75,6 +74,8 @@ from .results import N_OUT
 from .settings import METHOD_IDS, S_CONTACT_STEPS, S_FIRST_STEP, S_TMAX, SolverSettings
 from .stroke import contact_start, restart_at, run_phases
 
+#: The method of the curves (the reference path's, which drew them before): of order 8.
+CURVE_METHOD = "DOP853"
 #: Relative and absolute tolerance of the curves (the reference path's, which drew them
 #: before): far tighter than the stroke numbers', at a cost of a few thousand
 #: right-hand-side evaluations per stroke.
@@ -294,10 +295,13 @@ def curve_rows(method, cf_rows, times, with_ball, st, out, nfev, history_capacit
 
 
 def curve_settings(settings: SolverSettings | None = None) -> SolverSettings:
-    """The settings the curves are computed with: ``settings`` (its limits: ``t_max``,
-    the contact's step limit, the history) at :data:`CURVE_TOLERANCE`."""
+    """The settings the curves are computed with: ``settings``' limits (``t_max``, the
+    contact's step limit, the history) with :data:`CURVE_METHOD` at
+    :data:`CURVE_TOLERANCE`, whatever method and tolerances the stroke numbers take."""
     settings = settings or SolverSettings()
-    return dataclasses.replace(settings, rtol=CURVE_TOLERANCE, atol=CURVE_TOLERANCE)
+    return dataclasses.replace(
+        settings, method=CURVE_METHOD, rtol=CURVE_TOLERANCE, atol=CURVE_TOLERANCE
+    )
 
 
 def stroke_curves(
@@ -318,8 +322,8 @@ def stroke_curves(
         The stroke with the ball (contact and follow-through until ``times[-1]``), else
         the free swing without it.
     settings : SolverSettings, optional
-        Method and limits; the tolerances are :data:`CURVE_TOLERANCE`
-        (:func:`curve_settings`).
+        The limits; the method and tolerances are :data:`CURVE_METHOD` and
+        :data:`CURVE_TOLERANCE` (:func:`curve_settings`).
 
     Returns
     -------
@@ -335,7 +339,7 @@ def stroke_curves(
         raise ValueError("sample times must be a non-empty 1-d array of finite numbers")
     if times[0] < 0.0 or np.any(np.diff(times) < 0.0):
         raise ValueError("sample times must be ascending from 0 or later")
-    ensure_compiled(f"curves:{settings.method}", partial(exercise_curves, settings.method))
+    ensure_compiled("curves", exercise_curves)
     cf_rows = np.ascontiguousarray(np.atleast_2d(cf_rows), dtype=float)
     out = np.empty((cf_rows.shape[0], times.size, N_COLUMNS))
     nfev = np.zeros(cf_rows.shape[0])
@@ -345,10 +349,10 @@ def stroke_curves(
     return {**curves, "rhs_evals": nfev.astype(np.int64)}
 
 
-def exercise_curves(method: str) -> None:
-    """The calls that compile (or load) the curves' entry point for ``method``
+def exercise_curves() -> None:
+    """The calls that compile (or load) the curves' entry point
     (:func:`tennis_stroke.solver.compiled.ensure_compiled`)."""
     cf_rows = coefficients(resolve_params({}), np.array([120.0, 90.0]), 45.0)
     times = np.linspace(0.0, 0.2, 5)
     for with_ball in (False, True):
-        stroke_curves(cf_rows, times, with_ball, SolverSettings(method=method))
+        stroke_curves(cf_rows, times, with_ball)

@@ -30,13 +30,13 @@ def exercise(group: str) -> Callable[[], object]:
         from .reference import exercise_reference
 
         return exercise_reference
-    kind, method = group.split(":")
-    if kind == "curves":
+    if group == "curves":
         from .curves import exercise_curves
 
-        return partial(exercise_curves, method)
+        return exercise_curves
     from .stroke import exercise_batch, exercise_contact
 
+    kind, method = group.split(":")
     return partial(exercise_batch if kind == "batch" else exercise_contact, method)
 
 
