@@ -13,8 +13,9 @@ from ..io.units import cf_attrs
 from ..model.dynamics import coefficients, rod_points
 from ..model.params import resolve_params
 from ..solver.curves import stroke_curves
+from ..solver.results import results_from_output
 from ..solver.settings import SolverSettings
-from ..solver.stroke import strike
+from ..solver.stroke import solve_coefficients
 from .specs import CURVE_VARIABLES
 
 #: How the curves of omega(t) are drawn: the free swing without the ball (the paper
@@ -37,21 +38,16 @@ def trajectories(
     solver, all strokes in one call (:func:`~tennis_stroke.solver.curves.stroke_curves`:
     the free swing until ``times[-1]``, or with ``curves="with_ball"`` the stroke with
     the contact and the follow-through), the stroke numbers from the compiled stroke
-    (:func:`~tennis_stroke.solver.stroke.strike`).  Curves are NaN outside the simulated
-    span.
+    (:func:`~tennis_stroke.solver.stroke.solve_coefficients`, each stroke on its own,
+    also in one call).  Curves are NaN outside the simulated span.
     """
     if curves not in CURVES:
         raise ValueError(f"curves must be one of {', '.join(CURVES)}, got {curves!r}")
-    numbers: dict[str, list] = {}
-    rows = []
-    for theta0, delta0, extra in strokes:
-        p = {**params, **extra}
-        res = strike(theta0, delta0, p, settings)
-        for key, value in res.items():
-            if key != "status_name":
-                numbers.setdefault(key, []).append(value)
-        rows.append(coefficients(resolve_params(p), theta0, delta0)[0])
-    sampled = stroke_curves(np.array(rows), times, curves == "with_ball", settings)
+    rows = np.array(
+        [coefficients(resolve_params({**params, **extra}), a, b)[0] for a, b, extra in strokes]
+    )
+    results = results_from_output(solve_coefficients(rows, settings, 1), (len(strokes),))
+    sampled = stroke_curves(rows, times, curves == "with_ball", settings)
     samples = {k: sampled[k] for k in ("omega1", "omega2", "x_elbow", "y_elbow")}
     samples["theta"] = np.degrees(sampled["theta"])
     samples["phi"] = np.degrees(sampled["phi"])
@@ -61,7 +57,6 @@ def trajectories(
     ]
     samples.update({key: np.array([p[key] for p in points]) for key in points[0]})
     samples["kinetic_energy"] = sampled["kinetic_energy"]
-    results = {k: np.asarray(v) for k, v in numbers.items()}
     ds = result_dataset(
         results,
         {"stroke": np.arange(len(strokes))},
