@@ -127,6 +127,13 @@ def sample_phase(
 
 
 @njit(inline="always", **JIT_INNER)
+def _free_samples(method, t, y, h, t_stop, cf, st, stats, no_history, times, k, rows):
+    """The free swing from ``(t, y)`` to ``t_stop``, no event, sampled from ``times[k]``."""
+    args = (t, y, h, np.inf, t_stop, cf, flag(False), st, stats, no_history, times, k, rows)
+    return sample_phase(method, flag(False), *args)
+
+
+@njit(inline="always", **JIT_INNER)
 def _first_at_or_after(times, t):
     """Index of the first sample at or after ``t``."""
     k = 0
@@ -157,23 +164,7 @@ def stroke_samples(method, cf_row, times, with_ball, st, rows, history, stats, s
     h = st[S_FIRST_STEP]
     no_history = history[:1]
     if not with_ball:
-        sample_phase(
-            method,
-            flag(False),
-            0.0,
-            y,
-            h,
-            np.inf,
-            times[-1],
-            cf,
-            flag(False),
-            st,
-            stats,
-            no_history,
-            times,
-            0,
-            rows,
-        )
+        _free_samples(method, 0.0, y, h, times[-1], cf, st, stats, no_history, times, 0, rows)
     else:
         _with_ball(method, cf, y, h, times, st, rows, history, stats, scratch)
     for k in range(times.shape[0]):
@@ -261,23 +252,7 @@ def _with_ball(method, cf, y, h, times, st, rows, history, stats, scratch):
         _, w1, w2 = instant_contact(t, y, cf)
         y = (y[SIN_TH], y[COS_TH], y[SIN_PH], y[COS_PH], w1, w2, y[THETA], y[PHI], 0.0, 0.0)
     if t < t_end:
-        sample_phase(
-            method,
-            flag(False),
-            t,
-            y,
-            h,
-            np.inf,
-            t_end,
-            cf,
-            flag(False),
-            st,
-            stats,
-            no_history,
-            times,
-            k,
-            rows,
-        )
+        _free_samples(method, t, y, h, t_end, cf, st, stats, no_history, times, k, rows)
 
 
 @njit(nogil=True, **JIT)
