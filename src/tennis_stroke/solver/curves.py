@@ -129,8 +129,10 @@ def sample_phase(
 @njit(inline="always", **JIT_INNER)
 def _free_samples(method, t, y, h, t_stop, cf, st, stats, no_history, times, k, rows):
     """The free swing from ``(t, y)`` to ``t_stop``, no event, sampled from ``times[k]``."""
-    args = (t, y, h, np.inf, t_stop, cf, flag(False), st, stats, no_history, times, k, rows)
-    return sample_phase(method, flag(False), *args)
+    free = flag(False)
+    return sample_phase(
+        method, free, t, y, h, np.inf, t_stop, cf, free, st, stats, no_history, times, k, rows
+    )
 
 
 @njit(inline="always", **JIT_INNER)
