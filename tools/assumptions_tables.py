@@ -5,6 +5,7 @@ files: its generated blocks ``identification`` and ``robustness``, which
 
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import xarray as xr
 
@@ -154,6 +155,92 @@ def robustness_tables(results: Path) -> str:
                     f"{float(r['best_value']):.4g}",
                     f"{float(r['best_residual']):.2f}",
                     f"{float(gap):.3f}" if gap != "" else "-",
+                ]
+            )
+        )
+    return "\n".join(out) + "\n"
+
+
+#: The design's size before the amendment of 2026-12-06 (config/readings.yaml): its
+#: candidates are the first of today's design (same seed), so the readings they gave are
+#: the sample the robustness classes rested on until then.
+PREVIOUS_CANDIDATES = 32768
+
+
+def coverage(results: Path) -> str:
+    """How the kept readings cover the consistent set: the readings of the first
+    :data:`PREVIOUS_CANDIDATES` candidates (the sample before the amendment) against those
+    of the candidates added, each continuous unknown's quartiles in its declared scale
+    with the two-sample Kolmogorov-Smirnov test (:func:`scipy.stats.ks_2samp`: the two are
+    disjoint blocks of one Sobol design, so a small p would say they cover the set
+    differently), and each discrete combination's share."""
+    from scipy.stats import ks_2samp
+
+    from tennis_stroke.inference.reading_space import load_reading_space
+
+    kept = xr.load_dataset(results / "robustness" / "readings.nc")
+    space = load_reading_space(Path("config/readings.yaml"))
+    old = kept["candidate"].values < PREVIOUS_CANDIDATES
+    groups = {"before": old, "added": ~old}
+    out = [
+        f"Kept readings: {int(old.sum())} from the first {PREVIOUS_CANDIDATES} candidates "
+        f"(the sample before 2026-12-06), {int((~old).sum())} from the "
+        f"{int(space.raw['multiverse']['candidates']) - PREVIOUS_CANDIDATES} added; "
+        "each unknown in its declared scale "
+        "(log: the quartiles of log10, shown as values).\n",
+        _row(
+            [
+                "unknown",
+                "unit",
+                "scale",
+                "before: 5 / 25 / 50 / 75 / 95 %",
+                "added: same",
+                "KS D",
+                "KS p",
+            ]
+        ),
+        _row(["--"] * 7),
+    ]
+    for name, unknown in space.continuous.items():
+        values = kept[name].values
+        u = np.log10(values) if unknown.scale == "log" else values
+        cells = []
+        for mask in groups.values():
+            q = np.percentile(u[mask], [5, 25, 50, 75, 95]) if mask.any() else []
+            shown = 10**q if unknown.scale == "log" else q
+            cells.append(" / ".join(f"{v:.4g}" for v in shown) or "-")
+        test = ks_2samp(u[old], u[~old]) if old.any() and (~old).any() else None
+        out.append(
+            _row(
+                [
+                    f"`{name}`",
+                    unknown.unit,
+                    unknown.scale,
+                    *cells,
+                    f"{test.statistic:.2f}" if test else "-",
+                    f"{test.pvalue:.2f}" if test else "-",
+                ]
+            )
+        )
+    names = [
+        k for k in kept.data_vars if kept[k].dtype.kind in "OUS" and kept[k].dims == ("reading",)
+    ]
+    combos = pd.Series(
+        [", ".join(f"{k}={kept[k].values[i]}" for k in names) for i in range(kept.sizes["reading"])]
+    )
+    out.append("")
+    out.append(_row(["discrete combination", "before", "added"]))
+    out.append(_row(["--"] * 3))
+    for combo in combos.unique():
+        same = (combos == combo).values
+        out.append(
+            _row(
+                [
+                    combo,
+                    *(
+                        f"{int((same & m).sum())} ({100 * (same & m).mean() / m.mean():.0f} %)"
+                        for m in groups.values()
+                    ),
                 ]
             )
         )

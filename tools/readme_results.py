@@ -164,6 +164,7 @@ BLOCKS: dict[str, Callable[[pd.DataFrame, Path], str]] = {
     "ladder": lambda table, results: ladder(results),
     "identification": lambda table, results: assumptions_tables.tables(results / "identification"),
     "robustness": lambda table, results: assumptions_tables.robustness_tables(results),
+    "coverage": lambda table, results: assumptions_tables.coverage(results),
 }
 
 

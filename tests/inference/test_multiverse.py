@@ -66,8 +66,9 @@ def test_the_screen_agrees_with_strokes_simulated_one_by_one(claims, tmp_path):
     elbow_goal = targets(space, space.fits["elbow_force"], claims)
     cases = table1_cases(FORCE, fit_set_arguments(CONFIG)["stroke"])
     stroke = fit_set_arguments(CONFIG)["stroke"]
-    computed = np.isfinite(screened["residual"].values[0, :, -1])
+    computed = np.isfinite(screened["rms"].values[0, :, 1])
     assert 0 < computed.sum() < 4  # both branches below are exercised
+    points_of = {int(i): row for row, i in enumerate(screened["point_candidate"].values)}
     for i in range(4):
         params = {
             "inertia": "uniform_rod",
@@ -82,19 +83,26 @@ def test_the_screen_agrees_with_strokes_simulated_one_by_one(claims, tmp_path):
             expected.append((abs(res[var]) if t.absolute else res[var]) - t.paper)
             expected[-1] /= t.tolerance
         model_res = np.array(expected)
-        got = screened["residual"].values[0, i]
-        np.testing.assert_allclose(got[: len(model_goal)], model_res, rtol=1e-9, atol=1e-9)
+        rms = screened["rms"].values[0, i]
+        assert rms[0] == pytest.approx(np.sqrt(np.mean(model_res**2)), rel=1e-6)  # float32
         if np.abs(model_res).max() <= 1.0:  # Table I only where Fig. 4 leaves it open
             shift = float(points["table1_tau_F"][i]) - FORCE["table1_tau_F"]
-            for j, t in enumerate(elbow_goal):
+            elbow_res = []
+            for t in elbow_goal:
                 case = {**cases[t.stroke], "t_F": cases[t.stroke]["t_F"] + shift}
                 res = strike(stroke["theta0"], stroke["delta0"], {**params, **case})
-                want = (res[STRIKE_NAMES.get(t.var, t.var)] - t.paper) / t.tolerance
-                assert got[len(model_goal) + j] == pytest.approx(want, abs=1e-9)
+                elbow_res.append((res[STRIKE_NAMES.get(t.var, t.var)] - t.paper) / t.tolerance)
+            assert rms[1] == pytest.approx(np.sqrt(np.mean(np.square(elbow_res))), rel=1e-6)
+            want = np.concatenate([model_res, elbow_res])
         else:
-            assert np.isnan(got[len(model_goal) :]).all()
-        within = np.abs(got) <= 1.0
-        assert bool(screened["consistent"].values[0, i]) == bool(within.all())
+            assert np.isnan(rms[1])
+            want = model_res
+        consistent = bool((np.abs(want) <= 1.0).all()) and want.size > model_res.size
+        assert bool(screened["consistent"].values[0, i]) == consistent
+        assert (i in points_of) == consistent  # the residuals are kept for consistent ones
+        if consistent:
+            got = screened["residual"].values[points_of[i]]
+            np.testing.assert_allclose(got, want, rtol=1e-9, atol=1e-9)
 
 
 def test_consistency_falls_back_to_the_rms_bound_only_when_no_fit_reaches_all():

@@ -149,8 +149,13 @@ def test_a_map_with_too_many_failed_strokes_stops_the_run_loudly(tmp_path):
 
 
 def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
+    """A run killed at once (SIGKILL to its process group, as a power cut) and started
+    again gives the tiny run's result files bit for bit.  The target is the claims table,
+    which reads every experiment's and the robustness analysis' files: the figures, the
+    page and the article only read those files again, so the check needs none of them."""
     work = workdir(tmp_path, TINY, TINY_READINGS)
-    command = snakemake_command("report", work, "--cores", "2")
+    target = "results/claims.csv"
+    command = snakemake_command(target, work, "--cores", "2")
     run = subprocess.Popen(
         command, start_new_session=True, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL
     )
@@ -163,7 +168,7 @@ def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
     finally:
         os.killpg(run.pid, signal.SIGKILL)  # the whole run at once, as a power cut would
         run.wait()
-    assert not (work / "report" / "index.html").exists()
+    assert not (work / target).exists()
     written = sorted((work / "results").rglob("*.nc"))
     for path in written:  # whatever has a final name is complete
         with xr.open_dataset(path) as ds:
@@ -171,11 +176,12 @@ def test_a_killed_run_restarts_to_the_same_results(tiny_run, tmp_path):
     # a killed Snakemake leaves its locks: the next run finds no live run holding the
     # folder and removes them (no --unlock), and reruns what was left incomplete
     assert list((work / ".snakemake" / "locks").iterdir())
-    done = run_snakemake("report", work, "--cores", "2", "--rerun-incomplete", timeout=1200)
+    done = run_snakemake(target, work, "--cores", "2", "--rerun-incomplete", timeout=1200)
     assert done.returncode == 0, done.stderr[-3000:]
     assert "tennis-stroke: removed the locks of an earlier run" in done.stderr
-    assert result_files(work) == result_files(tiny_run)
-    for name in result_files(work):
+    made = result_files(work)
+    assert "results/robustness/claims.nc" in made and set(made) <= set(result_files(tiny_run))
+    for name in made:
         assert_same_results(work / name, tiny_run / name)
     claims = pd.read_csv(work / "results/claims.csv")
     pd.testing.assert_frame_equal(claims, pd.read_csv(tiny_run / "results/claims.csv"))
@@ -317,8 +323,14 @@ def test_a_departing_configuration_is_said_so_and_refused_by_the_gate(tiny_run, 
     work = tmp_path_factory.mktemp("departing")
     shutil.copytree(tiny_run, work, symlinks=True, dirs_exist_ok=True)
     section = {**TINY["torque_delay"], "base_stroke": {"C2": 8.0, "delta0": 52.5}}
-    done = run_snakemake(
-        "report", work, "--cores", "2", "--config", override("torque_delay", section), timeout=1200
+    done = run_snakemake(  # the page: the article says the same from the same table
+        "report/index.html",
+        work,
+        "--cores",
+        "2",
+        "--config",
+        override("torque_delay", section),
+        timeout=1200,
     )
     assert done.returncode == 0, done.stderr[-3000:]
     html = (work / "report" / "index.html").read_text()

@@ -133,7 +133,7 @@ rule robustness_screen:
     benchmark:
         "benchmarks/workflow/robustness_screen.tsv"
     priority: CHAIN_PRIORITY
-    threads: 1
+    threads: 2
     params:
         **fit_set_arguments(config),
         common=job_params.common_params(config),

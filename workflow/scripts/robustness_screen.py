@@ -24,6 +24,7 @@ with logged(snakemake.log[0]):
         p.common["model"],
         best_fits(fits),
         settings(p.common),
+        snakemake.threads,
     )
     kept = readings_dataset(space, screened)
     print(f"consistent: {int(screened['consistent'].sum())}; kept: {kept.sizes['reading']}")

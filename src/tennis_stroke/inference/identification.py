@@ -93,12 +93,15 @@ def _file_values(res: Mapping[str, np.ndarray]) -> dict[str, np.ndarray]:
     return {FILE_NAMES.get(k, k): np.asarray(v, dtype=float) for k, v in res.items()}
 
 
-def model_simulator(strokes: Sequence[Sequence[float]], settings: SolverSettings | None = None):
+def model_simulator(
+    strokes: Sequence[Sequence[float]], settings: SolverSettings | None = None, threads: int = 1
+):
     """Fig. 4's strokes ``(theta0, delta0)`` (degrees) as a function of the overrides."""
     arr = np.asarray(strokes, dtype=float).reshape(-1, 2)
 
     def simulate(overrides: Mapping[str, object]) -> dict[str, np.ndarray]:
-        return _file_values(strike_batch(arr[:, 0], arr[:, 1], overrides, settings, threads=1))
+        res = strike_batch(arr[:, 0], arr[:, 1], overrides, settings, threads=threads)
+        return _file_values(res)
 
     return simulate
 
@@ -107,6 +110,7 @@ def elbow_simulator(
     force: Mapping[str, object],
     stroke: Mapping[str, object],
     settings: SolverSettings | None = None,
+    threads: int = 1,
 ):
     """Table I's strokes (:func:`tennis_stroke.experiments.strokes.table1_cases`) as a
     function of the overrides; the unknown ``table1_tau_F`` moves the pulse centre (a
@@ -119,7 +123,7 @@ def elbow_simulator(
         tau_f = np.asarray(overrides.pop("table1_tau_F", force.get("table1_tau_F", 0.0)))
         moved = {**columns, "t_F": columns["t_F"] + tau_f}
         res = strike_batch(
-            stroke["theta0"], stroke["delta0"], {**overrides, **moved}, settings, threads=1
+            stroke["theta0"], stroke["delta0"], {**overrides, **moved}, settings, threads=threads
         )
         return _file_values(res)
 

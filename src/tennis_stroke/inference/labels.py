@@ -45,6 +45,8 @@ LABELS: dict[str, tuple[str | None, str]] = {
     "max_abs_residual": ("1", "bound on every normalised residual"),
     "max_rms": ("1", "bound on the RMS normalised residual (fallback)"),
     "multiverse.fit_set": (None, "fit set"),
+    "multiverse.point_combination": ("1", "discrete combination of the consistent pair"),
+    "multiverse.point_candidate": ("1", "Sobol candidate of the consistent pair"),
     # robustness
     "robustness.value": (None, "reproduced value of the claim (its unit: claim_unit)"),
     "robustness.within": ("1", "1 if within the claim's declared tolerance"),

@@ -92,14 +92,18 @@ def screen(
     base: Mapping[str, object] | None = None,
     best_fits: Mapping[str, Mapping[str, float]] | None = None,
     settings: SolverSettings | None = None,
+    threads: int = 1,
 ) -> xr.Dataset:
-    """Fit-set residuals of every candidate under every model combination.
+    """Fit-set RMS residuals and consistency of every candidate under every model
+    combination, and every fit claim's residual at each consistent one.
 
     ``best_fits``: per fit set, ``passed`` and ``score`` of the identification's best fit
     (the fallback of the consistency rule).  Returns a dataset over ``(combination,
-    candidate)`` (and ``claim``) with the residuals, the RMS per fit set and
-    ``consistent``.  Table I's strokes are simulated only for candidates the Fig. 4 fit
-    set leaves consistent (the others have NaN Table I residuals: ruled out already).
+    candidate)`` with the RMS normalised residual per fit set and ``consistent``, and over
+    ``point`` (the consistent pairs, combination-major, candidates in Sobol order) each
+    fit claim's residual.  Table I's strokes are simulated only for candidates the Fig. 4
+    fit set leaves consistent (the others have a NaN Table I RMS: ruled out already).
+    ``threads``: the strokes of one batch share them (the values do not depend on it).
     """
     points = design(space)
     if "table1_tau_F" not in points:
@@ -107,62 +111,70 @@ def screen(
     fits = [space.fits[name] for name in FIT_SETS]
     goals = {f.name: targets(space, f, claims) for f in fits}
     sims = {
-        MODEL_FIT: model_simulator(fig4, settings),
-        ELBOW_FIT: elbow_simulator(force, stroke, settings),
+        MODEL_FIT: model_simulator(fig4, settings, threads),
+        ELBOW_FIT: elbow_simulator(force, stroke, settings, threads),
     }
     bounds = [_bound((best_fits or {}).get(f.name), space, len(goals[f.name])) for f in fits]
     combos = model_combinations(space)
-    res, rms = _residuals(space, combos, points, goals, sims, bounds[0], dict(base or {}))
-    consistent = _within(res[..., : len(goals[MODEL_FIT])], rms[..., 0], bounds[0]) & _within(
-        res[..., len(goals[MODEL_FIT]) :], rms[..., 1], bounds[1]
-    )
+    rms, consistent, kept = _residuals(space, combos, points, goals, sims, bounds, dict(base or {}))
     claim_ids = [t.claim for f in fits for t in goals[f.name]]
-    ds = _screen_dataset(space, combos, points, res, rms, consistent, claim_ids, bounds)
+    ds = _screen_dataset(space, combos, points, rms, consistent, kept, claim_ids, bounds)
     ds.attrs.update(provenance({}, settings or SolverSettings()))
     ds.attrs["design_seed"] = int(space.raw["multiverse"]["seed"])
     return labelled(ds)
 
 
-def _residuals(space, combos, points, goals, sims, model_bound, base):
-    """Residuals ``(combination, candidate, claim)`` and RMS per fit set ``(combination,
-    candidate, fit_set)`` of every candidate; Table I's strokes only where the model fit
-    set leaves the candidate consistent (NaN elsewhere).  The model's strokes are
-    simulated once per combination of the physical readings."""
+def _residuals(space, combos, points, goals, sims, bounds, base):
+    """RMS per fit set ``(combination, candidate, fit_set)`` and consistency
+    ``(combination, candidate)`` of every candidate, and the residuals of the consistent
+    ones (``(combination, candidate, residuals)`` rows); Table I's strokes only where the
+    model fit set leaves the candidate consistent (NaN RMS elsewhere).  The model's
+    strokes are simulated once per combination of the physical readings."""
     n = len(next(iter(points.values())))
     physical = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["model"]]
     quoting = [k for k in space.fits[MODEL_FIT].discrete if k in space.raw["quoting"]]
     params = {k: v[:, None] for k, v in points.items() if k in PARAMETERS}
-    n_model = len(goals[MODEL_FIT])
-    res = np.full((len(combos), n, n_model + len(goals[ELBOW_FIT])), np.nan)
     rms = np.full((len(combos), n, len(FIT_SETS)), np.nan)
+    consistent = np.zeros((len(combos), n), dtype=bool)
+    kept: list[tuple[int, np.ndarray, np.ndarray]] = []
     cache: dict[tuple, dict] = {}
     for c, combo in enumerate(combos):
         key = tuple(combo[k] for k in physical)
         overrides = {**base, **{k: combo[k] for k in physical}}
         if key not in cache:
-            cache[key] = {MODEL_FIT: sims[MODEL_FIT]({**overrides, **params})}
+            cache = {key: sims[MODEL_FIT]({**overrides, **params})}  # one held at a time
         instants = {k: combo[k] for k in quoting}
-        model_res = residuals(cache[key][MODEL_FIT], goals[MODEL_FIT], instants, space)[1]
-        res[c, :, : model_res.shape[1]] = model_res
+        model_res = residuals(cache[key], goals[MODEL_FIT], instants, space)[1]
         rms[c, :, 0] = np.sqrt(np.mean(model_res**2, axis=1))
-        todo = np.flatnonzero(_within(model_res, rms[c, :, 0], model_bound))
+        todo = np.flatnonzero(_within(model_res, rms[c, :, 0], bounds[0]))
         if todo.size == 0:
             continue
         sub = {k: v[todo] for k, v in params.items()}
         sub["table1_tau_F"] = points["table1_tau_F"][todo, None]
         elbow = sims[ELBOW_FIT]({**overrides, **sub})
         elbow_res = residuals(elbow, goals[ELBOW_FIT], instants, space)[1]
-        res[c, todo, model_res.shape[1] :] = elbow_res
         rms[c, todo, 1] = np.sqrt(np.mean(elbow_res**2, axis=1))
-    return res, rms
+        good = _within(elbow_res, rms[c, todo, 1], bounds[1])
+        consistent[c, todo[good]] = True
+        kept.append((c, todo[good], np.concatenate([model_res[todo[good]], elbow_res[good]], 1)))
+    return rms, consistent, kept
 
 
-def _screen_dataset(space, combos, points, res, rms, consistent, claim_ids, bounds):
-    """The screen's file: each combination's readings, each candidate's unknowns, the
-    residuals, RMS and consistency, and the bounds of the rule."""
+def _screen_dataset(space, combos, points, rms, consistent, kept, claim_ids, bounds):
+    """The screen's file: each combination's readings, each candidate's unknowns, the RMS
+    per fit set (single precision, compressed: about 4 bytes per candidate and
+    combination for the two fit sets), consistency, the fit claims' residuals at the
+    consistent pairs and the bounds of the rule."""
     n = len(next(iter(points.values())))
     fits = [space.fits[name] for name in FIT_SETS]
     names = unknowns(space)
+    index = lambda name, values: variable(  # noqa: E731
+        name, np.asarray(values, dtype=np.int32), "index", name=name
+    )
+    point_combo = np.concatenate([np.full(i.size, c, np.int32) for c, i, _ in kept] or [[]])
+    point_cand = np.concatenate([i for _, i, _ in kept] or [[]]).astype(np.int32)
+    point_res = np.concatenate([r for _, _, r in kept]) if kept else np.zeros((0, len(claim_ids)))
+    packed = {"zlib": True, "complevel": 4}
     ds = xr.Dataset(
         {
             **{
@@ -173,25 +185,28 @@ def _screen_dataset(space, combos, points, res, rms, consistent, claim_ids, boun
                 k: variable("candidate", points[k], "unknown", space.continuous[k].unit, name=k)
                 for k in names
             },
-            "residual": variable(("combination", "candidate", "claim"), res, "residual"),
-            "rms": variable(("combination", "candidate", "fit_set"), rms, "rms"),
+            "rms": variable(
+                ("combination", "candidate", "fit_set"), rms.astype(np.float32), "rms"
+            ),
             "consistent": variable(
                 ("combination", "candidate"), consistent.astype(np.int8), "consistent"
             ),
+            "point_combination": variable("point", point_combo, "multiverse.point_combination"),
+            "point_candidate": variable("point", point_cand, "multiverse.point_candidate"),
+            "residual": variable(("point", "claim"), point_res, "residual"),
             "max_abs_residual": variable("fit_set", [b[0] for b in bounds], "max_abs_residual"),
             "max_rms": variable("fit_set", [b[1] for b in bounds], "max_rms"),
         },
         coords={
-            "combination": variable(
-                "combination", np.arange(len(combos), dtype=np.int32), "index", name="combination"
-            ),
-            "candidate": variable(
-                "candidate", np.arange(n, dtype=np.int32), "index", name="candidate"
-            ),
+            "combination": index("combination", np.arange(len(combos))),
+            "candidate": index("candidate", np.arange(n)),
+            "point": index("point", np.arange(point_combo.size)),
             "claim": variable("claim", claim_ids, "claim"),
             "fit_set": variable("fit_set", [f.name for f in fits], "multiverse.fit_set"),
         },
     )
+    for name in ("rms", "consistent"):
+        ds[name].encoding.update(packed)
     return ds
 
 
