@@ -23,6 +23,7 @@ def test_the_compiled_modules_are_those_importing_numba():
         "model.impact",
         "solver._kernels",
         "solver.compiled",
+        "solver.curves",
         "solver.integrate",
         "solver.stroke",
     }

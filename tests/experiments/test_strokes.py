@@ -42,3 +42,17 @@ def test_the_kinetic_energy_is_that_of_the_moving_stick_figure(curves):
         inner &= ~kinks
         assert inner.sum() > 1000
         np.testing.assert_allclose(energy[inner], e[inner], rtol=1e-4, atol=1e-6)
+
+
+@pytest.mark.parametrize("curves", ["free_swing", "with_ball"])
+def test_the_curves_come_from_the_compiled_solver_not_solve_ivp(curves, monkeypatch):
+    """Each stroke's curves were a ``solve_ivp`` run (about half of a robustness chunk):
+    now every stroke of a file is one call of the compiled solver, and no stroke of a
+    file reaches scipy's integrator (tests/solver/test_curves.py compares the two)."""
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("solve_ivp was called")
+
+    monkeypatch.setattr("tennis_stroke.solver.reference.solve_ivp", refuse)
+    ds = fig4_strokes([[120.0, 81.5], [75.0, 39.0]], 0.32, 65, {}, SolverSettings(), curves)
+    assert np.isfinite(ds["omega2"].values).all()

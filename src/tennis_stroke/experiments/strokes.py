@@ -10,29 +10,17 @@ import xarray as xr
 
 from ..io.netcdf import result_dataset
 from ..io.units import cf_attrs
-from ..model.dynamics import coefficients, elbow_position, mechanical_energy, rod_points
+from ..model.dynamics import coefficients, rod_points
 from ..model.params import resolve_params
-from ..solver.reference import free_swing, solve_stroke
-from ..solver.results import OK
+from ..solver.curves import stroke_curves
+from ..solver.results import results_from_output
 from ..solver.settings import SolverSettings
-from ..solver.stroke import strike
+from ..solver.stroke import solve_coefficients
 from .specs import CURVE_VARIABLES
 
 #: How the curves of omega(t) are drawn: the free swing without the ball (the paper
 #: computes the swing and the collision separately, Sec. II) or the stroke with the ball.
 CURVES = ("free_swing", "with_ball")
-
-
-def _rods_kinetic_energy(times: np.ndarray, sampled: Mapping, cf: np.ndarray) -> np.ndarray:
-    """Kinetic energy of the two rods in the lab frame (J) at ``times`` (NaN where the
-    curves are): :func:`~tennis_stroke.model.dynamics.mechanical_energy` without the ball."""
-    state = np.zeros(6)
-    out = np.full(len(times), np.nan)
-    for k, t in enumerate(times):
-        state[:4] = [sampled[v][k] for v in ("theta", "phi", "omega1", "omega2")]
-        if np.isfinite(state[:4]).all():
-            out[k] = mechanical_energy(float(t), state, cf, False)
-    return out
 
 
 def trajectories(
@@ -46,47 +34,29 @@ def trajectories(
     """Figs. 4, 10-12, 14: omega1, omega2, theta, phi, the elbow path, the stick figure's
     points (:data:`~tennis_stroke.experiments.specs.POINTS`) and the rods' kinetic energy over time.
 
-    Each stroke is ``(theta0, delta0, extra params)``.  Curves come from the reference path
-    (dense output up to ``times[-1]``): the free swing, or with ``curves="with_ball"``
-    the stroke with the contact and the follow-through.  The stroke numbers come from the
-    compiled path.  Curves are NaN outside the simulated span.
+    Each stroke is ``(theta0, delta0, extra params)``.  Curves come from the compiled
+    solver, all strokes in one call (:func:`~tennis_stroke.solver.curves.stroke_curves`:
+    the free swing until ``times[-1]``, or with ``curves="with_ball"`` the stroke with
+    the contact and the follow-through), the stroke numbers from the compiled stroke
+    (:func:`~tennis_stroke.solver.stroke.solve_coefficients`, each stroke on its own,
+    also in one call).  Curves are NaN outside the simulated span.
     """
     if curves not in CURVES:
         raise ValueError(f"curves must be one of {', '.join(CURVES)}, got {curves!r}")
-    samples = {k: [] for k in CURVE_VARIABLES}
-    numbers: dict[str, list] = {}
-    for theta0, delta0, extra in strokes:
-        p = {**params, **extra}
-        res = strike(theta0, delta0, p, settings)
-        for key, value in res.items():
-            if key != "status_name":
-                numbers.setdefault(key, []).append(value)
-        if curves == "free_swing":
-            ref = free_swing(theta0, delta0, float(times[-1]), p)
-        else:
-            ref = solve_stroke(
-                theta0,
-                delta0,
-                p,
-                rtol=1e-10,
-                atol=1e-10,
-                follow_through=max(times[-1] - res["t_separation"], 0.0)
-                if res["status"] == OK
-                else 0.0,
-            )
-        sampled = ref.sample(times)
-        for key in ("omega1", "omega2"):
-            samples[key].append(sampled[key])
-        samples["theta"].append(np.degrees(sampled["theta"]))
-        samples["phi"].append(np.degrees(sampled["phi"]))
-        cf = coefficients(resolve_params(p), theta0, delta0)[0]
-        path = np.array([elbow_position(t, cf) for t in times])
-        samples["x_elbow"].append(path[:, 0])
-        samples["y_elbow"].append(path[:, 1])
-        for key, value in rod_points(sampled["theta"], sampled["phi"], *path.T, cf).items():
-            samples[key].append(value)
-        samples["kinetic_energy"].append(_rods_kinetic_energy(times, sampled, cf))
-    results = {k: np.asarray(v) for k, v in numbers.items()}
+    rows = np.array(
+        [coefficients(resolve_params({**params, **extra}), a, b)[0] for a, b, extra in strokes]
+    )
+    results = results_from_output(solve_coefficients(rows, settings, 1), (len(strokes),))
+    sampled = stroke_curves(rows, times, curves == "with_ball", settings)
+    samples = {k: sampled[k] for k in ("omega1", "omega2", "x_elbow", "y_elbow")}
+    samples["theta"] = np.degrees(sampled["theta"])
+    samples["phi"] = np.degrees(sampled["phi"])
+    points = [
+        rod_points(*(sampled[k][i] for k in ("theta", "phi", "x_elbow", "y_elbow")), cf)
+        for i, cf in enumerate(rows)
+    ]
+    samples.update({key: np.array([p[key] for p in points]) for key in points[0]})
+    samples["kinetic_energy"] = sampled["kinetic_energy"]
     ds = result_dataset(
         results,
         {"stroke": np.arange(len(strokes))},
@@ -102,7 +72,7 @@ def trajectories(
     ds = ds.assign_coords(t=("t", times, cf_attrs("t")))
     ds.attrs["curves"] = curves
     return ds.assign(
-        {key: (("stroke", "t"), np.asarray(v), cf_attrs(key)) for key, v in samples.items()}
+        {key: (("stroke", "t"), samples[key], cf_attrs(key)) for key in CURVE_VARIABLES}
     )
 
 

@@ -51,11 +51,12 @@ _COPIED_FIELDS = len(COUNT_FIELDS) + len(DEGREE_FIELDS)
 #: broadcast axes, 440 for flat angle arrays (which the caller holds as well).
 BATCH_BYTES_PER_STROKE = WORD * (2 + N_CF + N_OUT + _COPIED_FIELDS)
 #: Peak bytes per (stroke, time) point of the sampled curves of single strokes
-#: (:func:`tennis_stroke.experiments.strokes.trajectories`): each curve variable held
-#: twice (the per-stroke lists, then the stacked arrays of the dataset) and the elbow's
-#: path (two values, and its list while it is built): 8 x (2 x 13 + 4) = 240 bytes.
-#: Measured (peak resident memory over Fig. 4's two strokes at 400,000 samples each,
-#: written to netCDF): 237 bytes, for the free swing and the stroke with the ball alike.
+#: (:func:`tennis_stroke.experiments.strokes.trajectories`), an upper bound: each curve
+#: variable held twice and four values more, 8 x (2 x 13 + 4) = 240 bytes.  The compiled
+#: curves (:func:`tennis_stroke.solver.curves.stroke_curves`) hold 7 values a sample, the
+#: dataset 13, the stick figure's points 6 more while they are stacked.  Measured (peak
+#: resident memory over Fig. 4's two strokes at 400,000 samples each, written to netCDF,
+#: 2026-12-06): 185 bytes, for the free swing and the stroke with the ball alike.
 CURVE_BYTES_PER_SAMPLE = WORD * (2 * N_CURVES + 4)
 #: Bytes per stroke of the result fields (every field one int64 or float64).
 RESULT_BYTES_PER_STROKE = WORD * len(RESULT_FIELDS)

@@ -42,10 +42,19 @@ from .._cache import compiled_sources
 #: Set in the compiling process, and by a user who wants to compile in place.
 ENV = "TENNIS_STROKE_WARMUP"
 #: Groups of entry points compiled together: the stroke batch and the contact phase
-#: alone, each per method (a run of DOP853 compiles no DP54), the scipy reference
-#: path's right-hand sides, and the model functions that fixed-step RK4
+#: alone, each per method (a run of DOP853 compiles no DP54), the strokes' curves
+#: (:mod:`tennis_stroke.solver.curves`, DOP853 only), the scipy reference path's
+#: right-hand sides, and the model functions that fixed-step RK4
 #: (:mod:`tennis_stroke.solver.rk4`, the solver studies' baseline) calls from Python.
-GROUPS = ("batch:DOP853", "batch:DP54", "contact:DOP853", "contact:DP54", "reference", "rk4")
+GROUPS = (
+    "batch:DOP853",
+    "batch:DP54",
+    "contact:DOP853",
+    "contact:DP54",
+    "curves",
+    "reference",
+    "rk4",
+)
 _done: set[str] = set()
 
 

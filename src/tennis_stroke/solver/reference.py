@@ -7,7 +7,9 @@ compiled driver; state layout (angles
 instead of sines and cosines), integrator, event location and restart at the contact
 start are scipy's.  The phase splitting is the same (torque switches, ``phi = 0``,
 contact start, separation), so the two paths can be compared stroke by stroke.  It is
-used for verification, for the benchmark baseline and for trajectories to plot.
+used for verification (the stroke numbers, and the figures' curves of
+:mod:`tennis_stroke.solver.curves`), for the benchmark baseline and for one stroke over
+time from Python (:func:`tennis_stroke.stroke_dataset`).
 """
 
 from __future__ import annotations
@@ -275,7 +277,8 @@ def free_swing(
     rtol: float = 1e-10,
     atol: float = 1e-10,
 ) -> ReferenceStroke:
-    """The pendulum swung from rest without the ball until ``t_end`` (s), for plotting.
+    """The pendulum swung from rest without the ball until ``t_end`` (s): the independent
+    check of the figures' free-swing curves (:mod:`tennis_stroke.solver.curves`).
 
     The paper computes the swing without the ball and the collision separately (Sec. II);
     its figures of omega(t) (Figs. 4, 10) show the swing.  ``result`` holds no stroke

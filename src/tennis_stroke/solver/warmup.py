@@ -30,6 +30,10 @@ def exercise(group: str) -> Callable[[], object]:
         from .reference import exercise_reference
 
         return exercise_reference
+    if group == "curves":
+        from .curves import exercise_curves
+
+        return exercise_curves
     from .stroke import exercise_batch, exercise_contact
 
     kind, method = group.split(":")
