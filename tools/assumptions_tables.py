@@ -206,7 +206,7 @@ def coverage(results: Path) -> str:
         u = np.log10(values) if unknown.scale == "log" else values
         cells = []
         for mask in groups.values():
-            q = np.percentile(u[mask], [5, 25, 50, 75, 95]) if mask.any() else []
+            q = np.percentile(u[mask], [5, 25, 50, 75, 95]) if mask.any() else np.array([])
             shown = 10**q if unknown.scale == "log" else q
             cells.append(" / ".join(f"{v:.4g}" for v in shown) or "-")
         test = ks_2samp(u[old], u[~old]) if old.any() and (~old).any() else None

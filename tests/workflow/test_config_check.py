@@ -13,6 +13,7 @@ from tennis_stroke.pipeline.config_check import (
     load_schema,
     memory_errors,
     numbers_from_strings,
+    rows_per_job,
     time_errors,
 )
 from tennis_stroke.pipeline.job_time import TIME_ENV, study_jobs
@@ -301,14 +302,17 @@ def test_readings_searched_in_lockstep_multiply_a_search_s_memory():
 @pytest.mark.workflow
 def test_planning_counts_the_readings_searched_in_lockstep(tmp_path):
     """The workflow checks the memory once, for the readings of the largest robustness
-    job (config/readings.yaml: 64 readings in 2 chunks), before any job."""
+    job (config/readings.yaml: its readings over its chunks), before any job."""
+    multiverse = load_yaml(ROOT / "config" / "readings.yaml")["multiverse"]
+    largest = rows_per_job(multiverse["readings"], multiverse["chunks"])
+    assert largest > 1
     config = copy.deepcopy(GOOD)
     config["max_memory"] = "12G"
     config["search"]["angle_step"] = 1e-3
     done = run_snakemake("report", workdir(tmp_path, config), "-n")
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert done.returncode == 1 and len(lines) == 1, lines
-    assert "24100241 strokes at once for each of 32 readings) needs about" in lines[0]
+    assert f"24100241 strokes at once for each of {largest} readings) needs about" in lines[0]
 
 
 def test_a_study_s_time_is_estimated_from_its_counts_and_refused_above_the_limit(monkeypatch):
@@ -401,8 +405,9 @@ def test_nested_command_line_overrides_work(tmp_path):
     )
     assert done.returncode == 0, (done.stdout + done.stderr)[-2000:]
     counts = planned_kinds(done.stdout + done.stderr)
-    # 7 maps and the robustness analysis' claims x readings file are gathered
-    assert counts["fig2"] == counts["fig3"] == 3 and counts["gather_map"] == 8
+    # 7 maps, the robustness analysis' claims x readings file and the work-precision
+    # study's scenes are gathered
+    assert counts["fig2"] == counts["fig3"] == 3 and counts["gather_map"] == 9
 
 
 def test_every_reading_of_the_model_runs_the_ladder():
