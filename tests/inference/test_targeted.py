@@ -147,3 +147,41 @@ def test_readings_searched_in_lockstep_get_the_files_each_gets_alone():
             assert_same_results(files[key], alone[key])
     # the readings differ, so the lockstep did not give every reading one answer
     assert not together[0]["fig9"]["best_v_out"].equals(together[1]["fig9"]["best_v_out"])
+
+
+def test_the_curve_files_of_readings_at_once_are_each_reading_s_datasets():
+    """curve_files_of: the curve files (Figs. 4, 10-12) of three readings (discrete and
+    continuous unknowns), every stroke of every reading in one call per file, bit for
+    bit each reading's own dataset (paper_results, one reading at a time) in every
+    variable the stack holds, under both curves; the stack holds every variable a
+    claim can read (the dataset's, less the labels and the delay's ``tau``)."""
+    from snakemake.utils import validate
+    from tiny import TINY
+
+    from tennis_stroke.inference.multiverse import paper_results
+    from tennis_stroke.inference.reading_space import CURVE_FILES
+
+    config = copy.deepcopy(TINY)
+    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    models = [
+        {"k_contact": 7800.0, "ball_mass": 0.058},
+        {"k_contact": 300.0, "inertia": "paper_text", "contact_lead_rule": "half_period"},
+        {"k_contact": 15000.0, "ball_mass": 0.056, "collision_coupling": "paper_eq8"},
+    ]
+    stacks = tg.curve_files_of([config] * 3, models, SETTINGS, strokes.CURVES)
+    assert set(stacks) == {f"{k}/{c}" for k in CURVE_FILES for c in strokes.CURVES}
+    skip = [k for k in EXPERIMENTS if k not in CURVE_FILES]
+    for r, model in enumerate(models):
+        alone = paper_results(config, model, SETTINGS, strokes.CURVES, skip=skip)
+        for key, stack in stacks.items():
+            ds = alone[key]
+            assert set(stack.data_vars) == set(ds.data_vars) - {"tau"}
+            for name in [*stack.data_vars, "stroke", "t", "theta0", "delta0"]:
+                mine, theirs = stack[name][r], ds[name].values
+                assert stack.dims(name) == ds[name].dims, name
+                assert mine.dtype == theirs.dtype and mine.shape == theirs.shape, name
+                assert mine.tobytes() == theirs.tobytes(), (key, name)  # bit for bit
+    # the readings differ, and so do their curves
+    assert not np.array_equal(
+        stacks["fig4/with_ball"]["omega2"][0], stacks["fig4/with_ball"]["omega2"][1]
+    )

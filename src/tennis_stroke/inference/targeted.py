@@ -39,11 +39,13 @@ from ..experiments.grids import axis
 from ..experiments.optima import mass_length_optima
 from ..experiments.search import coarse_axis, first_crossing, lockstep_objective, maximize
 from ..experiments.specs import EXPERIMENTS
-from ..experiments.strokes import table1_cases
+from ..experiments.strokes import delay_cases, fig4_cases, table1_cases, trajectory_arrays
 from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
+from .measures import Stack
 from .multiverse import paper_results
+from .reading_space import CURVE_FILES
 from .search_plan import NUMBERS_ONLY, SEARCHED
 
 
@@ -479,4 +481,53 @@ def targeted_files_of(
             elbow = EXPERIMENTS["elbow"].arguments({**config, "figure_curves": curves[0]})
             one["elbow"] = table1_numbers(elbow, dict(model), settings)
         out.append({**one, **files})
+    return out
+
+
+#: The strokes, labels and sample times of each curve file (:data:`CURVE_FILES`) from
+#: its experiment's arguments, as its function computes them.
+CURVE_CASES = {
+    "fig4": lambda a: fig4_cases(a["strokes"], a["t_end"], a["samples"]),
+    "delay": lambda a: delay_cases(a["stroke"]),
+}
+
+
+def curve_files_of(
+    configs: Sequence[Mapping],
+    models: Sequence[Mapping[str, object]],
+    settings: SolverSettings,
+    curves: Sequence[str] = ("free_swing",),
+) -> dict[str, Stack]:
+    """The curve files (:data:`CURVE_FILES`) of several readings (as
+    :func:`searched_files_of` takes them) as :class:`Stack` s over the readings, keyed
+    ``"{key}/{curves}"`` as :func:`~tennis_stroke.inference.multiverse.paper_results`
+    keys them: the stroke numbers, the curves and the coordinates ``stroke``, ``t``,
+    ``theta0`` and ``delta0``, every stroke of every reading in one call of the compiled
+    solver per file (:func:`~tennis_stroke.experiments.strokes.trajectory_arrays`).  The
+    same numbers as the readings' datasets, without building them.  The readings must
+    sample their curves at the same times."""
+    out = {}
+    for key in CURVE_FILES:
+        cases = [
+            CURVE_CASES[key](EXPERIMENTS[key].arguments({**c, "figure_curves": curves[0]}))
+            for c in configs
+        ]
+        times = cases[0][2]
+        if any(not np.array_equal(t, times) for _, _, t in cases):
+            raise ValueError(f"{key}: the readings sample the curves at different times")
+        strokes = [s for s, _, _ in cases]
+        numbers, drawn = trajectory_arrays(strokes, models, times, settings, curves)
+        coords = {
+            "stroke": (
+                ("stroke",),
+                np.tile(np.arange(len(strokes[0]), dtype=float), (len(strokes), 1)),
+            ),
+            "t": (("t",), np.tile(times, (len(strokes), 1))),
+            "theta0": (("stroke",), np.array([[s[0] for s in one] for one in strokes])),
+            "delta0": (("stroke",), np.array([[s[1] for s in one] for one in strokes])),
+        }
+        fields = {FILE_NAMES.get(k, k): (("stroke",), v) for k, v in numbers.items()}
+        for c in curves:
+            samples = {k: (("stroke", "t"), v) for k, v in drawn[c].items()}
+            out[f"{key}/{c}"] = Stack.of_arrays({**fields, **samples, **coords}, list(coords))
     return out
