@@ -185,3 +185,42 @@ def test_the_curve_files_of_readings_at_once_are_each_reading_s_datasets():
     assert not np.array_equal(
         stacks["fig4/with_ball"]["omega2"][0], stacks["fig4/with_ball"]["omega2"][1]
     )
+
+
+def test_the_number_files_of_readings_at_once_are_each_reading_s_files():
+    """number_files_of: the k sensitivity and Table I's numbers of three readings (model
+    readings, unknowns and Table I's force delay differing), each one batch for all the
+    readings, bit for bit each reading's own file (the workflow's k sensitivity,
+    table1_numbers) in every variable the stack holds."""
+    from snakemake.utils import validate
+    from tiny import TINY
+
+    config = copy.deepcopy(TINY)
+    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    models = [
+        {"k_contact": 7800.0, "ball_mass": 0.058, "inertia": "uniform_rod"},
+        {"k_contact": 300.0, "ball_mass": 0.057, "inertia": "paper_text"},
+        {"k_contact": 15000.0, "ball_mass": 0.058, "inertia": "uniform_rod"},
+    ]
+    configs = [copy.deepcopy(config) for _ in models]
+    for c, delay in zip(configs, (-0.03, 0.0, 0.02), strict=True):
+        c["elbow_force"]["table1_tau_F"] = delay
+    stacks = tg.number_files_of(configs, models, SETTINGS)
+    for r, (c, model) in enumerate(zip(configs, models, strict=True)):
+        k_args = EXPERIMENTS["k_sensitivity"].arguments(c)
+        alone = {
+            "k_sensitivity": maps.k_sensitivity_map(**k_args, params=model, settings=SETTINGS),
+            "elbow": tg.table1_numbers(
+                args("elbow", {**c, "figure_curves": "free_swing"}), model, SETTINGS
+            ),
+        }
+        for key, stack in stacks.items():
+            ds = alone[key]
+            assert set(stack.data_vars) == set(ds.data_vars), key
+            for name in [*stack.data_vars, *ds.coords]:
+                mine, theirs = stack[name][r], ds[name].values
+                assert stack.dims(name) == ds[name].dims, name
+                assert mine.dtype == theirs.dtype and mine.shape == theirs.shape, name
+                assert mine.tobytes() == theirs.tobytes(), (key, name)  # bit for bit
+    for key in stacks:  # the readings differ
+        assert not np.array_equal(stacks[key]["v_out"][0], stacks[key]["v_out"][1])

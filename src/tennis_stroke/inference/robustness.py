@@ -15,7 +15,6 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.grids import select_rows
-from ..experiments.specs import PAPER_RESULTS
 from ..io.netcdf import labelled
 from ..solver.settings import SolverSettings
 from .claims import claim_files, measure_stacks, within
@@ -24,7 +23,8 @@ from .labels import claim_facts, variable
 from .measures import Stack
 from .multiverse import experiment_configs
 from .reading_space import CLAIM_LEVEL, CURVE_FILES, ReadingSpace
-from .targeted import curve_files_of, targeted_files_of
+from .search_plan import SEARCHED
+from .targeted import curve_files_of, number_files_of, targeted_files_of
 
 
 def variants(space: ReadingSpace) -> list[dict[str, str]]:
@@ -226,8 +226,9 @@ def evaluate_readings(
     """Every claim under every kept reading (or chunk ``rows = (index, count)`` of them,
     :func:`tennis_stroke.experiments.grids.chunk_rows`): the files the claims read, by
     the targeted evaluation (:func:`tennis_stroke.inference.targeted.targeted_files_of`,
-    every reading's searches in lockstep; the curve files of every reading at once as
-    arrays, :func:`~tennis_stroke.inference.targeted.curve_files_of`) on the rows of the
+    every reading's searches in lockstep; the files of single strokes of every reading at
+    once as arrays, :func:`~tennis_stroke.inference.targeted.curve_files_of` and
+    :func:`~tennis_stroke.inference.targeted.number_files_of`) on the rows of the
     multiverse's resolution over the workflow ``config``, the claims evaluated under every
     claim-level variant (:func:`evaluate_across`, :func:`readings_results`)."""
     index = select_rows(np.arange(readings.sizes["reading"]), rows)
@@ -241,8 +242,11 @@ def evaluate_readings(
         curves,
         [r.get("fig6_L1_max") for r in chosen],
         threads,
-        [k for k in PAPER_RESULTS if k not in CURVE_FILES],
+        SEARCHED,
     )
-    stacked = curve_files_of(configs, models, settings, curves)
+    stacked = {
+        **curve_files_of(configs, models, settings, curves),
+        **number_files_of(configs, models, settings, threads),
+    }
     values = evaluate_across(claims, space, found, chosen, stacked)[0]
     return readings_results(claims, space, readings.isel(reading=index), values, cases)

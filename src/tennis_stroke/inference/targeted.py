@@ -36,8 +36,15 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.grids import axis
+from ..experiments.maps import k_sensitivity_strokes
 from ..experiments.optima import mass_length_optima
-from ..experiments.search import coarse_axis, first_crossing, lockstep_objective, maximize
+from ..experiments.search import (
+    coarse_axis,
+    first_crossing,
+    lockstep_objective,
+    maximize,
+    stacked,
+)
 from ..experiments.specs import EXPERIMENTS
 from ..experiments.strokes import delay_cases, fig4_cases, table1_cases, trajectory_arrays
 from ..solver.results import FILE_NAMES
@@ -343,17 +350,24 @@ def elbow_extremes(
     ]
 
 
+def _table1_strokes(args: Sequence[Mapping], params: Mapping, settings) -> dict[str, np.ndarray]:
+    """The results of Table I's strokes (:func:`table1_numbers`) under each of ``args``
+    (one per parameter set; ``params``: the sets' model overrides, arrays shaped
+    ``(sets, 1)`` or shared), shaped ``(sets, strokes)``."""
+    cases = [table1_cases(a["force"], a["stroke"]) for a in args]
+    values = {k: np.array([[c[k] for c in one] for one in cases], float) for k in cases[0][0]}
+    stroke = args[0]["stroke"]
+    return strike_batch(stroke["theta0"], stroke["delta0"], {**params, **values}, settings, 1)
+
+
 def table1_numbers(args: Mapping, model, settings) -> xr.Dataset:
     """Table I: the numbers of its strokes (the curves of Fig. 14 left out), the same
     strokes as :func:`tennis_stroke.experiments.strokes.elbow_force_strokes`."""
-    stroke = args["stroke"]
-    cases = table1_cases(args["force"], stroke)
-    values = {k: np.array([c[k] for c in cases], float) for k in cases[0]}
-    res = strike_batch(stroke["theta0"], stroke["delta0"], {**model, **values}, settings, 1)
+    res = {k: v[0] for k, v in _table1_strokes([args], model, settings).items()}
     psi = [*args["force"]["table1_psi"], np.nan]
     return _dataset(
         {FILE_NAMES.get(k, k): ("stroke", v) for k, v in res.items()} | {"psi_F": ("stroke", psi)},
-        {"stroke": np.arange(len(cases))},
+        {"stroke": np.arange(len(psi))},
     )
 
 
@@ -531,3 +545,65 @@ def curve_files_of(
             samples = {k: (("stroke", "t"), v) for k, v in drawn[c].items()}
             out[f"{key}/{c}"] = Stack.of_arrays({**fields, **samples, **coords}, list(coords))
     return out
+
+
+def _alike(args: Sequence[Mapping], key: str) -> Mapping:
+    """The arguments of file ``key`` that every reading shares (raises ValueError if
+    they differ): those of the first."""
+    if any(not _same(a, args[0]) for a in args):
+        raise ValueError(f"{key}: the readings' files read different arguments")
+    return args[0]
+
+
+def number_files_of(
+    configs: Sequence[Mapping],
+    models: Sequence[Mapping[str, object]],
+    settings: SolverSettings,
+    threads: int | None = 1,
+) -> dict[str, Stack]:
+    """The files of single strokes that the claims read only the numbers of, the k
+    sensitivity (``k_sensitivity``) and Table I's numbers (``elbow``,
+    :func:`table1_numbers`), of several readings (as :func:`searched_files_of` takes
+    them) as :class:`Stack` s over the readings: every stroke of every reading in one
+    batch per file, the readings' model overrides one value per reading.  The same
+    numbers as the readings' datasets, without building them."""
+    sets = len(models)
+    shared, per_set = stacked(models, [1] * sets)
+
+    def lead(v: np.ndarray, axes: int) -> np.ndarray:  # (sets,) -> (sets, 1, ...)
+        return v.reshape(sets, *[1] * axes)
+
+    def of_sets(res: Mapping[str, np.ndarray], shape: tuple[int, ...]) -> dict:
+        return {k: np.broadcast_to(v, (sets, *shape)) for k, v in res.items()}
+
+    k_args = _alike([EXPERIMENTS["k_sensitivity"].arguments(c) for c in configs], "k_sensitivity")
+    params = {**shared, **{k: lead(v, 2) for k, v in per_set.items()}}
+    strokes, k, res = k_sensitivity_strokes(
+        k_args["strokes"], k_args["k_range"], k_args["points"], params, settings, threads
+    )
+    n = np.arange(len(strokes), dtype=float)
+    dims = ("stroke", "k_contact")
+    k_file = {FILE_NAMES.get(f, f): (dims, v) for f, v in of_sets(res, (n.size, k.size)).items()}
+    k_file.update(
+        {
+            "stroke": (("stroke",), np.broadcast_to(n, (sets, n.size))),
+            "k_contact": (("k_contact",), np.broadcast_to(k, (sets, k.size))),
+            "theta0": (("stroke",), np.broadcast_to(strokes[:, 0], (sets, n.size))),
+            "delta0": (("stroke",), np.broadcast_to(strokes[:, 1], (sets, n.size))),
+        }
+    )
+    elbow = [EXPERIMENTS["elbow"].arguments({**c, "figure_curves": "free_swing"}) for c in configs]
+    _alike([{**a, "force": {**a["force"], "table1_tau_F": 0.0}} for a in elbow], "elbow")
+    params = {**shared, **{k: lead(v, 1) for k, v in per_set.items()}}
+    res = _table1_strokes(elbow, params, settings)
+    psi = np.array([*elbow[0]["force"]["table1_psi"], np.nan])
+    e_file = {FILE_NAMES.get(f, f): (("stroke",), v) for f, v in of_sets(res, psi.shape).items()}
+    e_file["psi_F"] = (("stroke",), np.broadcast_to(psi, (sets, psi.size)))
+    e_file["stroke"] = (
+        ("stroke",),
+        np.broadcast_to(np.arange(psi.size, dtype=float), (sets, psi.size)),
+    )
+    return {
+        "k_sensitivity": Stack.of_arrays(k_file, ["stroke", "k_contact", "theta0", "delta0"]),
+        "elbow": Stack.of_arrays(e_file, ["stroke"]),
+    }
