@@ -47,9 +47,7 @@ def optimum_dataset(m2, l1, variables, params, settings, attrs) -> xr.Dataset:
     """A Figs. 5-6 file: ``variables`` (name -> values over ``(M2, L1)``) with their
     labels, the model's provenance and the search's ``attrs``."""
     ds = result_dataset({}, {"M2": m2, "L1": l1}, resolve_params(params), settings, attrs)
-    for name, values in variables.items():
-        ds[name] = (("M2", "L1"), values, cf_attrs(name))
-    return ds
+    return ds.assign({k: (("M2", "L1"), v, cf_attrs(k)) for k, v in variables.items()})
 
 
 def mass_length_map(
