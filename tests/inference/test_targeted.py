@@ -15,6 +15,7 @@ from tennis_stroke.inference import measures as ms
 from tennis_stroke.inference import search_plan
 from tennis_stroke.inference import targeted as tg
 from tennis_stroke.solver.settings import SolverSettings
+from tennis_stroke.solver.stroke import rhs_evaluations
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -111,7 +112,8 @@ def test_readings_searched_in_lockstep_get_the_files_each_gets_alone():
     """Three readings (discrete and continuous unknowns, Figs. 5-6's largest L1) searched
     together by searched_files_of: every file of every reading bit for bit the one
     searched_files gives that reading alone (the robustness analysis' proof, on the tiny
-    grids; docs/inference.md, "Every reading's search in lockstep")."""
+    grids; docs/inference.md, "Every reading's search in lockstep"); and so with the
+    robustness chunk's memo, which runs fewer strokes."""
     from conftest import assert_same_results
     from snakemake.utils import validate
     from tiny import TINY
@@ -147,6 +149,17 @@ def test_readings_searched_in_lockstep_get_the_files_each_gets_alone():
             assert_same_results(files[key], alone[key])
     # the readings differ, so the lockstep did not give every reading one answer
     assert not together[0]["fig9"]["best_v_out"].equals(together[1]["fig9"]["best_v_out"])
+    # the robustness chunk's searches run no stroke twice: the same files (the strokes
+    # asked for and failed counted alike), fewer strokes run
+    before = rhs_evaluations()
+    remembered = tg.searched_files_of([config] * 3, models, SETTINGS, l1_max, memo=True)
+    run = rhs_evaluations() - before
+    for files, memo in zip(together, remembered, strict=True):
+        for key in files:
+            assert_same_results(memo[key], files[key])
+    before = rhs_evaluations()
+    tg.searched_files_of([config] * 3, models, SETTINGS, l1_max)
+    assert run < rhs_evaluations() - before
 
 
 def test_the_curve_files_of_readings_at_once_are_each_reading_s_datasets():

@@ -226,8 +226,9 @@ def evaluate_readings(
     """Every claim under every kept reading (or chunk ``rows = (index, count)`` of them,
     :func:`tennis_stroke.experiments.grids.chunk_rows`): the files the claims read, by
     the targeted evaluation (:func:`tennis_stroke.inference.targeted.targeted_files_of`,
-    every reading's searches in lockstep; the files of single strokes of every reading at
-    once as arrays, :func:`~tennis_stroke.inference.targeted.curve_files_of` and
+    every reading's searches in lockstep, no stroke run twice; the files of single
+    strokes of every reading at once as arrays,
+    :func:`~tennis_stroke.inference.targeted.curve_files_of` and
     :func:`~tennis_stroke.inference.targeted.number_files_of`) on the rows of the
     multiverse's resolution over the workflow ``config``, the claims evaluated under every
     claim-level variant (:func:`evaluate_across`, :func:`readings_results`)."""
@@ -243,6 +244,7 @@ def evaluate_readings(
         [r.get("fig6_L1_max") for r in chosen],
         threads,
         SEARCHED,
+        memo=True,
     )
     stacked = {
         **curve_files_of(configs, models, settings, curves),

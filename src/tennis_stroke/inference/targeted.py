@@ -72,7 +72,7 @@ def _split(values: np.ndarray, sets: int) -> np.ndarray:
 
 
 def angle_rows(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Figs. 2-3: the best ``delta0`` of every ``theta0`` row (a search along delta0),
     for each parameter set of ``models`` (model overrides), all in one search."""
@@ -87,6 +87,7 @@ def angle_rows(
         [theta0.size] * sets,
         settings,
         threads,
+        memo=memo,
     )
     best = maximize(
         objective,
@@ -112,6 +113,7 @@ def mass_length_ends(
     settings,
     l1_max: Sequence[float | None] | None = None,
     threads=None,
+    memo=False,
 ) -> list[xr.Dataset]:
     """Figs. 5-6: the optimum of every ``M2`` at the smallest and the largest ``L1`` of
     the grid (the largest at most ``l1_max``, one per parameter set of ``models``)."""
@@ -132,6 +134,7 @@ def mass_length_ends(
         models,
         settings,
         threads,
+        memo=memo,
     )
 
 
@@ -140,7 +143,7 @@ def _ends(spec: Mapping) -> tuple[float, float]:
     return float(spec["start"]), float(spec["stop"])
 
 
-def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, threads):
+def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, threads, memo):
     """The best delay of each ``C2`` value ``c2[i]`` under the parameter set
     ``bases[owner[i]]`` (``owner`` ascending: each set's rows together)."""
     counts = np.bincount(owner, minlength=len(bases))
@@ -153,6 +156,7 @@ def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, t
         counts[used],
         settings,
         threads,
+        memo=memo,
     )
     return maximize(
         objective, c2.size, [tau[0]], [tau[-1]], [search["tau_step"]], [search["time_tolerance"]]
@@ -160,7 +164,7 @@ def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, t
 
 
 def delay_threshold(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 7: ``best_tau`` on ``C2`` rows ``C2_step`` apart and on the two rows at most
     ``C2_tolerance`` apart where it leaves 0 for good (more than half a step of the
@@ -181,6 +185,7 @@ def delay_threshold(
         search,
         settings,
         threads,
+        memo,
     )
     found = [
         ([c2], [x], [v])
@@ -199,7 +204,7 @@ def delay_threshold(
 
         def leaves_zero(values: np.ndarray, index: np.ndarray) -> np.ndarray:
             owner = np.repeat(crossing[index], values.shape[1])
-            got = _best_tau(values.ravel(), owner, tau, bases, search, settings, threads)
+            got = _best_tau(values.ravel(), owner, tau, bases, search, settings, threads, memo)
             x, v = got.x[:, 0].reshape(values.shape), got.value.reshape(values.shape)
             for row, r in enumerate(crossing[index]):
                 found[r][0].append(values[row])
@@ -229,7 +234,7 @@ def _sec5_base(args: Mapping, model) -> dict:
 
 
 def delay_optimum(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 8: the point of the largest ``v_out`` over ``(delta0, tau)``, for each
     parameter set of ``models``."""
@@ -237,7 +242,7 @@ def delay_optimum(
     sets = len(models)
     bases = [_sec5_base(args, m) for m in models]
     objective = lockstep_objective(
-        ("delta0", "tau"), sets, {}, bases, [1] * sets, settings, threads
+        ("delta0", "tau"), sets, {}, bases, [1] * sets, settings, threads, memo=memo
     )
     best = maximize(
         objective,
@@ -263,7 +268,7 @@ def delay_optimum(
 
 
 def delay_line(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 9: ``v_out`` at ``tau = 0`` (the grid's first delay) and at the best delay,
     for each parameter set of ``models``."""
@@ -271,7 +276,7 @@ def delay_line(
     sets = len(models)
     bases = [{**_sec5_base(args, m), "delta0": args["delta0"]} for m in models]
     c2 = np.full(sets, float(args["C2"]))
-    best = _best_tau(c2, np.arange(sets), tau, bases, search, settings, threads)
+    best = _best_tau(c2, np.arange(sets), tau, bases, search, settings, threads, memo)
     objective = lockstep_objective(("tau",), sets, {}, bases, [1] * sets, settings, threads)
     v0 = objective(np.full((sets, 1, 1), tau[0]), np.arange(sets))[:, 0]
     out = []
@@ -292,7 +297,7 @@ def delay_line(
 
 
 def elbow_extremes(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 13: ``v_out`` on the 2 x 2 grid of the directions and pulse delays of the
     largest and the smallest ``v_out`` (each a search over ``(psi_F, tau_F)``), for each
@@ -315,7 +320,7 @@ def elbow_extremes(
         for m in models
     ]
     objective = lockstep_objective(
-        ("psi_F_deg", "t_F"), sets, {}, bases, [1] * sets, settings, threads
+        ("psi_F_deg", "t_F"), sets, {}, bases, [1] * sets, settings, threads, memo=memo
     )
     turn = 360.0 if np.isclose(psi[-1] - psi[0], 360.0) else None  # a full turn wraps
     found = [
@@ -371,19 +376,19 @@ def table1_numbers(args: Mapping, model, settings) -> xr.Dataset:
     )
 
 
-def _searched(key: str, args: Mapping, search: Mapping, models, l1_max, settings, threads):
+def _searched(key: str, args: Mapping, search: Mapping, models, l1_max, settings, threads, memo):
     """The files of the searched key ``key`` for the parameter sets ``models``."""
     if key in ("fig2", "fig3"):
-        return angle_rows(args, search, models, settings, threads)
+        return angle_rows(args, search, models, settings, threads, memo)
     if key == "ml":
-        return mass_length_ends(args, models, settings, l1_max, threads)
+        return mass_length_ends(args, models, settings, l1_max, threads, memo)
     run = {
         "fig7": delay_threshold,
         "fig8": delay_optimum,
         "fig9": delay_line,
         "elbow_map": elbow_extremes,
     }
-    return run[key](args, search, models, settings, threads)
+    return run[key](args, search, models, settings, threads, memo)
 
 
 def _same(a: object, b: object) -> bool:
@@ -422,13 +427,16 @@ def searched_files_of(
     l1_max: Sequence[float | None] | None = None,
     threads: int | None = 1,
     keys: Sequence[str] = SEARCHED,
+    memo: bool = False,
 ) -> list[dict[str, xr.Dataset]]:
     """:func:`searched_files` of several readings (reading ``r``: the workflow config
     ``configs[r]``, the model overrides ``models[r]``, the largest ``L1`` ``l1_max[r]``)
     in lockstep: the readings whose file reads the same arguments and search steps are
     searched together, every iteration of the search one batch of strokes for all of
     them.  Each reading gets the files :func:`searched_files` gives it alone: a search's
-    problems do not depend on each other."""
+    problems do not depend on each other.  ``memo``: the searches run no stroke twice
+    (:class:`~tennis_stroke.experiments.search.StrokeObjective`; the same files, fewer
+    strokes run)."""
     l1_max = [None] * len(models) if l1_max is None else list(l1_max)
     out: list[dict[str, xr.Dataset]] = [{} for _ in models]
     for key in keys:
@@ -450,6 +458,7 @@ def searched_files_of(
                 [l1_max[r] for r in members],
                 settings,
                 threads,
+                memo,
             )
             for r, ds in zip(members, files, strict=True):
                 out[r][key] = ds
@@ -481,13 +490,14 @@ def targeted_files_of(
     l1_max: Sequence[float | None] | None = None,
     threads: int | None = 1,
     keys: Sequence[str] | None = None,
+    memo: bool = False,
 ) -> list[dict[str, xr.Dataset]]:
     """:func:`targeted_files` of several readings (as :func:`searched_files_of` takes
-    them), the searches in lockstep."""
+    them, ``memo`` too), the searches in lockstep."""
     keys = [k for k in EXPERIMENTS if EXPERIMENTS[k].family == "paper"] if keys is None else keys
     skip = tuple(k for k in EXPERIMENTS if k not in keys) + SEARCHED + NUMBERS_ONLY
     searched = [k for k in SEARCHED if k in keys]
-    found = searched_files_of(configs, models, settings, l1_max, threads, searched)
+    found = searched_files_of(configs, models, settings, l1_max, threads, searched, memo)
     out = []
     for config, model, files in zip(configs, models, found, strict=True):
         one = paper_results(config, dict(model), settings, curves, threads, skip=skip)
