@@ -15,7 +15,7 @@ from tennis_stroke.experiments.search import (
     step_bound,
 )
 from tennis_stroke.solver.settings import SolverSettings
-from tennis_stroke.solver.stroke import strike_batch
+from tennis_stroke.solver.stroke import rhs_evaluations, strike_batch
 
 
 def quadratic(centres: np.ndarray, scale=1.0):
@@ -186,3 +186,32 @@ def test_a_search_of_several_parameter_sets_gives_each_what_it_gives_alone():
     assert both.x.tobytes() == np.concatenate([a.x for a in alone]).tobytes()
     assert both.value.tobytes() == np.concatenate([a.value for a in alone]).tobytes()
     assert not np.array_equal(alone[0].value, alone[1].value)  # the readings differ
+
+
+def test_a_memo_runs_no_stroke_twice_and_changes_nothing_else():
+    """The same searches (an interior optimum by Chandrupatla's method, an optimum on the
+    box's edge by the compass search, failing strokes among the points) with the memo
+    and without: bit for bit the same optima, values, evaluations and counts of the
+    strokes asked for and failed, with fewer strokes run (counted by the solver)."""
+    settings = SolverSettings()
+    theta0 = np.array([60.0, 90.0, 120.0])
+
+    def search(memo, dims):
+        fixed = {"theta0": theta0} if dims == 1 else {}
+        axes = ("delta0",) if dims == 1 else ("theta0", "delta0")
+        params = {"L1": 0.35, "C1": -8.0}  # a weak shoulder: some strokes fail
+        objective = StrokeObjective(axes, 3, fixed, params, settings, memo=memo)
+        lower, upper = ([0.0], [100.0]) if dims == 1 else ([60.0, 0.0], [120.0, 100.0])
+        before = rhs_evaluations()
+        best = maximize(objective, 3, lower, upper, [20.0] * dims, [0.05] * dims)
+        return best, objective, rhs_evaluations() - before
+
+    for dims in (1, 2):
+        (plain, o1, run1), (memo, o2, run2) = search(False, dims), search(True, dims)
+        assert plain.x.tobytes() == memo.x.tobytes()
+        assert plain.value.tobytes() == memo.value.tobytes()
+        assert plain.evaluations == memo.evaluations
+        assert np.array_equal(o1.evaluated, o2.evaluated)
+        assert np.array_equal(o1.failed, o2.failed)
+        assert 0 < run2 < run1  # fewer strokes run
+    assert o1.failed.sum() > 0  # failing strokes were among the points

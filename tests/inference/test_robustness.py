@@ -225,13 +225,15 @@ def test_claims_across_readings_equal_each_reading_measured_alone(space, claims)
     targeted files of thirteen seeded readings (every discrete reading and every unknown
     drawn at random, on the tiny grids; the thirteenth ends Figs. 5-6's axis at its first
     L1, so its file has another size and goes to a stack of its own), and on the full
-    maps of three of them (optima at other grid points from reading to reading)."""
+    maps of three of them (optima at other grid points from reading to reading); and the
+    robustness chunk's path (the files of single strokes of all the readings as arrays,
+    curve_files_of and number_files_of) equals the one through each reading's datasets."""
     import copy
 
     from snakemake.utils import validate
     from tiny import TINY, TINY_READINGS
 
-    from tennis_stroke.inference.targeted import targeted_files_of
+    from tennis_stroke.inference.targeted import curve_files_of, number_files_of, targeted_files_of
 
     config = copy.deepcopy(TINY)
     validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
@@ -267,3 +269,14 @@ def test_claims_across_readings_equal_each_reading_measured_alone(space, claims)
         # the readings differ: most claims take more than one value across them
         varied = [len(np.unique(together[:, :, j])) > 1 for j in range(len(claims))]
         assert sum(varied) > len(claims) // 2
+    # the robustness chunk's path: the curve files of every reading as arrays at once
+    configs, models = [c for c, _ in pairs], [m for _, m in pairs]
+    stacked = {
+        **curve_files_of(configs, models, settings, curves),
+        **number_files_of(configs, models, settings),
+    }
+    assert {k for k in targeted[0] if "/" in k} < set(stacked)
+    rest = [{k: v for k, v in files.items() if k not in stacked} for files in targeted]
+    from_arrays = ev.evaluate_across(claims, small, rest, readings, stacked)[0]
+    from_files = ev.evaluate_across(claims, small, targeted, readings)[0]
+    assert np.array_equal(from_arrays.view(np.uint64), from_files.view(np.uint64))

@@ -15,6 +15,7 @@ from tennis_stroke.inference import measures as ms
 from tennis_stroke.inference import search_plan
 from tennis_stroke.inference import targeted as tg
 from tennis_stroke.solver.settings import SolverSettings
+from tennis_stroke.solver.stroke import rhs_evaluations
 
 ROOT = Path(__file__).resolve().parents[2]
 CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -111,7 +112,8 @@ def test_readings_searched_in_lockstep_get_the_files_each_gets_alone():
     """Three readings (discrete and continuous unknowns, Figs. 5-6's largest L1) searched
     together by searched_files_of: every file of every reading bit for bit the one
     searched_files gives that reading alone (the robustness analysis' proof, on the tiny
-    grids; docs/inference.md, "Every reading's search in lockstep")."""
+    grids; docs/inference.md, "Every reading's search in lockstep"); and so with the
+    robustness chunk's memo, which runs fewer strokes."""
     from conftest import assert_same_results
     from snakemake.utils import validate
     from tiny import TINY
@@ -147,3 +149,91 @@ def test_readings_searched_in_lockstep_get_the_files_each_gets_alone():
             assert_same_results(files[key], alone[key])
     # the readings differ, so the lockstep did not give every reading one answer
     assert not together[0]["fig9"]["best_v_out"].equals(together[1]["fig9"]["best_v_out"])
+    # the robustness chunk's searches run no stroke twice: the same files (the strokes
+    # asked for and failed counted alike), fewer strokes run
+    before = rhs_evaluations()
+    remembered = tg.searched_files_of([config] * 3, models, SETTINGS, l1_max, memo=True)
+    run = rhs_evaluations() - before
+    for files, memo in zip(together, remembered, strict=True):
+        for key in files:
+            assert_same_results(memo[key], files[key])
+    before = rhs_evaluations()
+    tg.searched_files_of([config] * 3, models, SETTINGS, l1_max)
+    assert run < rhs_evaluations() - before
+
+
+def test_the_curve_files_of_readings_at_once_are_each_reading_s_datasets():
+    """curve_files_of: the curve files (Figs. 4, 10-12) of three readings (discrete and
+    continuous unknowns), every stroke of every reading in one call per file, bit for
+    bit each reading's own dataset (paper_results, one reading at a time) in every
+    variable the stack holds, under both curves; the stack holds every variable a
+    claim can read (the dataset's, less the labels and the delay's ``tau``)."""
+    from snakemake.utils import validate
+    from tiny import TINY
+
+    from tennis_stroke.inference.multiverse import paper_results
+    from tennis_stroke.inference.reading_space import CURVE_FILES
+
+    config = copy.deepcopy(TINY)
+    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    models = [
+        {"k_contact": 7800.0, "ball_mass": 0.058},
+        {"k_contact": 300.0, "inertia": "paper_text", "contact_lead_rule": "half_period"},
+        {"k_contact": 15000.0, "ball_mass": 0.056, "collision_coupling": "paper_eq8"},
+    ]
+    stacks = tg.curve_files_of([config] * 3, models, SETTINGS, strokes.CURVES)
+    assert set(stacks) == {f"{k}/{c}" for k in CURVE_FILES for c in strokes.CURVES}
+    skip = [k for k in EXPERIMENTS if k not in CURVE_FILES]
+    for r, model in enumerate(models):
+        alone = paper_results(config, model, SETTINGS, strokes.CURVES, skip=skip)
+        for key, stack in stacks.items():
+            ds = alone[key]
+            assert set(stack.data_vars) == set(ds.data_vars) - {"tau"}
+            for name in [*stack.data_vars, "stroke", "t", "theta0", "delta0"]:
+                mine, theirs = stack[name][r], ds[name].values
+                assert stack.dims(name) == ds[name].dims, name
+                assert mine.dtype == theirs.dtype and mine.shape == theirs.shape, name
+                assert mine.tobytes() == theirs.tobytes(), (key, name)  # bit for bit
+    # the readings differ, and so do their curves
+    assert not np.array_equal(
+        stacks["fig4/with_ball"]["omega2"][0], stacks["fig4/with_ball"]["omega2"][1]
+    )
+
+
+def test_the_number_files_of_readings_at_once_are_each_reading_s_files():
+    """number_files_of: the k sensitivity and Table I's numbers of three readings (model
+    readings, unknowns and Table I's force delay differing), each one batch for all the
+    readings, bit for bit each reading's own file (the workflow's k sensitivity,
+    table1_numbers) in every variable the stack holds."""
+    from snakemake.utils import validate
+    from tiny import TINY
+
+    config = copy.deepcopy(TINY)
+    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    models = [
+        {"k_contact": 7800.0, "ball_mass": 0.058, "inertia": "uniform_rod"},
+        {"k_contact": 300.0, "ball_mass": 0.057, "inertia": "paper_text"},
+        {"k_contact": 15000.0, "ball_mass": 0.058, "inertia": "uniform_rod"},
+    ]
+    configs = [copy.deepcopy(config) for _ in models]
+    for c, delay in zip(configs, (-0.03, 0.0, 0.02), strict=True):
+        c["elbow_force"]["table1_tau_F"] = delay
+    stacks = tg.number_files_of(configs, models, SETTINGS)
+    for r, (c, model) in enumerate(zip(configs, models, strict=True)):
+        k_args = EXPERIMENTS["k_sensitivity"].arguments(c)
+        alone = {
+            "k_sensitivity": maps.k_sensitivity_map(**k_args, params=model, settings=SETTINGS),
+            "elbow": tg.table1_numbers(
+                args("elbow", {**c, "figure_curves": "free_swing"}), model, SETTINGS
+            ),
+        }
+        for key, stack in stacks.items():
+            ds = alone[key]
+            assert set(stack.data_vars) == set(ds.data_vars), key
+            for name in [*stack.data_vars, *ds.coords]:
+                mine, theirs = stack[name][r], ds[name].values
+                assert stack.dims(name) == ds[name].dims, name
+                assert mine.dtype == theirs.dtype and mine.shape == theirs.shape, name
+                assert mine.tobytes() == theirs.tobytes(), (key, name)  # bit for bit
+    for key in stacks:  # the readings differ
+        assert not np.array_equal(stacks[key]["v_out"][0], stacks[key]["v_out"][1])

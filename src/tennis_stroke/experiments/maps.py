@@ -47,9 +47,7 @@ def optimum_dataset(m2, l1, variables, params, settings, attrs) -> xr.Dataset:
     """A Figs. 5-6 file: ``variables`` (name -> values over ``(M2, L1)``) with their
     labels, the model's provenance and the search's ``attrs``."""
     ds = result_dataset({}, {"M2": m2, "L1": l1}, resolve_params(params), settings, attrs)
-    for name, values in variables.items():
-        ds[name] = (("M2", "L1"), values, cf_attrs(name))
-    return ds
+    return ds.assign({k: (("M2", "L1"), v, cf_attrs(k)) for k, v in variables.items()})
 
 
 def mass_length_map(
@@ -258,20 +256,13 @@ def elbow_force_section_map(
     )
 
 
-def k_sensitivity_map(
-    strokes,
-    k_range: tuple[float, float],
-    points: int,
-    params: Mapping[str, object],
-    settings: SolverSettings,
-    threads: int | None = None,
-) -> xr.Dataset:
-    """Sec. II: every result of the strokes ``(theta0, delta0)`` (degrees) over a
-    geometric grid of ``points`` spring constants spanning ``k_range`` (N/m).
-
-    The paper: 'the coupling constant k determines the collision duration, but the speed
-    of the rebound ball is not altered very much'.
-    """
+def k_sensitivity_strokes(
+    strokes, k_range: tuple[float, float], points: int, params, settings, threads=None
+) -> tuple[np.ndarray, np.ndarray, dict[str, np.ndarray]]:
+    """The strokes ``(theta0, delta0)`` (``(n, 2)``, degrees), the geometric grid of
+    ``points`` spring constants spanning ``k_range`` (N/m) and the results of every
+    stroke at each, ``(n, points)``; model overrides ``params`` of arrays shaped
+    ``(sets, 1, 1)`` give ``(sets, n, points)``, set by set what each gives alone."""
     strokes = np.asarray(strokes, dtype=float).reshape(-1, 2)
     k = np.geomspace(float(k_range[0]), float(k_range[1]), int(points))
     res = strike_batch(
@@ -281,6 +272,25 @@ def k_sensitivity_map(
         settings,
         threads,
     )
+    return strokes, k, res
+
+
+def k_sensitivity_map(
+    strokes,
+    k_range: tuple[float, float],
+    points: int,
+    params: Mapping[str, object],
+    settings: SolverSettings,
+    threads: int | None = None,
+) -> xr.Dataset:
+    """Sec. II: every result of the strokes ``(theta0, delta0)`` (degrees) over a
+    geometric grid of ``points`` spring constants spanning ``k_range`` (N/m)
+    (:func:`k_sensitivity_strokes`).
+
+    The paper: 'the coupling constant k determines the collision duration, but the speed
+    of the rebound ball is not altered very much'.
+    """
+    strokes, k, res = k_sensitivity_strokes(strokes, k_range, points, params, settings, threads)
     ds = result_dataset(
         res, {"stroke": np.arange(len(strokes)), "k_contact": k}, resolve_params(params), settings
     )

@@ -52,11 +52,13 @@ def mass_length_optima(
     models: Sequence[Mapping[str, object]],
     settings: SolverSettings,
     threads: int | None = None,
+    memo: bool = False,
 ) -> list[xr.Dataset]:
     """:func:`mass_length_optimum` of every parameter set of ``models`` (model
     overrides), set ``r`` on the ``L1`` values ``l1[r]``: one search for all of them,
     every iteration one batch of strokes (the sets in lockstep).  Each set's file is the
-    one :func:`mass_length_optimum` gives it alone."""
+    one :func:`mass_length_optimum` gives it alone.  ``memo``: no stroke run twice
+    (:class:`~tennis_stroke.experiments.search.StrokeObjective`)."""
     m2 = np.asarray(m2, float)
     meshes = [np.meshgrid(m2, np.asarray(x, float), indexing="ij") for x in l1]
     counts = [mm.size for mm, _ in meshes]
@@ -66,7 +68,7 @@ def mass_length_optima(
         "L1": np.concatenate([ll.ravel() for _, ll in meshes]),
     }
     objective = lockstep_objective(
-        ("theta0", "delta0"), n, fixed, models, counts, settings, threads
+        ("theta0", "delta0"), n, fixed, models, counts, settings, threads, memo=memo
     )
     lower, upper = (theta0_range[0], delta0_range[0]), (theta0_range[1], delta0_range[1])
     best = maximize(objective, n, lower, upper, (coarse_step, coarse_step), (tolerance, tolerance))

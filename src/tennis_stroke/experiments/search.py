@@ -24,6 +24,7 @@ in one batch).
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
@@ -288,14 +289,16 @@ def stacked(
 
 
 def lockstep_objective(
-    axes, problems: int, fixed, models, counts, settings, threads=None
+    axes, problems: int, fixed, models, counts, settings, threads=None, *, memo: bool = False
 ) -> StrokeObjective:
     """The :class:`StrokeObjective` of a search of several parameter sets in lockstep:
     set ``r`` of ``models`` owns the next ``counts[r]`` problems (:func:`stacked`); the
     search's per-problem values ``fixed`` replace the sets' own, as they replace one
-    set's overrides."""
+    set's overrides.  ``memo``: as :class:`StrokeObjective`'s."""
     shared, per_problem = stacked(models, counts)
-    return StrokeObjective(axes, problems, {**per_problem, **fixed}, shared, settings, threads)
+    return StrokeObjective(
+        axes, problems, {**per_problem, **fixed}, shared, settings, threads, memo=memo
+    )
 
 
 class StrokeObjective:
@@ -304,30 +307,71 @@ class StrokeObjective:
     parameters such as ``tau`` or ``psi_F_deg``), with per-problem values ``fixed``
     (arrays of one value per problem: angles, parameters or a reading's choices) over
     the model overrides ``params`` (which may hold ``theta0`` and ``delta0`` too).
-    ``failed`` and ``evaluated`` count the strokes that failed and that ran, per
-    problem."""
+    ``failed`` and ``evaluated`` count the strokes that failed and that were asked for,
+    per problem.
 
-    def __init__(self, axes, problems: int, fixed, params, settings, threads=None):
+    ``memo``: a point a problem asked for before is not run again, its speed and status
+    kept from the first time (the same stroke: the problem's values and the point are
+    the same, bit for bit).  A search revisits points (the compass search the point it
+    came from, a maximum on the box's edge the clipped trial; Chandrupatla's method its
+    bracket): about a third of a robustness chunk's strokes.  ``failed`` and
+    ``evaluated`` count as without it; :func:`~tennis_stroke.solver.stroke.rhs_evaluations`
+    counts the strokes run, so a study that reports it leaves the memo off."""
+
+    def __init__(self, axes, problems: int, fixed, params, settings, threads=None, *, memo=False):
         self.axes, self.settings, self.threads = tuple(axes), settings, threads
         self.fixed = {k: _per_problem(v, problems) for k, v in fixed.items()}
         self.params = dict(params)
         self.failed = np.zeros(problems, dtype=np.int64)
         self.evaluated = np.zeros(problems, dtype=np.int64)
+        self._memo: dict[bytes, tuple[float, int]] | None = {} if memo else None
 
-    def strike(self, points: np.ndarray, index: np.ndarray) -> dict[str, np.ndarray]:
+    def _run(self, points: np.ndarray, index: np.ndarray) -> dict[str, np.ndarray]:
         """Every result field of the strokes at ``points`` (``(n, k, dims)``) of the
-        problems ``index``."""
+        problems ``index``, shape ``(n, k)``."""
         values = {name: points[..., k] for k, name in enumerate(self.axes)}
         values.update({k: v[index, None] for k, v in self.fixed.items()})
         model = {**self.params, **values}
         theta0, delta0 = (model.pop(a, None) for a in ANGLES)
         res = strike_batch(theta0, delta0, model, self.settings, self.threads)
-        shape = points.shape[:-1]
-        out = {k: np.broadcast_to(v, shape) for k, v in res.items()}
-        np.add.at(self.failed, index, np.count_nonzero(out["status"], axis=1))
-        np.add.at(self.evaluated, index, shape[1])
+        return {k: np.broadcast_to(v, points.shape[:-1]) for k, v in res.items()}
+
+    def _count(self, status: np.ndarray, index: np.ndarray) -> None:
+        np.add.at(self.failed, index, np.count_nonzero(status, axis=1))
+        np.add.at(self.evaluated, index, status.shape[1])
+
+    def strike(self, points: np.ndarray, index: np.ndarray) -> dict[str, np.ndarray]:
+        """Every result field of the strokes at ``points`` (``(n, k, dims)``) of the
+        problems ``index`` (run, memo or not)."""
+        out = self._run(points, index)
+        self._count(out["status"], index)
         return out
 
+    def _remembered(self, points: np.ndarray, index: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """v_out (km/h) and status of the strokes at ``points`` of the problems
+        ``index``, each point a problem asked for before from the memo, the others run
+        (each once)."""
+        n, k, dims = points.shape
+        rows = np.empty((n, k, 1 + dims))
+        rows[..., 0] = index[:, None]
+        rows[..., 1:] = points
+        keys = rows.reshape(n * k, -1).view(np.dtype((np.void, 8 * (1 + dims)))).ravel().tolist()
+        memo = self._memo
+        new = list(itertools.filterfalse(memo.__contains__, dict.fromkeys(keys)))
+        if new:
+            at = np.frombuffer(b"".join(new), dtype=float).reshape(len(new), 1 + dims)
+            res = self._run(at[:, None, 1:], at[:, 0].astype(np.intp))
+            got = zip(res["v_out_kmh"][:, 0].tolist(), res["status"][:, 0].tolist(), strict=True)
+            memo.update(zip(new, got, strict=True))
+        got = np.array(list(map(memo.__getitem__, keys)), dtype=float).reshape(n, k, 2)
+        return got[..., 0], got[..., 1].astype(np.int64)  # a status is a small integer
+
     def __call__(self, points: np.ndarray, index: np.ndarray) -> np.ndarray:
-        res = self.strike(points, index)
-        return np.where(res["status"] == OK, res["v_out_kmh"], np.nan)
+        if self._memo is None:
+            res = self.strike(points, index)
+            return np.where(res["status"] == OK, res["v_out_kmh"], np.nan)
+        points = np.asarray(points, dtype=float)
+        index = np.asarray(index, dtype=np.intp)
+        v_out, status = self._remembered(points, index)
+        self._count(status, index)
+        return np.where(status == OK, v_out, np.nan)

@@ -23,6 +23,55 @@ from .specs import CURVE_VARIABLES
 CURVES = ("free_swing", "with_ball")
 
 
+def stroke_rows(
+    strokes: Sequence[tuple[float, float, Mapping[str, object]]], params: Mapping[str, object]
+) -> np.ndarray:
+    """The coefficient rows (``(len(strokes), N_CF)``) of the strokes ``(theta0, delta0,
+    extra params)`` under the model overrides ``params``."""
+    return np.array(
+        [coefficients(resolve_params({**params, **extra}), a, b)[0] for a, b, extra in strokes]
+    )
+
+
+def trajectory_arrays(
+    strokes: Sequence[Sequence[tuple[float, float, Mapping[str, object]]]],
+    params: Sequence[Mapping[str, object]],
+    times: np.ndarray,
+    settings: SolverSettings,
+    curves: Sequence[str] = ("free_swing",),
+) -> tuple[dict[str, np.ndarray], dict[str, dict[str, np.ndarray]]]:
+    """What :func:`trajectories` computes, for several parameter sets at once: set ``r``
+    runs the strokes ``strokes[r]`` (as many in every set) under ``params[r]``.
+
+    Returns the stroke numbers (the fields of
+    :func:`~tennis_stroke.solver.results.results_from_output`, each ``(sets, strokes)``;
+    every stroke of every set in one call of the compiled stroke) and, for each choice
+    of ``curves``, the curves of :data:`~tennis_stroke.experiments.specs.CURVE_VARIABLES`
+    (each ``(sets, strokes, len(times))``; every stroke in one call of
+    :func:`~tennis_stroke.solver.curves.stroke_curves`).  Each stroke is computed on its
+    own, so a set's numbers are those it gets alone."""
+    for c in curves:
+        if c not in CURVES:
+            raise ValueError(f"curves must be one of {', '.join(CURVES)}, got {c!r}")
+    rows = np.stack([stroke_rows(s, p) for s, p in zip(strokes, params, strict=True)])
+    flat = rows.reshape(-1, rows.shape[-1])
+    numbers = results_from_output(solve_coefficients(flat, settings, 1), rows.shape[:2])
+    drawn = {}
+    for c in curves:
+        sampled = stroke_curves(flat, times, c == "with_ball", settings)
+        samples = {k: sampled[k] for k in ("omega1", "omega2", "x_elbow", "y_elbow")}
+        samples["theta"] = np.degrees(sampled["theta"])
+        samples["phi"] = np.degrees(sampled["phi"])
+        points = [
+            rod_points(*(sampled[k][i] for k in ("theta", "phi", "x_elbow", "y_elbow")), cf)
+            for i, cf in enumerate(flat)
+        ]
+        samples.update({key: np.array([p[key] for p in points]) for key in points[0]})
+        samples["kinetic_energy"] = sampled["kinetic_energy"]
+        drawn[c] = {k: samples[k].reshape(*rows.shape[:2], -1) for k in CURVE_VARIABLES}
+    return numbers, drawn
+
+
 def trajectories(
     strokes: Sequence[tuple[float, float, Mapping[str, object]]],
     labels: Sequence[str],
@@ -39,26 +88,12 @@ def trajectories(
     the free swing until ``times[-1]``, or with ``curves="with_ball"`` the stroke with
     the contact and the follow-through), the stroke numbers from the compiled stroke
     (:func:`~tennis_stroke.solver.stroke.solve_coefficients`, each stroke on its own,
-    also in one call).  Curves are NaN outside the simulated span.
+    also in one call): :func:`trajectory_arrays` of one parameter set.  Curves are NaN
+    outside the simulated span.
     """
-    if curves not in CURVES:
-        raise ValueError(f"curves must be one of {', '.join(CURVES)}, got {curves!r}")
-    rows = np.array(
-        [coefficients(resolve_params({**params, **extra}), a, b)[0] for a, b, extra in strokes]
-    )
-    results = results_from_output(solve_coefficients(rows, settings, 1), (len(strokes),))
-    sampled = stroke_curves(rows, times, curves == "with_ball", settings)
-    samples = {k: sampled[k] for k in ("omega1", "omega2", "x_elbow", "y_elbow")}
-    samples["theta"] = np.degrees(sampled["theta"])
-    samples["phi"] = np.degrees(sampled["phi"])
-    points = [
-        rod_points(*(sampled[k][i] for k in ("theta", "phi", "x_elbow", "y_elbow")), cf)
-        for i, cf in enumerate(rows)
-    ]
-    samples.update({key: np.array([p[key] for p in points]) for key in points[0]})
-    samples["kinetic_energy"] = sampled["kinetic_energy"]
+    numbers, drawn = trajectory_arrays([strokes], [params], times, settings, (curves,))
     ds = result_dataset(
-        results,
+        {k: v[0] for k, v in numbers.items()},
         {"stroke": np.arange(len(strokes))},
         resolve_params(params),
         settings,
@@ -71,14 +106,27 @@ def trajectories(
     ds["label"].attrs = cf_attrs("label")
     ds = ds.assign_coords(t=("t", times, cf_attrs("t")))
     ds.attrs["curves"] = curves
+    samples = drawn[curves]
     return ds.assign(
-        {key: (("stroke", "t"), samples[key], cf_attrs(key)) for key in CURVE_VARIABLES}
+        {key: (("stroke", "t"), samples[key][0], cf_attrs(key)) for key in CURVE_VARIABLES}
     )
 
 
 def _times(spec: Mapping[str, object]) -> np.ndarray:
     """Sample times ``0 ... t_end`` (s), ``samples`` of them."""
     return np.linspace(0.0, spec["t_end"], spec["samples"])
+
+
+def fig4_cases(
+    strokes: Sequence[Sequence[float]], t_end: float, samples: int
+) -> tuple[list[tuple[float, float, dict]], list[str], np.ndarray]:
+    """Fig. 4's strokes ``(theta0, delta0)`` (degrees) as :func:`trajectories` takes
+    them, their labels and the sample times ``0 ... t_end`` (s)."""
+    return (
+        [(a, b, {}) for a, b in strokes],
+        [f"({a:g}, {b:g})" for a, b in strokes],
+        _times({"t_end": t_end, "samples": samples}),
+    )
 
 
 def fig4_strokes(
@@ -90,14 +138,21 @@ def fig4_strokes(
     curves: str = "free_swing",
 ) -> xr.Dataset:
     """Fig. 4: the strokes ``(theta0, delta0)`` (degrees) over ``0 ... t_end`` (s)."""
-    return trajectories(
-        [(a, b, {}) for a, b in strokes],
-        [f"({a:g}, {b:g})" for a, b in strokes],
-        _times({"t_end": t_end, "samples": samples}),
-        params,
-        settings,
-        curves,
-    )
+    return trajectories(*fig4_cases(strokes, t_end, samples), params, settings, curves)
+
+
+#: The delays of Figs. 10-12's strokes, in order (keys of the Sec. V stroke).
+DELAYS = ("tau_L", "tau_H")
+
+
+def delay_cases(
+    stroke: Mapping[str, object],
+) -> tuple[list[tuple[float, float, dict]], list[str], np.ndarray]:
+    """Figs. 10-12's strokes (the Sec. V stroke with the wrist torque delayed by each of
+    :data:`DELAYS`) as :func:`trajectories` takes them, their labels and sample times."""
+    extra = {"L1": stroke["L1"], "C2": stroke["C2"]}
+    cases = [(stroke["theta0"], stroke["delta0"], {**extra, "tau": stroke[k]}) for k in DELAYS]
+    return cases, list(DELAYS), _times(stroke)
 
 
 def delay_strokes(
@@ -108,17 +163,8 @@ def delay_strokes(
 ) -> xr.Dataset:
     """Figs. 10-12: the Sec. V stroke (``L1, theta0, C2, delta0``) with the wrist torque
     delayed by ``tau_L`` and by ``tau_H`` (s)."""
-    extra = {"L1": stroke["L1"], "C2": stroke["C2"]}
-    cases = [
-        (stroke["theta0"], stroke["delta0"], {**extra, "tau": stroke[k]})
-        for k in ("tau_L", "tau_H")
-    ]
-    ds = trajectories(cases, ["tau_L", "tau_H"], _times(stroke), params, settings, curves)
-    ds["tau"] = (
-        "stroke",
-        [stroke["tau_L"], stroke["tau_H"]],
-        cf_attrs("tau"),
-    )
+    ds = trajectories(*delay_cases(stroke), params, settings, curves)
+    ds["tau"] = ("stroke", [stroke[k] for k in DELAYS], cf_attrs("tau"))
     return ds
 
 

@@ -17,7 +17,7 @@ from __future__ import annotations
 
 import functools
 import warnings
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import Literal
 
 import numpy as np
@@ -29,8 +29,9 @@ from ..solver.results import OK
 class Stack:
     """One result file under ``n`` readings: each variable (a data variable or a
     coordinate) an array whose first axis is the reading, stacked from the readings'
-    datasets when first read.  The datasets must have the same sizes (the readings whose
-    searches gave a different number of rows go to different stacks)."""
+    datasets when first read (or given whole: :meth:`of_arrays`).  The datasets must
+    have the same sizes (the readings whose searches gave a different number of rows go
+    to different stacks)."""
 
     def __init__(self, datasets: Sequence[xr.Dataset]):
         if not datasets:
@@ -38,23 +39,58 @@ class Stack:
         self.datasets = list(datasets)
         self.n = len(self.datasets)
         self._arrays: dict[str, np.ndarray] = {}
+        self._dims: dict[str, tuple[str, ...]] = {}
+        self._data_vars: list[str] = []
+
+    @classmethod
+    def of_arrays(
+        cls,
+        variables: Mapping[str, tuple[Sequence[str], np.ndarray]],
+        coords: Sequence[str] = (),
+    ) -> Stack:
+        """A stack of arrays computed for every reading at once: ``variables`` maps each
+        name to its dimensions (after the reading axis) and its values (reading first);
+        the names in ``coords`` are coordinates, the others data variables."""
+        arrays = {k: np.asarray(v) for k, (_, v) in variables.items()}
+        sizes = {a.shape[0] for a in arrays.values()}
+        if len(sizes) != 1:
+            raise ValueError(f"the variables of a stack hold different readings: {sizes}")
+        stack = cls.__new__(cls)
+        stack.datasets, stack.n, stack._arrays = [], sizes.pop(), arrays
+        stack._dims = {k: tuple(dims) for k, (dims, _) in variables.items()}
+        stack._data_vars = [k for k in variables if k not in coords]
+        return stack
+
+    def take(self, index: Sequence[int]) -> Stack:
+        """The stack of the readings ``index`` (in that order)."""
+        if self.datasets:
+            return Stack([self.datasets[i] for i in index])
+        index = np.asarray(index, dtype=np.intp)
+        return Stack.of_arrays(
+            {k: (self._dims[k], v[index]) for k, v in self._arrays.items()},
+            [k for k in self._arrays if k not in self._data_vars],
+        )
 
     @property
     def data_vars(self) -> list[str]:
         """The data variables' names (the first reading's order)."""
-        return list(self.datasets[0].data_vars)
+        return list(self.datasets[0].data_vars) if self.datasets else list(self._data_vars)
 
     def __contains__(self, name: str) -> bool:
-        return name in self.datasets[0].variables
+        return name in self.datasets[0].variables if self.datasets else name in self._arrays
 
     def __getitem__(self, name: str) -> np.ndarray:
         """Variable ``name`` of every reading, shape ``(n, *its shape)``."""
         if name not in self._arrays:
+            if not self.datasets:
+                raise KeyError(f"the stack has no variable {name!r}")
             self._arrays[name] = np.stack([ds.variables[name].values for ds in self.datasets])
         return self._arrays[name]
 
     def dims(self, name: str) -> tuple[str, ...]:
         """The dimensions of variable ``name`` (after the reading axis)."""
+        if not self.datasets:
+            return self._dims[name]
         return tuple(self.datasets[0].variables[name].dims)
 
     def axis(self, name: str, dim: str) -> int:

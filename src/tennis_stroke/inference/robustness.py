@@ -23,7 +23,8 @@ from .labels import claim_facts, variable
 from .measures import Stack
 from .multiverse import experiment_configs
 from .reading_space import CLAIM_LEVEL, CURVE_FILES, ReadingSpace
-from .targeted import targeted_files_of
+from .search_plan import SEARCHED
+from .targeted import curve_files_of, number_files_of, targeted_files_of
 
 
 def variants(space: ReadingSpace) -> list[dict[str, str]]:
@@ -55,11 +56,13 @@ def quoted_claims(
 def files_of_reading(
     results: Mapping[str, xr.Dataset], curves: str, l1_max: float | None
 ) -> dict[str, xr.Dataset]:
-    """The result files one claim evaluation reads: the curve files of ``curves``, and
-    the Figs. 5-6 map cut at ``L1 <= l1_max`` (the unknown end of the figures' axis)."""
+    """The result files one claim evaluation reads: the curve files of ``curves`` (those
+    ``results`` holds), and the Figs. 5-6 map cut at ``L1 <= l1_max`` (the unknown end of
+    the figures' axis)."""
     files = {k: v for k, v in results.items() if "/" not in k}
     for key in CURVE_FILES:
-        files[key] = results[f"{key}/{curves}"]
+        if f"{key}/{curves}" in results:
+            files[key] = results[f"{key}/{curves}"]
     if l1_max is not None and "ml" in files:
         ml = files["ml"]
         keep = ml["L1"].values <= l1_max + 1e-9
@@ -116,15 +119,20 @@ def evaluate_across(
     space: ReadingSpace,
     results: Sequence[Mapping[str, xr.Dataset]],
     readings: Sequence[Mapping[str, object]],
+    stacked: Mapping[str, Stack] | None = None,
 ) -> tuple[np.ndarray, list[dict[str, str]]]:
     """Values of every claim (``reading x variant x claim``) under each of ``readings``
     (``results[r]``: the files of reading ``r``) and every claim-level variant.
+    ``stacked``: files of every reading at once, keyed as ``results`` keys them (a curve
+    file ``"{key}/{curves}"``), in place of the readings' own
+    (:func:`~tennis_stroke.inference.targeted.curve_files_of`).
 
     A claim is measured once per distinct thing it reads: its measure (the quoted
     variable of its instant) and, if it reads a curve file, the curves; the variants
     that change neither reuse the value.  Each is measured under all the readings that
     read it in one call (:func:`~tennis_stroke.inference.claims.measure_stacks`), the
     readings whose files have the same sizes stacked together."""
+    stacked = stacked or {}
     tasks, specs, cases = _measured(claims, space, readings)
     values = np.full((len(readings), len(cases), len(claims)), np.nan)
     curves = {c["figure_curves"] for c in cases}
@@ -133,20 +141,30 @@ def evaluate_across(
         for r, (res, reading) in enumerate(zip(results, readings, strict=True))
         for c in curves
     }
+
+    def whole(n: str, c: str) -> str:
+        """The key of file ``n`` under the curves ``c`` in ``stacked`` (if there)."""
+        return f"{n}/{c}" if n in CURVE_FILES else n
+
     stacks: dict[tuple, Stack] = {}
     for key, users in tasks.items():
         names = claim_files({"measure": specs[key]})
         c = key[2] or cases[0]["figure_curves"]
         groups: dict[tuple, list[int]] = {}
         for r in users:
-            sizes = tuple(tuple(files[r, c][n].sizes.items()) for n in names)
+            sizes = tuple(
+                () if whole(n, c) in stacked else tuple(files[r, c][n].sizes.items()) for n in names
+            )
             groups.setdefault(sizes, []).append(r)
         for group in map(tuple, groups.values()):
             read = {}
             for n in names:  # a file stacked once for a group of readings, for every claim
                 at = (n, key[2] if n in CURVE_FILES else None, group)
                 if at not in stacks:
-                    stacks[at] = Stack([files[r, c][n] for r in group])
+                    if whole(n, c) in stacked:
+                        stacks[at] = stacked[whole(n, c)].take(group)
+                    else:
+                        stacks[at] = Stack([files[r, c][n] for r in group])
                 read[n] = stacks[at]
             got = measure_stacks(specs[key], read)
             for r, value in zip(group, got, strict=True):
@@ -208,19 +226,29 @@ def evaluate_readings(
     """Every claim under every kept reading (or chunk ``rows = (index, count)`` of them,
     :func:`tennis_stroke.experiments.grids.chunk_rows`): the files the claims read, by
     the targeted evaluation (:func:`tennis_stroke.inference.targeted.targeted_files_of`,
-    every reading's searches in lockstep) on the rows of the multiverse's resolution over
-    the workflow ``config``, the claims evaluated under every claim-level variant
-    (:func:`evaluate_across`, :func:`readings_results`)."""
+    every reading's searches in lockstep, no stroke run twice; the files of single
+    strokes of every reading at once as arrays,
+    :func:`~tennis_stroke.inference.targeted.curve_files_of` and
+    :func:`~tennis_stroke.inference.targeted.number_files_of`) on the rows of the
+    multiverse's resolution over the workflow ``config``, the claims evaluated under every
+    claim-level variant (:func:`evaluate_across`, :func:`readings_results`)."""
     index = select_rows(np.arange(readings.sizes["reading"]), rows)
     cases = variants(space)
     chosen, configs, models = experiment_configs(config, space, readings, index)
+    curves = space.discrete["figure_curves"]
     found = targeted_files_of(
         configs,
         models,
         settings,
-        space.discrete["figure_curves"],
+        curves,
         [r.get("fig6_L1_max") for r in chosen],
         threads,
+        SEARCHED,
+        memo=True,
     )
-    values = evaluate_across(claims, space, found, chosen)[0]
+    stacked = {
+        **curve_files_of(configs, models, settings, curves),
+        **number_files_of(configs, models, settings, threads),
+    }
+    values = evaluate_across(claims, space, found, chosen, stacked)[0]
     return readings_results(claims, space, readings.isel(reading=index), values, cases)

@@ -36,14 +36,23 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.grids import axis
+from ..experiments.maps import k_sensitivity_strokes
 from ..experiments.optima import mass_length_optima
-from ..experiments.search import coarse_axis, first_crossing, lockstep_objective, maximize
+from ..experiments.search import (
+    coarse_axis,
+    first_crossing,
+    lockstep_objective,
+    maximize,
+    stacked,
+)
 from ..experiments.specs import EXPERIMENTS
-from ..experiments.strokes import table1_cases
+from ..experiments.strokes import delay_cases, fig4_cases, table1_cases, trajectory_arrays
 from ..solver.results import FILE_NAMES
 from ..solver.settings import SolverSettings
 from ..solver.stroke import strike_batch
+from .measures import Stack
 from .multiverse import paper_results
+from .reading_space import CURVE_FILES
 from .search_plan import NUMBERS_ONLY, SEARCHED
 
 
@@ -63,7 +72,7 @@ def _split(values: np.ndarray, sets: int) -> np.ndarray:
 
 
 def angle_rows(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Figs. 2-3: the best ``delta0`` of every ``theta0`` row (a search along delta0),
     for each parameter set of ``models`` (model overrides), all in one search."""
@@ -78,6 +87,7 @@ def angle_rows(
         [theta0.size] * sets,
         settings,
         threads,
+        memo=memo,
     )
     best = maximize(
         objective,
@@ -103,6 +113,7 @@ def mass_length_ends(
     settings,
     l1_max: Sequence[float | None] | None = None,
     threads=None,
+    memo=False,
 ) -> list[xr.Dataset]:
     """Figs. 5-6: the optimum of every ``M2`` at the smallest and the largest ``L1`` of
     the grid (the largest at most ``l1_max``, one per parameter set of ``models``)."""
@@ -123,6 +134,7 @@ def mass_length_ends(
         models,
         settings,
         threads,
+        memo=memo,
     )
 
 
@@ -131,7 +143,7 @@ def _ends(spec: Mapping) -> tuple[float, float]:
     return float(spec["start"]), float(spec["stop"])
 
 
-def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, threads):
+def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, threads, memo):
     """The best delay of each ``C2`` value ``c2[i]`` under the parameter set
     ``bases[owner[i]]`` (``owner`` ascending: each set's rows together)."""
     counts = np.bincount(owner, minlength=len(bases))
@@ -144,6 +156,7 @@ def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, t
         counts[used],
         settings,
         threads,
+        memo=memo,
     )
     return maximize(
         objective, c2.size, [tau[0]], [tau[-1]], [search["tau_step"]], [search["time_tolerance"]]
@@ -151,7 +164,7 @@ def _best_tau(c2: np.ndarray, owner: np.ndarray, tau, bases, search, settings, t
 
 
 def delay_threshold(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 7: ``best_tau`` on ``C2`` rows ``C2_step`` apart and on the two rows at most
     ``C2_tolerance`` apart where it leaves 0 for good (more than half a step of the
@@ -172,6 +185,7 @@ def delay_threshold(
         search,
         settings,
         threads,
+        memo,
     )
     found = [
         ([c2], [x], [v])
@@ -190,7 +204,7 @@ def delay_threshold(
 
         def leaves_zero(values: np.ndarray, index: np.ndarray) -> np.ndarray:
             owner = np.repeat(crossing[index], values.shape[1])
-            got = _best_tau(values.ravel(), owner, tau, bases, search, settings, threads)
+            got = _best_tau(values.ravel(), owner, tau, bases, search, settings, threads, memo)
             x, v = got.x[:, 0].reshape(values.shape), got.value.reshape(values.shape)
             for row, r in enumerate(crossing[index]):
                 found[r][0].append(values[row])
@@ -220,7 +234,7 @@ def _sec5_base(args: Mapping, model) -> dict:
 
 
 def delay_optimum(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 8: the point of the largest ``v_out`` over ``(delta0, tau)``, for each
     parameter set of ``models``."""
@@ -228,7 +242,7 @@ def delay_optimum(
     sets = len(models)
     bases = [_sec5_base(args, m) for m in models]
     objective = lockstep_objective(
-        ("delta0", "tau"), sets, {}, bases, [1] * sets, settings, threads
+        ("delta0", "tau"), sets, {}, bases, [1] * sets, settings, threads, memo=memo
     )
     best = maximize(
         objective,
@@ -254,7 +268,7 @@ def delay_optimum(
 
 
 def delay_line(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 9: ``v_out`` at ``tau = 0`` (the grid's first delay) and at the best delay,
     for each parameter set of ``models``."""
@@ -262,7 +276,7 @@ def delay_line(
     sets = len(models)
     bases = [{**_sec5_base(args, m), "delta0": args["delta0"]} for m in models]
     c2 = np.full(sets, float(args["C2"]))
-    best = _best_tau(c2, np.arange(sets), tau, bases, search, settings, threads)
+    best = _best_tau(c2, np.arange(sets), tau, bases, search, settings, threads, memo)
     objective = lockstep_objective(("tau",), sets, {}, bases, [1] * sets, settings, threads)
     v0 = objective(np.full((sets, 1, 1), tau[0]), np.arange(sets))[:, 0]
     out = []
@@ -283,7 +297,7 @@ def delay_line(
 
 
 def elbow_extremes(
-    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None
+    args: Mapping, search: Mapping, models: Sequence[Mapping], settings, threads=None, memo=False
 ) -> list[xr.Dataset]:
     """Fig. 13: ``v_out`` on the 2 x 2 grid of the directions and pulse delays of the
     largest and the smallest ``v_out`` (each a search over ``(psi_F, tau_F)``), for each
@@ -306,7 +320,7 @@ def elbow_extremes(
         for m in models
     ]
     objective = lockstep_objective(
-        ("psi_F_deg", "t_F"), sets, {}, bases, [1] * sets, settings, threads
+        ("psi_F_deg", "t_F"), sets, {}, bases, [1] * sets, settings, threads, memo=memo
     )
     turn = 360.0 if np.isclose(psi[-1] - psi[0], 360.0) else None  # a full turn wraps
     found = [
@@ -341,33 +355,40 @@ def elbow_extremes(
     ]
 
 
+def _table1_strokes(args: Sequence[Mapping], params: Mapping, settings) -> dict[str, np.ndarray]:
+    """The results of Table I's strokes (:func:`table1_numbers`) under each of ``args``
+    (one per parameter set; ``params``: the sets' model overrides, arrays shaped
+    ``(sets, 1)`` or shared), shaped ``(sets, strokes)``."""
+    cases = [table1_cases(a["force"], a["stroke"]) for a in args]
+    values = {k: np.array([[c[k] for c in one] for one in cases], float) for k in cases[0][0]}
+    stroke = args[0]["stroke"]
+    return strike_batch(stroke["theta0"], stroke["delta0"], {**params, **values}, settings, 1)
+
+
 def table1_numbers(args: Mapping, model, settings) -> xr.Dataset:
     """Table I: the numbers of its strokes (the curves of Fig. 14 left out), the same
     strokes as :func:`tennis_stroke.experiments.strokes.elbow_force_strokes`."""
-    stroke = args["stroke"]
-    cases = table1_cases(args["force"], stroke)
-    values = {k: np.array([c[k] for c in cases], float) for k in cases[0]}
-    res = strike_batch(stroke["theta0"], stroke["delta0"], {**model, **values}, settings, 1)
+    res = {k: v[0] for k, v in _table1_strokes([args], model, settings).items()}
     psi = [*args["force"]["table1_psi"], np.nan]
     return _dataset(
         {FILE_NAMES.get(k, k): ("stroke", v) for k, v in res.items()} | {"psi_F": ("stroke", psi)},
-        {"stroke": np.arange(len(cases))},
+        {"stroke": np.arange(len(psi))},
     )
 
 
-def _searched(key: str, args: Mapping, search: Mapping, models, l1_max, settings, threads):
+def _searched(key: str, args: Mapping, search: Mapping, models, l1_max, settings, threads, memo):
     """The files of the searched key ``key`` for the parameter sets ``models``."""
     if key in ("fig2", "fig3"):
-        return angle_rows(args, search, models, settings, threads)
+        return angle_rows(args, search, models, settings, threads, memo)
     if key == "ml":
-        return mass_length_ends(args, models, settings, l1_max, threads)
+        return mass_length_ends(args, models, settings, l1_max, threads, memo)
     run = {
         "fig7": delay_threshold,
         "fig8": delay_optimum,
         "fig9": delay_line,
         "elbow_map": elbow_extremes,
     }
-    return run[key](args, search, models, settings, threads)
+    return run[key](args, search, models, settings, threads, memo)
 
 
 def _same(a: object, b: object) -> bool:
@@ -406,13 +427,16 @@ def searched_files_of(
     l1_max: Sequence[float | None] | None = None,
     threads: int | None = 1,
     keys: Sequence[str] = SEARCHED,
+    memo: bool = False,
 ) -> list[dict[str, xr.Dataset]]:
     """:func:`searched_files` of several readings (reading ``r``: the workflow config
     ``configs[r]``, the model overrides ``models[r]``, the largest ``L1`` ``l1_max[r]``)
     in lockstep: the readings whose file reads the same arguments and search steps are
     searched together, every iteration of the search one batch of strokes for all of
     them.  Each reading gets the files :func:`searched_files` gives it alone: a search's
-    problems do not depend on each other."""
+    problems do not depend on each other.  ``memo``: the searches run no stroke twice
+    (:class:`~tennis_stroke.experiments.search.StrokeObjective`; the same files, fewer
+    strokes run)."""
     l1_max = [None] * len(models) if l1_max is None else list(l1_max)
     out: list[dict[str, xr.Dataset]] = [{} for _ in models]
     for key in keys:
@@ -434,6 +458,7 @@ def searched_files_of(
                 [l1_max[r] for r in members],
                 settings,
                 threads,
+                memo,
             )
             for r, ds in zip(members, files, strict=True):
                 out[r][key] = ds
@@ -465,13 +490,14 @@ def targeted_files_of(
     l1_max: Sequence[float | None] | None = None,
     threads: int | None = 1,
     keys: Sequence[str] | None = None,
+    memo: bool = False,
 ) -> list[dict[str, xr.Dataset]]:
     """:func:`targeted_files` of several readings (as :func:`searched_files_of` takes
-    them), the searches in lockstep."""
+    them, ``memo`` too), the searches in lockstep."""
     keys = [k for k in EXPERIMENTS if EXPERIMENTS[k].family == "paper"] if keys is None else keys
     skip = tuple(k for k in EXPERIMENTS if k not in keys) + SEARCHED + NUMBERS_ONLY
     searched = [k for k in SEARCHED if k in keys]
-    found = searched_files_of(configs, models, settings, l1_max, threads, searched)
+    found = searched_files_of(configs, models, settings, l1_max, threads, searched, memo)
     out = []
     for config, model, files in zip(configs, models, found, strict=True):
         one = paper_results(config, dict(model), settings, curves, threads, skip=skip)
@@ -480,3 +506,114 @@ def targeted_files_of(
             one["elbow"] = table1_numbers(elbow, dict(model), settings)
         out.append({**one, **files})
     return out
+
+
+#: The strokes, labels and sample times of each curve file (:data:`CURVE_FILES`) from
+#: its experiment's arguments, as its function computes them.
+CURVE_CASES = {
+    "fig4": lambda a: fig4_cases(a["strokes"], a["t_end"], a["samples"]),
+    "delay": lambda a: delay_cases(a["stroke"]),
+}
+
+
+def curve_files_of(
+    configs: Sequence[Mapping],
+    models: Sequence[Mapping[str, object]],
+    settings: SolverSettings,
+    curves: Sequence[str] = ("free_swing",),
+) -> dict[str, Stack]:
+    """The curve files (:data:`CURVE_FILES`) of several readings (as
+    :func:`searched_files_of` takes them) as :class:`Stack` s over the readings, keyed
+    ``"{key}/{curves}"`` as :func:`~tennis_stroke.inference.multiverse.paper_results`
+    keys them: the stroke numbers, the curves and the coordinates ``stroke``, ``t``,
+    ``theta0`` and ``delta0``, every stroke of every reading in one call of the compiled
+    solver per file (:func:`~tennis_stroke.experiments.strokes.trajectory_arrays`).  The
+    same numbers as the readings' datasets, without building them.  The readings must
+    sample their curves at the same times."""
+    out = {}
+    for key in CURVE_FILES:
+        cases = [
+            CURVE_CASES[key](EXPERIMENTS[key].arguments({**c, "figure_curves": curves[0]}))
+            for c in configs
+        ]
+        times = cases[0][2]
+        if any(not np.array_equal(t, times) for _, _, t in cases):
+            raise ValueError(f"{key}: the readings sample the curves at different times")
+        strokes = [s for s, _, _ in cases]
+        numbers, drawn = trajectory_arrays(strokes, models, times, settings, curves)
+        coords = {
+            "stroke": (
+                ("stroke",),
+                np.tile(np.arange(len(strokes[0]), dtype=float), (len(strokes), 1)),
+            ),
+            "t": (("t",), np.tile(times, (len(strokes), 1))),
+            "theta0": (("stroke",), np.array([[s[0] for s in one] for one in strokes])),
+            "delta0": (("stroke",), np.array([[s[1] for s in one] for one in strokes])),
+        }
+        fields = {FILE_NAMES.get(k, k): (("stroke",), v) for k, v in numbers.items()}
+        for c in curves:
+            samples = {k: (("stroke", "t"), v) for k, v in drawn[c].items()}
+            out[f"{key}/{c}"] = Stack.of_arrays({**fields, **samples, **coords}, list(coords))
+    return out
+
+
+def _alike(args: Sequence[Mapping], key: str) -> Mapping:
+    """The arguments of file ``key`` that every reading shares (raises ValueError if
+    they differ): those of the first."""
+    if any(not _same(a, args[0]) for a in args):
+        raise ValueError(f"{key}: the readings' files read different arguments")
+    return args[0]
+
+
+def number_files_of(
+    configs: Sequence[Mapping],
+    models: Sequence[Mapping[str, object]],
+    settings: SolverSettings,
+    threads: int | None = 1,
+) -> dict[str, Stack]:
+    """The files of single strokes that the claims read only the numbers of, the k
+    sensitivity (``k_sensitivity``) and Table I's numbers (``elbow``,
+    :func:`table1_numbers`), of several readings (as :func:`searched_files_of` takes
+    them) as :class:`Stack` s over the readings: every stroke of every reading in one
+    batch per file, the readings' model overrides one value per reading.  The same
+    numbers as the readings' datasets, without building them."""
+    sets = len(models)
+    shared, per_set = stacked(models, [1] * sets)
+
+    def lead(v: np.ndarray, axes: int) -> np.ndarray:  # (sets,) -> (sets, 1, ...)
+        return v.reshape(sets, *[1] * axes)
+
+    def of_sets(res: Mapping[str, np.ndarray], shape: tuple[int, ...]) -> dict:
+        return {k: np.broadcast_to(v, (sets, *shape)) for k, v in res.items()}
+
+    k_args = _alike([EXPERIMENTS["k_sensitivity"].arguments(c) for c in configs], "k_sensitivity")
+    params = {**shared, **{k: lead(v, 2) for k, v in per_set.items()}}
+    strokes, k, res = k_sensitivity_strokes(
+        k_args["strokes"], k_args["k_range"], k_args["points"], params, settings, threads
+    )
+    n = np.arange(len(strokes), dtype=float)
+    dims = ("stroke", "k_contact")
+    k_file = {FILE_NAMES.get(f, f): (dims, v) for f, v in of_sets(res, (n.size, k.size)).items()}
+    k_file.update(
+        {
+            "stroke": (("stroke",), np.broadcast_to(n, (sets, n.size))),
+            "k_contact": (("k_contact",), np.broadcast_to(k, (sets, k.size))),
+            "theta0": (("stroke",), np.broadcast_to(strokes[:, 0], (sets, n.size))),
+            "delta0": (("stroke",), np.broadcast_to(strokes[:, 1], (sets, n.size))),
+        }
+    )
+    elbow = [EXPERIMENTS["elbow"].arguments({**c, "figure_curves": "free_swing"}) for c in configs]
+    _alike([{**a, "force": {**a["force"], "table1_tau_F": 0.0}} for a in elbow], "elbow")
+    params = {**shared, **{k: lead(v, 1) for k, v in per_set.items()}}
+    res = _table1_strokes(elbow, params, settings)
+    psi = np.array([*elbow[0]["force"]["table1_psi"], np.nan])
+    e_file = {FILE_NAMES.get(f, f): (("stroke",), v) for f, v in of_sets(res, psi.shape).items()}
+    e_file["psi_F"] = (("stroke",), np.broadcast_to(psi, (sets, psi.size)))
+    e_file["stroke"] = (
+        ("stroke",),
+        np.broadcast_to(np.arange(psi.size, dtype=float), (sets, psi.size)),
+    )
+    return {
+        "k_sensitivity": Stack.of_arrays(k_file, ["stroke", "k_contact", "theta0", "delta0"]),
+        "elbow": Stack.of_arrays(e_file, ["stroke"]),
+    }

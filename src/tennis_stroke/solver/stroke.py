@@ -24,8 +24,9 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 from collections.abc import Mapping
-from concurrent.futures import ThreadPoolExecutor
+from concurrent.futures import ThreadPoolExecutor, wait
 from functools import partial
 
 import numba
@@ -319,10 +320,26 @@ def default_threads() -> int:
     return int(numba.config.NUMBA_NUM_THREADS)
 
 
+#: The worker threads of this process, by thread count (:func:`_pool`).
+_POOLS: dict[tuple[int, int], ThreadPoolExecutor] = {}
+
+
+def _pool(n_threads: int) -> ThreadPoolExecutor:
+    """The ``n_threads`` worker threads of this process, started at its first batch of
+    more than one stroke and kept for the next (a search calls the solver hundreds of
+    times: starting a thread each time was a seventh of a robustness chunk's time); a
+    forked child starts its own (its parent's threads do not exist in it)."""
+    key = (os.getpid(), n_threads)
+    if key not in _POOLS:
+        _POOLS[key] = ThreadPoolExecutor(n_threads, thread_name_prefix="tennis-stroke-solver")
+    return _POOLS[key]
+
+
 def _solve_block(method, cf_rows, st, out, history, n_threads, pool, halt):
     """Every stroke of ``cf_rows`` into ``out``: ranges of strokes (one range on one
     thread) on ``pool``'s threads while this thread waits for them, where a signal is
-    handled; without ``pool`` (a single stroke) in this thread."""
+    handled (it sets ``halt`` and waits for the ranges to stop); without ``pool`` (a
+    single stroke) in this thread."""
     n = cf_rows.shape[0]
     n_ranges = min(max(n, 1), RANGES_PER_THREAD * n_threads) if n_threads > 1 else 1
     bounds = [(c * n // n_ranges, (c + 1) * n // n_ranges) for c in range(n_ranges)]
@@ -332,8 +349,13 @@ def _solve_block(method, cf_rows, st, out, history, n_threads, pool, halt):
             solve(cf_rows, st, out, a, b, history, halt)
         return
     jobs = [pool.submit(solve, cf_rows, st, out, a, b, history, halt) for a, b in bounds]
-    for job in jobs:
-        job.result()
+    try:
+        for job in jobs:
+            job.result()
+    except BaseException:
+        halt[0] = 1  # the threads stop at their next stroke
+        wait(jobs)
+        raise
 
 
 def solve_coefficients(
@@ -375,7 +397,7 @@ def solve_coefficients(
     out = np.empty((n, N_OUT))
     halt = np.zeros(1, dtype=np.int64)  # set on a signal: every range stops
     with contextlib.ExitStack() as stack:
-        pool = stack.enter_context(ThreadPoolExecutor(n_threads)) if n > 1 else None
+        pool = _pool(n_threads) if n > 1 else None
         try:
             blocks = [(0, n)]
             if progress and n > PROGRESS_BLOCK:
@@ -389,7 +411,7 @@ def solve_coefficients(
                 if len(blocks) > 1:
                     bar.update(b - a)
         except BaseException:
-            halt[0] = 1  # the threads stop at their next stroke; the pool waits for them
+            halt[0] = 1  # the threads stop at their next stroke (_solve_block waits for them)
             raise
     _EVALUATIONS[0] += int(out[:, O_NFEV].sum())
     return out
