@@ -8,14 +8,28 @@ import pytest
 from conftest import FIG4_A, FIG4_B, coefficient_tup
 
 from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
-from tennis_stroke.model.dynamics import effective_mass, hit_offset
+from tennis_stroke.model.dynamics import (
+    CF_CONTACT_MODEL,
+    CF_LEAD,
+    CONTACT_ONLY_COLUMNS,
+    coefficients,
+    effective_mass,
+    hit_offset,
+)
 from tennis_stroke.model.params import ParameterError, resolve_params
 from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
 from tennis_stroke.solver.reference import solve_stroke
-from tennis_stroke.solver.results import OK
+from tennis_stroke.solver.results import (
+    O_STATUS,
+    O_T_PHI0,
+    O_THETA_PHI0,
+    O_W1_PHI0,
+    O_W2_PHI0,
+    OK,
+)
 from tennis_stroke.solver.rk4 import fixed_step_stroke
 from tennis_stroke.solver.settings import S_RTOL
-from tennis_stroke.solver.stroke import run_phases
+from tennis_stroke.solver.stroke import run_phases, solve_coefficients, swing_order
 
 TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
 
@@ -265,3 +279,57 @@ def test_settings_given_as_a_mapping_are_the_same_settings():
     as_mapping = strike(90.0, 45.0, settings={"rtol": 1e-9, "atol": 1e-9})
     as_object = strike(90.0, 45.0, settings=SolverSettings(rtol=1e-9, atol=1e-9))
     assert as_mapping == as_object
+
+
+def _alone(cf_rows, settings=None):
+    """Each row solved in a call of its own (no row before it to share a swing with)."""
+    return np.concatenate([solve_coefficients(row[None], settings, threads=1) for row in cf_rows])
+
+
+def test_the_swing_does_not_read_the_contact_only_columns():
+    """Changing a column the swing is declared not to read leaves the stroke at
+    ``phi = 0`` the same to the bit, computed alone: the declaration is what allows a
+    batch to swing once for rows that differ only there."""
+    base = coefficients(resolve_params({}), FIG4_B[0], FIG4_B[1])[0]
+    swing = [O_T_PHI0, O_THETA_PHI0, O_W1_PHI0, O_W2_PHI0]
+    ref = _alone(base[None])[0]
+    for col in CONTACT_ONLY_COLUMNS:
+        row = base.copy()
+        row[col] = row[col] * 1.37 + (0.3 if col == CF_CONTACT_MODEL else 0.001)
+        assert row[col] != base[col]
+        np.testing.assert_array_equal(_alone(row[None])[0][swing], ref[swing], err_msg=str(col))
+
+
+@pytest.mark.parametrize("threads", [1, 2])
+def test_a_batch_that_shares_swings_gives_each_stroke_its_own_numbers(threads):
+    """Rows that swing alike (Fig. 4's strokes under many balls, springs, leads,
+    couplings and contact models) mixed with rows that do not, in a random order: every
+    output column, the counts of evaluations and steps included, is what the stroke
+    gives computed alone."""
+    rng = np.random.default_rng(7)
+    n = 60
+    stroke = rng.integers(0, 3, n)
+    theta0 = np.array([FIG4_A[0], FIG4_B[0], FIG4_B[0]])[stroke]  # 1, 2: delta0 only
+    delta0 = np.array([FIG4_A[1], FIG4_B[1], 40.0])[stroke]
+    params = resolve_params(
+        {
+            "k_contact": np.exp(rng.uniform(np.log(188.0), np.log(1e5), n)),
+            "ball_mass": rng.uniform(0.056, 0.0594, n),
+            "collision_coupling": "paper_eq8",
+            "restitution": 0.8,
+        }
+    )
+    cf = coefficients(params, theta0, delta0)
+    cf[::5, CF_LEAD] = 0.0
+    cf[1::7, CF_CONTACT_MODEL] = 1.0  # the instant impact at phi = 0
+    order = swing_order(cf)
+    assert np.count_nonzero(np.diff(stroke[order])) == 2  # alike rows are neighbours
+    batch = solve_coefficients(cf, threads=threads)
+    np.testing.assert_array_equal(batch, _alone(cf))
+    assert set(batch[:, O_STATUS]) >= {OK}
+
+
+def test_rows_that_share_no_swing_keep_their_order():
+    cf = coefficients(resolve_params({}), np.linspace(60.0, 120.0, 9), 45.0)
+    np.testing.assert_array_equal(swing_order(cf), np.arange(9))
+    np.testing.assert_array_equal(swing_order(cf[:1]), [0])

@@ -86,6 +86,20 @@ A_THETA, A_PHI, A_OMEGA1, A_OMEGA2, A_BALL_S, A_BALL_W = range(6)
     CF_DAMP,
 ) = range(35)
 N_CF = 35
+#: The columns the free swing does not read (the ball, the spring and the contact's
+#: timing): strokes whose rows differ only in these swing alike, step for step, so the
+#: compiled solver swings once for a run of such rows (``SWING_COLUMNS``: the others).
+CONTACT_ONLY_COLUMNS = (
+    CF_LH,
+    CF_K,
+    CF_MB,
+    CF_COUPLING,
+    CF_LEAD,
+    CF_VBALL,
+    CF_CONTACT_MODEL,
+    CF_DAMP,
+)
+SWING_COLUMNS = np.array([c for c in range(N_CF) if c not in CONTACT_ONLY_COLUMNS], dtype=np.int64)
 
 #: The rungs of the model ladder (``contact_model``, :data:`tennis_stroke.model.params.
 #: MODEL_OPTIONS`) by their id in ``cf[CF_CONTACT_MODEL]``: the paper's spring contact

@@ -50,6 +50,7 @@ from ..model.dynamics import (
     SIN_PH,
     SIN_TH,
     SPRING,
+    SWING_COLUMNS,
     THETA,
     approach_rate,
     coefficients,
@@ -238,13 +239,37 @@ def instant_phase(method, t, y, h, cf, st, out, stats, history):
     return follow_through(method, t, y, h, cf, st, out, stats, history[:1])
 
 
-@njit(**JIT)
-def stroke_row(method, cf_row, st, out, history, stats):
-    """Simulate one stroke (coefficient row ``cf_row``); write the ``O_*`` columns of ``out``."""
-    method = literally(method)  # compiled per method (solver/integrate.py)
-    cf = coefficient_tuple(cf_row)
-    out[:] = np.nan
-    stats[:] = 0.0
+#: Where :func:`stroke_row` keeps the free swing's outcome for the next row: status, t,
+#: step, the 10 state components and the solver statistics.
+SW_STATUS, SW_T, SW_H, SW_Y = 0, 1, 2, 3
+SW_STATS = SW_Y + 10
+SWING_LEN = SW_STATS + N_STATS
+
+
+@njit(inline="always", **JIT_INNER)
+def same_swing(cf_a, cf_b):
+    """Whether two coefficient rows swing alike: equal in every column the free swing
+    reads (:data:`tennis_stroke.model.dynamics.SWING_COLUMNS`; NaN is never equal)."""
+    for c in SWING_COLUMNS:
+        if cf_a[c] != cf_b[c]:
+            return False
+    return True
+
+
+@njit(inline="always", **JIT_INNER)
+def free_swing(method, cf, st, stats, history, swing, reuse):
+    """The swing from rest to ``phi = 0`` (or its failure): ``(status, t, y, h)``, with
+    ``stats`` and ``history`` as it leaves them.  With ``reuse`` the previous row's
+    swing, kept in ``history`` and ``swing``, is taken as it is (the caller has checked
+    the rows swing alike: the same numbers come out, without the steps)."""
+    if reuse:
+        for i in range(N_STATS):
+            stats[i] = swing[SW_STATS + i]
+        y = (
+            swing[SW_Y], swing[SW_Y + 1], swing[SW_Y + 2], swing[SW_Y + 3], swing[SW_Y + 4],
+            swing[SW_Y + 5], swing[SW_Y + 6], swing[SW_Y + 7], swing[SW_Y + 8], swing[SW_Y + 9],
+        )  # fmt: skip
+        return int(swing[SW_STATUS]), swing[SW_T], y, swing[SW_H]
     th0, ph0 = cf[CF_THETA0], cf[CF_PHI0]
     y = (math.sin(th0), math.cos(th0), math.sin(ph0), math.cos(ph0), 0.0, 0.0, th0, ph0, 0.0, 0.0)
     history_reset(history)
@@ -252,6 +277,24 @@ def stroke_row(method, cf_row, st, out, history, stats):
     status, t, y, h = run_phases(
         method, flag(False), 0.0, y, st[S_TMAX], h, np.inf, cf, flag(True), st, stats, history
     )
+    swing[SW_STATUS], swing[SW_T], swing[SW_H] = status, t, h
+    for i in range(10):
+        swing[SW_Y + i] = y[i]
+    for i in range(N_STATS):
+        swing[SW_STATS + i] = stats[i]
+    return status, t, y, h
+
+
+@njit(**JIT)
+def stroke_row(method, cf_row, st, out, history, stats, swing, reuse):
+    """Simulate one stroke (coefficient row ``cf_row``); write the ``O_*`` columns of ``out``.
+    ``swing``: the free swing's outcome, kept for the next row; ``reuse``: this row swings
+    as the previous one did (:func:`same_swing`), so its swing is not integrated again."""
+    method = literally(method)  # compiled per method (solver/integrate.py)
+    cf = coefficient_tuple(cf_row)
+    out[:] = np.nan
+    stats[:] = 0.0
+    status, t, y, h = free_swing(method, cf, st, stats, history, swing, reuse)
     code = OK
     if status == PHASE_FAIL:
         code = STEP_FAILURE
@@ -281,18 +324,52 @@ def stroke_row(method, cf_row, st, out, history, stats):
 
 
 @njit(nogil=True, **JIT)
-def solve_rows(method, cf_rows, st, out, start, stop, history_capacity, halt):
-    """Solve the strokes ``start:stop`` of ``cf_rows`` into the same rows of ``out``
+def solve_rows(method, cf_rows, order, st, out, start, stop, history_capacity, halt):
+    """Solve the strokes ``order[start:stop]`` of ``cf_rows`` into the same rows of ``out``
     (releases the GIL: threads run such ranges side by side).  Before each stroke it
     looks at ``halt[0]``: set (by the caller, on a signal) it returns at once, the rows
-    not yet solved left as they were."""
+    not yet solved left as they were.  A row that swings as the one before it
+    (:func:`same_swing`: they differ only in the ball, the spring or the contact's
+    timing) starts from that row's swing; every row's numbers, its counts of
+    evaluations and steps included, are those of the stroke computed alone."""
     method = literally(method)  # compiled per method (solver/integrate.py)
     history = np.zeros((history_capacity + 1, HISTORY_COLS))
     stats = np.zeros(N_STATS)
+    swing = np.zeros(SWING_LEN)
     for i in range(start, stop):
         if halt[0] != 0:
             return
-        stroke_row(method, cf_rows[i], st, out[i], history, stats)
+        row = order[i]
+        reuse = i > start and same_swing(cf_rows[order[i - 1]], cf_rows[row])
+        stroke_row(method, cf_rows[row], st, out[row], history, stats, swing, reuse)
+
+
+@njit(**JIT)
+def swing_keys(bits):
+    """A hash of each row's swing columns (``bits``: the coefficient rows viewed as
+    ``uint64``): rows that swing alike have the same key (rows with the same key need not
+    swing alike; :func:`same_swing` decides)."""
+    keys = np.empty(bits.shape[0], dtype=np.uint64)
+    for i in range(bits.shape[0]):
+        h = np.uint64(14695981039346656037)
+        for c in SWING_COLUMNS:
+            h = (h ^ bits[i, c]) * np.uint64(1099511628211)
+        keys[i] = h
+    return keys
+
+
+def swing_order(cf_rows: np.ndarray) -> np.ndarray:
+    """An order of the rows in which rows that swing alike are next to each other (so
+    :func:`solve_rows` swings once for each run of them); the rows as they come when no
+    two share a swing key."""
+    n = cf_rows.shape[0]
+    if n > 1:
+        keys = swing_keys(cf_rows.view(np.uint64))
+        order = np.argsort(keys, kind="stable")
+        ranked = keys[order]
+        if np.any(ranked[1:] == ranked[:-1]):
+            return order
+    return np.arange(n)
 
 
 #: Right-hand-side evaluations of every stroke this process has run through
@@ -335,20 +412,22 @@ def _pool(n_threads: int) -> ThreadPoolExecutor:
     return _POOLS[key]
 
 
-def _solve_block(method, cf_rows, st, out, history, n_threads, pool, halt):
-    """Every stroke of ``cf_rows`` into ``out``: ranges of strokes (one range on one
-    thread) on ``pool``'s threads while this thread waits for them, where a signal is
-    handled (it sets ``halt`` and waits for the ranges to stop); without ``pool`` (a
-    single stroke) in this thread."""
-    n = cf_rows.shape[0]
+def _solve_block(method, cf_rows, order, block, st, out, history, n_threads, pool, halt):
+    """The strokes ``order[start:stop]`` (``block``) of ``cf_rows`` into ``out``: ranges
+    of strokes (one range on one thread) on ``pool``'s threads while this thread waits
+    for them, where a signal is handled (it sets ``halt`` and waits for the ranges to
+    stop); without ``pool`` (a single stroke) in this thread."""
+    start, stop = block
+    n = stop - start
     n_ranges = min(max(n, 1), RANGES_PER_THREAD * n_threads) if n_threads > 1 else 1
-    bounds = [(c * n // n_ranges, (c + 1) * n // n_ranges) for c in range(n_ranges)]
-    solve = specialised(solve_rows, method, cf_rows, st, out, 0, n, history, halt)
+    bounds = [(start + c * n // n_ranges, start + (c + 1) * n // n_ranges) for c in range(n_ranges)]
+    args = (cf_rows, order, st, out)
+    solve = specialised(solve_rows, method, *args, start, stop, history, halt)
     if pool is None:
         for a, b in bounds:
-            solve(cf_rows, st, out, a, b, history, halt)
+            solve(*args, a, b, history, halt)
         return
-    jobs = [pool.submit(solve, cf_rows, st, out, a, b, history, halt) for a, b in bounds]
+    jobs = [pool.submit(solve, *args, a, b, history, halt) for a, b in bounds]
     try:
         for job in jobs:
             job.result()
@@ -367,7 +446,10 @@ def solve_coefficients(
     """Run the compiled solver on prepared coefficient rows; returns ``(n, N_OUT)``.
 
     Every stroke is computed on its own, so the result does not depend on the number of
-    threads or on how the strokes are split among them.
+    threads or on how the strokes are split among them.  Rows that swing alike (they
+    differ only in the ball, the spring or the contact's timing) are solved one after
+    another, so the swing is integrated once for each run of them (:func:`swing_order`,
+    :func:`solve_rows`): the numbers are the same.
 
     A signal (Ctrl-C, or SIGTERM where it raises) stops the computation at the next
     stroke of every thread: more than one stroke run on worker threads while this one
@@ -394,6 +476,7 @@ def solve_coefficients(
     st = settings.as_array()
     cf_rows = np.ascontiguousarray(cf_rows, dtype=float)
     n = cf_rows.shape[0]
+    order = swing_order(cf_rows)
     out = np.empty((n, N_OUT))
     halt = np.zeros(1, dtype=np.int64)  # set on a signal: every range stops
     with contextlib.ExitStack() as stack:
@@ -406,8 +489,8 @@ def solve_coefficients(
                 bar = stack.enter_context(tqdm(total=n, unit="stroke", leave=False))
                 blocks = [(a, min(a + PROGRESS_BLOCK, n)) for a in range(0, n, PROGRESS_BLOCK)]
             for a, b in blocks:
-                block = (cf_rows[a:b], st, out[a:b], settings.history, n_threads, pool, halt)
-                _solve_block(method, *block)
+                rest = (st, out, settings.history, n_threads, pool, halt)
+                _solve_block(method, cf_rows, order, (a, b), *rest)
                 if len(blocks) > 1:
                     bar.update(b - a)
         except BaseException:
