@@ -21,6 +21,7 @@ from tennis_stroke.io.compare import result_differences
 from tennis_stroke.model.dynamics import coefficients
 from tennis_stroke.model.params import resolve_params
 from tennis_stroke.solver._kernels import coefficient_tuple
+from tennis_stroke.solver.integrate import specialised
 
 #: The two strokes of the paper's Fig. 4: (theta0, delta0) in degrees.
 FIG4_A = (120.0, 81.5)
@@ -99,6 +100,24 @@ def coefficient_row(theta0=90.0, delta0=30.0, **overrides):
 def coefficient_tup(theta0=90.0, delta0=30.0, **overrides):
     """The same as a tuple, as the compiled kernels take it."""
     return coefficient_tuple(coefficient_row(theta0, delta0, **overrides))
+
+
+def by_entry(dispatcher):
+    """``dispatcher(method, *args)`` called through its compiled entry for the argument
+    types (``solver.integrate.specialised``, kept per types): the same machine code,
+    without numba's literal dispatch, which compiles again at every call from Python
+    (about 50 ms a call, most of a test that steps in a Python loop)."""
+    import numba
+
+    entries = {}
+
+    def call(method, *args):
+        key = (method, tuple(numba.typeof(a) for a in args))
+        if key not in entries:
+            entries[key] = specialised(dispatcher, method, *args)
+        return entries[key](*args)
+
+    return call
 
 
 ROOT = Path(__file__).resolve().parents[1]

@@ -4,10 +4,11 @@ import math
 
 import numpy as np
 import pytest
-from conftest import coefficient_row, coefficient_tup
+from conftest import by_entry, coefficient_row, coefficient_tup
 from scipy.integrate import solve_ivp
 
 from tennis_stroke.model.dynamics import OMEGA1, OMEGA2, rhs_angles, rhs_trig
+from tennis_stroke.solver import integrate
 from tennis_stroke.solver.integrate import (
     HISTORY_COLS,
     MAX_FACTOR,
@@ -20,15 +21,17 @@ from tennis_stroke.solver.integrate import (
     SAFETY,
     ST_NREJECT,
     ST_NSTEP,
-    dense_coefficients,
-    dense_value,
     error_root,
-    integrate_phase,
     peak_omega2,
-    rk_step,
     step_factor,
 )
 from tennis_stroke.solver.settings import METHOD_IDS, ORDERS
+
+# The compiled functions with a literal method, called from Python in loops.
+dense_coefficients = by_entry(integrate.dense_coefficients)
+dense_value = by_entry(integrate.dense_value)
+integrate_phase = by_entry(integrate.integrate_phase)
+rk_step = by_entry(integrate.rk_step)
 
 T_END = 0.15
 

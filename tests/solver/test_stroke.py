@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import FIG4_A, FIG4_B, coefficient_tup
+from conftest import FIG4_A, FIG4_B, by_entry, coefficient_tup
 
 from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
 from tennis_stroke.model.dynamics import (
@@ -17,6 +17,7 @@ from tennis_stroke.model.dynamics import (
     hit_offset,
 )
 from tennis_stroke.model.params import ParameterError, resolve_params
+from tennis_stroke.solver import stroke
 from tennis_stroke.solver.integrate import HISTORY_COLS, N_STATS, PHASE_EVENT
 from tennis_stroke.solver.reference import solve_stroke
 from tennis_stroke.solver.results import (
@@ -29,8 +30,9 @@ from tennis_stroke.solver.results import (
 )
 from tennis_stroke.solver.rk4 import fixed_step_stroke
 from tennis_stroke.solver.settings import S_RTOL
-from tennis_stroke.solver.stroke import run_phases, solve_coefficients, swing_order
+from tennis_stroke.solver.stroke import solve_coefficients, swing_order
 
+run_phases = by_entry(stroke.run_phases)
 TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
 
 
