@@ -103,7 +103,7 @@ def main(argv: list[str] | None = None) -> int:
     if CHROMIUM is None or DRIVER is None:
         print("bench_explore: needs chromium and chromedriver", file=sys.stderr)
         return 2
-    from tennis_stroke.live.server import free_port
+    from tennis_stroke.live.address import free_port
 
     port = free_port("127.0.0.1")
     server = subprocess.Popen(

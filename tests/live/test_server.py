@@ -17,7 +17,7 @@ from chromium import CHROMIUM, DRIVER, MISSING, POSITION_JS, chromium, wait_idle
 from conftest import ROOT
 
 from tennis_stroke.io.config_files import load_yaml
-from tennis_stroke.live import compute, controls
+from tennis_stroke.live import address, compute, controls
 from tennis_stroke.live import server as server_module
 from tennis_stroke.solver.stroke import strike_batch
 
@@ -47,7 +47,7 @@ def project(folder):
 
 def start(folder, *options):
     """The explorer started in ``folder``; returns the process and its URL."""
-    from tennis_stroke.live.server import free_port
+    from tennis_stroke.live.address import free_port
 
     port = free_port("127.0.0.1")
     proc = subprocess.Popen(
@@ -263,7 +263,7 @@ def test_a_bad_config_stops_the_explorer_in_one_line_naming_the_key(tmp_path, ol
     assert old in text
     config.write_text(text.replace(old, new, 1))
     with pytest.raises(ValueError) as info:  # the command prints it as one line, exit 2
-        server_module.serve(folder, port=server_module.free_port("127.0.0.1"))
+        server_module.serve(folder, port=address.free_port("127.0.0.1"))
     assert message in str(info.value) and "\n" not in str(info.value)
     if "rtol" in old:  # and through the command: one line, exit 2
         done = subprocess.run(EXPLORE, cwd=folder, capture_output=True, text=True, timeout=60)
@@ -272,9 +272,9 @@ def test_a_bad_config_stops_the_explorer_in_one_line_naming_the_key(tmp_path, ol
 
 
 def test_on_every_interface_the_machine_s_own_addresses_may_open_the_websocket():
-    allowed = server_module.origins("0.0.0.0", 5006)
+    allowed = address.origins("0.0.0.0", 5006)
     assert f"{socket.gethostname()}:5006" in allowed and "127.0.0.1:5006" in allowed
-    assert server_module.origins("127.0.0.1", 5006) == ["127.0.0.1:5006", "localhost:5006"]
+    assert address.origins("127.0.0.1", 5006) == ["127.0.0.1:5006", "localhost:5006"]
     assert "0.0.0.0:5006" not in allowed  # no browser's page has that origin
 
 
