@@ -37,6 +37,9 @@ def run(args: argparse.Namespace) -> int:
         raise ValueError(f"--port {args.port}: a port is 1 to 65535")
     if args.threads is not None and args.threads < 1:
         raise ValueError(f"--threads {args.threads}: at least 1")
+    from ..live.address import check_address
+
+    check_address(args.host, args.port)  # before the server's modules load (about 2 s)
     from ..live.server import serve
 
     return serve(Path.cwd(), args.figure, args.host, args.port, args.threads)
