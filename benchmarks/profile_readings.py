@@ -14,7 +14,7 @@ issue 35 to find the ``repr`` of every parameter value that a search's stroke ba
 paid for an error they never raised.  It also counts, in the profiled evaluation, the
 rows the compiled solver was given and the swings it integrated for them (rows that
 differ only in the ball, the spring or the contact's timing share one swing:
-``solver.stroke.swing_order``).
+``solver.stroke.swings_integrated``).
 """
 
 from __future__ import annotations
@@ -24,7 +24,6 @@ import cProfile
 import pstats
 import time
 
-import numpy as np
 import yaml
 from snakemake.utils import validate
 
@@ -32,27 +31,11 @@ import tennis_stroke.solver.stroke as stroke
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.inference.robustness import evaluate_readings
 from tennis_stroke.io.netcdf import load_result
-from tennis_stroke.model.dynamics import SWING_COLUMNS
 from tennis_stroke.pipeline import params as job_params
 from tennis_stroke.pipeline.config_check import canonical, load_schema
 from tennis_stroke.solver.settings import SolverSettings
 
 SCHEMA = "workflow/schemas/config.schema.yaml"
-#: Rows given to the compiled solver and swings integrated for them (while counting).
-COUNTS = {"rows": 0, "swings": 0}
-
-
-def _counting_order(order_rows):
-    """``swing_order`` that also counts the rows and the runs of rows that swing alike."""
-
-    def order(cf_rows):
-        got = order_rows(cf_rows)
-        swing = cf_rows[got][:, SWING_COLUMNS]
-        COUNTS["rows"] += len(got)
-        COUNTS["swings"] += int(len(got) > 0) + int(np.any(swing[1:] != swing[:-1], 1).sum())
-        return got
-
-    return order
 
 
 def main() -> None:
@@ -74,14 +57,15 @@ def main() -> None:
     # rows (i, n): chunk i of n; the first of kept / readings chunks holds `readings`
     rows = (0, max(1, kept.sizes["reading"] // args.readings))
     evaluate_readings(claims, space, kept, experiments, settings, rows, 1)
-    stroke.swing_order = _counting_order(stroke.swing_order)
+    counted = stroke.swings_integrated()
     profile = cProfile.Profile()
     start = time.perf_counter()
     profile.enable()
     evaluate_readings(claims, space, kept, experiments, settings, rows, 1)
     profile.disable()
     print(f"elapsed under cProfile: {time.perf_counter() - start:.2f} s")
-    print(f"rows solved: {COUNTS['rows']}; swings integrated: {COUNTS['swings']}")
+    rows, swings = (b - a for a, b in zip(counted, stroke.swings_integrated(), strict=True))
+    print(f"rows solved: {rows}; swings integrated: {swings}")
     pstats.Stats(profile).sort_stats(args.sort).print_stats(args.top)
 
 

@@ -30,7 +30,7 @@ from tennis_stroke.solver.results import (
 )
 from tennis_stroke.solver.rk4 import fixed_step_stroke
 from tennis_stroke.solver.settings import S_RTOL
-from tennis_stroke.solver.stroke import solve_coefficients, swing_order
+from tennis_stroke.solver.stroke import solve_coefficients, swing_order, swings_integrated
 
 run_phases = by_entry(stroke.run_phases)
 TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
@@ -335,3 +335,22 @@ def test_rows_that_share_no_swing_keep_their_order():
     cf = coefficients(resolve_params({}), np.linspace(60.0, 120.0, 9), 45.0)
     np.testing.assert_array_equal(swing_order(cf), np.arange(9))
     np.testing.assert_array_equal(swing_order(cf[:1]), [0])
+
+
+def test_rows_that_swing_alike_share_one_swing_unless_told_not_to():
+    """Fig. 4's two strokes under 50 springs each: two swings on one thread, or with
+    ``share_swings=False`` (what a timing of a stroke's cost needs) one per stroke; the
+    numbers the same either way (on two threads each range of rows swings anew)."""
+    k = np.geomspace(188.0, 19000.0, 50)
+    angles = np.array([FIG4_A, FIG4_B])
+    th, de = angles[:, :1], angles[:, 1:]
+    strike(*FIG4_A)  # the compiled code loaded (its first load runs strokes of its own)
+    before = swings_integrated()
+    shared = strike_batch(th, de, {"k_contact": k}, threads=1)
+    middle = swings_integrated()
+    alone = strike_batch(th, de, {"k_contact": k}, threads=2, share_swings=False)
+    after = swings_integrated()
+    assert (middle[0] - before[0], middle[1] - before[1]) == (100, 2)
+    assert (after[0] - middle[0], after[1] - middle[1]) == (100, 100)
+    for key in shared:
+        np.testing.assert_array_equal(shared[key], alone[key])

@@ -185,9 +185,7 @@ def _screen_dataset(space, combos, points, rms, consistent, kept, claim_ids, bou
                 k: variable("candidate", points[k], "unknown", space.continuous[k].unit, name=k)
                 for k in names
             },
-            "rms": variable(
-                ("combination", "candidate", "fit_set"), rms.astype(np.float32), "rms"
-            ),
+            "rms": variable(("combination", "candidate", "fit_set"), rms.astype(np.float32), "rms"),
             "consistent": variable(
                 ("combination", "candidate"), consistent.astype(np.int8), "consistent"
             ),

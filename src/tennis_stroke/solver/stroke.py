@@ -324,24 +324,28 @@ def stroke_row(method, cf_row, st, out, history, stats, swing, reuse):
 
 
 @njit(nogil=True, **JIT)
-def solve_rows(method, cf_rows, order, st, out, start, stop, history_capacity, halt):
+def solve_rows(method, cf_rows, order, share, st, out, start, stop, history_capacity, halt):
     """Solve the strokes ``order[start:stop]`` of ``cf_rows`` into the same rows of ``out``
-    (releases the GIL: threads run such ranges side by side).  Before each stroke it
-    looks at ``halt[0]``: set (by the caller, on a signal) it returns at once, the rows
-    not yet solved left as they were.  A row that swings as the one before it
-    (:func:`same_swing`: they differ only in the ball, the spring or the contact's
-    timing) starts from that row's swing; every row's numbers, its counts of
-    evaluations and steps included, are those of the stroke computed alone."""
+    (releases the GIL: threads run such ranges side by side); returns the swings it
+    integrated.  Before each stroke it looks at ``halt[0]``: set (by the caller, on a
+    signal) it returns at once, the rows not yet solved left as they were.  With
+    ``share``, a row that swings as the one before it (:func:`same_swing`: they differ
+    only in the ball, the spring or the contact's timing) starts from that row's swing;
+    every row's numbers, its counts of evaluations and steps included, are those of the
+    stroke computed alone."""
     method = literally(method)  # compiled per method (solver/integrate.py)
     history = np.zeros((history_capacity + 1, HISTORY_COLS))
     stats = np.zeros(N_STATS)
     swing = np.zeros(SWING_LEN)
+    swings = 0
     for i in range(start, stop):
         if halt[0] != 0:
-            return
+            return swings
         row = order[i]
-        reuse = i > start and same_swing(cf_rows[order[i - 1]], cf_rows[row])
+        reuse = share and i > start and same_swing(cf_rows[order[i - 1]], cf_rows[row])
+        swings += not reuse
         stroke_row(method, cf_rows[row], st, out[row], history, stats, swing, reuse)
+    return swings
 
 
 @njit(**JIT)
@@ -375,13 +379,24 @@ def swing_order(cf_rows: np.ndarray) -> np.ndarray:
 #: Right-hand-side evaluations of every stroke this process has run through
 #: :func:`solve_coefficients` (:func:`rhs_evaluations`).
 _EVALUATIONS = [0]
+#: Strokes given to :func:`solve_coefficients` in this process, and the swings it
+#: integrated for them (:func:`swings_integrated`).
+_SWINGS = {"strokes": 0, "swings": 0}
 
 
 def rhs_evaluations() -> int:
     """Right-hand-side evaluations of the compiled solver in this process so far: the
     cost of a computation that does not depend on the machine (the difference before and
-    after it)."""
+    after it).  Each stroke counts its whole cost, its swing's evaluations included where
+    the swing was shared with the row before it (:func:`swings_integrated`)."""
     return _EVALUATIONS[0]
+
+
+def swings_integrated() -> tuple[int, int]:
+    """``(strokes, swings)``: the strokes the compiled solver was given in this process
+    so far and the swings it integrated for them (fewer where rows that swing alike
+    shared one, :func:`swing_order`)."""
+    return _SWINGS["strokes"], _SWINGS["swings"]
 
 
 #: Ranges per thread: a thread that finishes early takes another range, so strokes of
@@ -412,25 +427,23 @@ def _pool(n_threads: int) -> ThreadPoolExecutor:
     return _POOLS[key]
 
 
-def _solve_block(method, cf_rows, order, block, st, out, history, n_threads, pool, halt):
+def _solve_block(method, cf_rows, order, share, block, st, out, history, n_threads, pool, halt):
     """The strokes ``order[start:stop]`` (``block``) of ``cf_rows`` into ``out``: ranges
     of strokes (one range on one thread) on ``pool``'s threads while this thread waits
     for them, where a signal is handled (it sets ``halt`` and waits for the ranges to
-    stop); without ``pool`` (a single stroke) in this thread."""
+    stop); without ``pool`` (a single stroke) in this thread.  Returns the swings
+    integrated."""
     start, stop = block
     n = stop - start
     n_ranges = min(max(n, 1), RANGES_PER_THREAD * n_threads) if n_threads > 1 else 1
     bounds = [(start + c * n // n_ranges, start + (c + 1) * n // n_ranges) for c in range(n_ranges)]
-    args = (cf_rows, order, st, out)
+    args = (cf_rows, order, share, st, out)
     solve = specialised(solve_rows, method, *args, start, stop, history, halt)
     if pool is None:
-        for a, b in bounds:
-            solve(*args, a, b, history, halt)
-        return
+        return sum(solve(*args, a, b, history, halt) for a, b in bounds)
     jobs = [pool.submit(solve, *args, a, b, history, halt) for a, b in bounds]
     try:
-        for job in jobs:
-            job.result()
+        return sum(job.result() for job in jobs)
     except BaseException:
         halt[0] = 1  # the threads stop at their next stroke
         wait(jobs)
@@ -442,6 +455,7 @@ def solve_coefficients(
     settings: SolverSettings | None = None,
     threads: int | None = None,
     progress: bool = False,
+    share_swings: bool = True,
 ) -> np.ndarray:
     """Run the compiled solver on prepared coefficient rows; returns ``(n, N_OUT)``.
 
@@ -449,7 +463,9 @@ def solve_coefficients(
     threads or on how the strokes are split among them.  Rows that swing alike (they
     differ only in the ball, the spring or the contact's timing) are solved one after
     another, so the swing is integrated once for each run of them (:func:`swing_order`,
-    :func:`solve_rows`): the numbers are the same.
+    :func:`solve_rows`): the numbers are the same.  ``share_swings=False`` integrates
+    every row's swing (what a timing of a stroke's cost needs: copies of one stroke
+    would otherwise share theirs).
 
     A signal (Ctrl-C, or SIGTERM where it raises) stops the computation at the next
     stroke of every thread: more than one stroke run on worker threads while this one
@@ -466,6 +482,8 @@ def solve_coefficients(
         Threads to use (default :func:`default_threads`; at most that many).
     progress : bool
         Show a tqdm progress bar (in blocks of :data:`PROGRESS_BLOCK` strokes).
+    share_swings : bool
+        Let rows that swing alike share one swing (default).
     """
     settings = solver_settings(settings)
     n_threads = (
@@ -476,8 +494,9 @@ def solve_coefficients(
     st = settings.as_array()
     cf_rows = np.ascontiguousarray(cf_rows, dtype=float)
     n = cf_rows.shape[0]
-    order = swing_order(cf_rows)
+    order = swing_order(cf_rows) if share_swings else np.arange(n)
     out = np.empty((n, N_OUT))
+    swings = 0
     halt = np.zeros(1, dtype=np.int64)  # set on a signal: every range stops
     with contextlib.ExitStack() as stack:
         pool = _pool(n_threads) if n > 1 else None
@@ -490,13 +509,15 @@ def solve_coefficients(
                 blocks = [(a, min(a + PROGRESS_BLOCK, n)) for a in range(0, n, PROGRESS_BLOCK)]
             for a, b in blocks:
                 rest = (st, out, settings.history, n_threads, pool, halt)
-                _solve_block(method, cf_rows, order, (a, b), *rest)
+                swings += _solve_block(method, cf_rows, order, share_swings, (a, b), *rest)
                 if len(blocks) > 1:
                     bar.update(b - a)
         except BaseException:
             halt[0] = 1  # the threads stop at their next stroke (_solve_block waits for them)
             raise
     _EVALUATIONS[0] += int(out[:, O_NFEV].sum())
+    _SWINGS["strokes"] += n
+    _SWINGS["swings"] += swings
     return out
 
 
@@ -507,6 +528,7 @@ def strike_batch(
     settings: SolverSettings | None = None,
     threads: int | None = None,
     progress: bool = False,
+    share_swings: bool = True,
 ) -> dict[str, np.ndarray]:
     """Simulate many strokes; every input broadcasts against the others.
 
@@ -520,6 +542,8 @@ def strike_batch(
     settings : SolverSettings, optional
     threads : int, optional
     progress : bool
+    share_swings : bool
+        As :func:`solve_coefficients`'s (the numbers do not depend on it).
 
     Returns
     -------
@@ -542,7 +566,7 @@ def strike_batch(
             f"the initial angles and parameter arrays do not broadcast to one shape: {shapes}"
         ) from None
     cf_rows = coefficients(resolved, th, de)
-    out = solve_coefficients(cf_rows, settings, threads, progress)
+    out = solve_coefficients(cf_rows, settings, threads, progress, share_swings)
     return results_from_output(out, shape)
 
 

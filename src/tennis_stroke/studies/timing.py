@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Mapping
+from functools import partial
 
 import numpy as np
 
@@ -48,12 +49,15 @@ def compiled_costs(
 
     The strokes (one parameter value per stroke) are repeated up to ``strokes`` and timed
     as one batch ``repeats`` times; the results returned are those of the given strokes.
+    Every copy integrates its own swing (``share_swings=False``): the copies of a stroke
+    would otherwise share one, and the time would not be a stroke's.
     """
     n = theta0.size
     reps = max(1, strokes // n)
     big = {k: np.tile(v, reps) if np.ndim(v) else v for k, v in params.items()}  # options
     th, de = np.tile(theta0, reps), np.tile(delta0, reps)
-    walls, res = timed(lambda: strike_batch(th, de, big, settings, threads=1), repeats)
+    batch = partial(strike_batch, th, de, big, settings, threads=1, share_swings=False)
+    walls, res = timed(batch, repeats)
     return walls / th.size * 1e6, {k: v[:n] for k, v in res.items()}
 
 
