@@ -173,7 +173,7 @@ def test_sweep_writes_cf_netcdf(tmp_path, capsys):
         (
             ["sweep", "--theta0", "0:120:300", "--delta0", "0:90:300", "--out", "x.nc"]
             + ["--max-memory", "1M"],
-            "needs about 13.3 MiB of memory, above the limit of 1 MiB (--max-memory)",
+            "needs about 13.4 MiB of memory, above the limit of 1 MiB (--max-memory)",
         ),
         (
             ["sweep", "--theta0", "0:120:3", "--delta0", "0:90:3", "--out", "x.nc"]

@@ -171,7 +171,7 @@ def test_check_memory_names_the_estimate_and_the_limit():
     with pytest.raises(MemoryLimitError) as err:
         check_memory(batch_bytes(31623 * 31623), "a sweep", (8 * 1024**3, "--max-memory"))
     assert str(err.value) == (
-        "a sweep needs about 417 GiB of memory, above the limit of 8 GiB (--max-memory)"
+        "a sweep needs about 425 GiB of memory, above the limit of 8 GiB (--max-memory)"
     )
     assert format_size(result_bytes(10**9)) == "104 GiB"
 

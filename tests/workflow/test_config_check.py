@@ -157,7 +157,7 @@ BAD = [  # (path, value, fragment of the message)
     (
         ("angle_maps", "theta0", "step"),
         1e-6,
-        "'angle_maps': a Figs. 2-3 map job (60000001 x 401 strokes) needs about 9.80 TiB",
+        "'angle_maps': a Figs. 2-3 map job (60000001 x 401 strokes) needs about 9.98 TiB",
     ),
     (("max_memory",), "1M", "'angle_maps': a Figs. 2-3 map job (241 x 401 strokes) needs"),
     (("max_memory",), "lots", "config key 'max_memory': memory size must be a number"),

@@ -45,11 +45,13 @@ N_CURVES = len(CURVE_VARIABLES)
 _COPIED_FIELDS = len(COUNT_FIELDS) + len(DEGREE_FIELDS)
 #: Peak bytes per stroke of one :func:`tennis_stroke.solver.stroke.strike_batch` call,
 #: from the arrays it holds at once: the initial angles broadcast to every stroke
-#: (theta0, delta0), the coefficient rows (``N_CF`` float64), the compiled output
-#: (``N_OUT`` float64) and the result fields copied out of it: 432 bytes.  Measured (peak
-#: resident memory over the call, 2e6 strokes): 415 bytes per stroke for a grid given as
-#: broadcast axes, 440 for flat angle arrays (which the caller holds as well).
-BATCH_BYTES_PER_STROKE = WORD * (2 + N_CF + N_OUT + _COPIED_FIELDS)
+#: (theta0, delta0), the coefficient rows (``N_CF`` float64), the order the rows are
+#: solved in (one int64, :func:`tennis_stroke.solver.stroke.swing_order`), the compiled
+#: output (``N_OUT`` float64) and the result fields copied out of it: 456 bytes.
+#: Measured (peak resident memory over the call, 2e6 strokes, before the order): 415
+#: bytes per stroke for a grid given as broadcast axes, 440 for flat angle arrays (which
+#: the caller holds as well).
+BATCH_BYTES_PER_STROKE = WORD * (2 + 1 + N_CF + N_OUT + _COPIED_FIELDS)
 #: Peak bytes per (stroke, time) point of the sampled curves of single strokes
 #: (:func:`tennis_stroke.experiments.strokes.trajectories`), an upper bound: each curve
 #: variable held twice and four values more, 8 x (2 x 13 + 4) = 240 bytes.  The compiled
