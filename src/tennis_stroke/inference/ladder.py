@@ -10,7 +10,10 @@ default reading (:func:`tennis_stroke.inference.targeted.targeted_files`: each o
 and threshold by its search) and every claim is measured as ``results/claims.csv``
 measures it (its measure of ``config/claims.yaml``, the curves of the config's
 ``figure_curves``).  The cost of a file is the right-hand-side evaluations of the
-compiled solver (machine-independent) and the wall time of its computation.
+compiled solver (machine-independent: every stroke counted whole) and the wall time of
+its computation (where strokes differ only in the ball or the spring, they share one
+swing, :func:`tennis_stroke.solver.stroke.solve_coefficients`: the time is what the
+computation took, the evaluations what its strokes cost one by one).
 
 A claim a rung cannot answer is marked not comparable (``comparable`` 0, its value kept
 but never counted as reproduced): under a rung without the spring, the claims about the

@@ -13,7 +13,7 @@ measured in the work-precision study, and the workflow's config check refuses on
 The maps and the claims' searches need no such estimate: the memory of each of their
 batches is bounded (:mod:`tennis_stroke.pipeline.memory`, at least 456 bytes a stroke
 held at once) and a compiled stroke costs about 24 µs, so a batch within 16 GiB computes
-for about 16 minutes a core at most; a search's later batches halve their step down to
+for about 15 minutes a core at most; a search's later batches halve their step down to
 its tolerance, a number of batches logarithmic in it.
 
 The limit, first found wins: the config key ``max_job_hours``, the environment variable

@@ -248,10 +248,12 @@ SWING_LEN = SW_STATS + N_STATS
 
 @njit(inline="always", **JIT_INNER)
 def same_swing(cf_a, cf_b):
-    """Whether two coefficient rows swing alike: equal in every column the free swing
-    reads (:data:`tennis_stroke.model.dynamics.SWING_COLUMNS`; NaN is never equal)."""
+    """Whether two coefficient rows swing alike: the same bits in every column the free
+    swing reads (:data:`tennis_stroke.model.dynamics.SWING_COLUMNS`; NaN is never the
+    same, 0.0 and -0.0 are not)."""
     for c in SWING_COLUMNS:
-        if cf_a[c] != cf_b[c]:
+        a, b = cf_a[c], cf_b[c]
+        if a != b or math.copysign(1.0, a) != math.copysign(1.0, b):
             return False
     return True
 
@@ -459,8 +461,9 @@ def solve_coefficients(
 ) -> np.ndarray:
     """Run the compiled solver on prepared coefficient rows; returns ``(n, N_OUT)``.
 
-    Every stroke is computed on its own, so the result does not depend on the number of
-    threads or on how the strokes are split among them.  Rows that swing alike (they
+    Every stroke's numbers are its own, the same bits as computed alone, so the result
+    does not depend on the number of threads or on how the strokes are split among them
+    or shared.  Rows that swing alike (they
     differ only in the ball, the spring or the contact's timing) are solved one after
     another, so the swing is integrated once for each run of them (:func:`swing_order`,
     :func:`solve_rows`): the numbers are the same.  ``share_swings=False`` integrates
