@@ -102,6 +102,19 @@ def coefficient_tup(theta0=90.0, delta0=30.0, **overrides):
     return coefficient_tuple(coefficient_row(theta0, delta0, **overrides))
 
 
+def swings_while(run):
+    """``(strokes, swings)``: what the compiled solver was given and the swings it
+    integrated while ``run()`` ran (``solver.stroke.swings_integrated``), its compiled
+    code loaded before (the first load runs strokes of its own); and ``run()``'s result."""
+    from tennis_stroke.solver.stroke import strike, swings_integrated
+
+    strike(90.0, 45.0)
+    before = swings_integrated()
+    result = run()
+    after = swings_integrated()
+    return (after[0] - before[0], after[1] - before[1]), result
+
+
 def by_entry(dispatcher):
     """``dispatcher(method, *args)`` called through its compiled entry for the argument
     types (``solver.integrate.specialised``, kept per types): the same machine code,

@@ -5,7 +5,7 @@ import math
 
 import numpy as np
 import pytest
-from conftest import FIG4_A, FIG4_B, by_entry, coefficient_tup
+from conftest import FIG4_A, FIG4_B, by_entry, coefficient_tup, swings_while
 
 from tennis_stroke import STATUS_NAMES, SolverSettings, strike, strike_batch
 from tennis_stroke.model.dynamics import (
@@ -32,7 +32,7 @@ from tennis_stroke.solver.results import (
 )
 from tennis_stroke.solver.rk4 import fixed_step_stroke
 from tennis_stroke.solver.settings import S_RTOL
-from tennis_stroke.solver.stroke import solve_coefficients, swing_order, swings_integrated
+from tennis_stroke.solver.stroke import solve_coefficients, swing_order
 
 run_phases = by_entry(stroke.run_phases)
 TIGHT = SolverSettings(rtol=1e-12, atol=1e-12, history=4096)
@@ -356,11 +356,8 @@ def test_a_zero_and_a_negative_zero_do_not_share_a_swing():
     row = coefficients(resolve_params({"tau": 0.0}), *FIG4_A)[0]
     other = row.copy()
     other[CF_TAU] = -0.0
-    strike(*FIG4_A)  # the compiled code loaded (its first load runs strokes of its own)
-    before = swings_integrated()
-    solve_coefficients(np.stack([row, other]), threads=1)
-    after = swings_integrated()
-    assert after[1] - before[1] == 2
+    counted, _ = swings_while(lambda: solve_coefficients(np.stack([row, other]), threads=1))
+    assert counted == (2, 2)
 
 
 def test_rows_that_share_no_swing_keep_their_order():
@@ -376,13 +373,11 @@ def test_rows_that_swing_alike_share_one_swing_unless_told_not_to():
     k = np.geomspace(188.0, 19000.0, 50)
     angles = np.array([FIG4_A, FIG4_B])
     th, de = angles[:, :1], angles[:, 1:]
-    strike(*FIG4_A)  # the compiled code loaded (its first load runs strokes of its own)
-    before = swings_integrated()
-    shared = strike_batch(th, de, {"k_contact": k}, threads=1)
-    middle = swings_integrated()
-    alone = strike_batch(th, de, {"k_contact": k}, threads=2, share_swings=False)
-    after = swings_integrated()
-    assert (middle[0] - before[0], middle[1] - before[1]) == (100, 2)
-    assert (after[0] - middle[0], after[1] - middle[1]) == (100, 100)
+    counted, shared = swings_while(lambda: strike_batch(th, de, {"k_contact": k}, threads=1))
+    assert counted == (100, 2)
+    counted, alone = swings_while(
+        lambda: strike_batch(th, de, {"k_contact": k}, threads=2, share_swings=False)
+    )
+    assert counted == (100, 100)
     for key in shared:
         np.testing.assert_array_equal(shared[key], alone[key])
