@@ -359,6 +359,8 @@ class Plan:
 
     jobs: list[tuple[str, list[str], list[str]]]
     rules: list[str]
+    #: Each job's ``resources:`` line as a mapping, by its first output (or its rule).
+    resources: dict[str, dict[str, str]]
 
     def writers(self, path: str) -> list[str]:
         """The rules of the planned jobs that write ``path``."""
@@ -416,7 +418,22 @@ def report_plan(tmp_path_factory) -> Plan:
     assert done.returncode == 0, done.stderr[-3000:]
     listed = run_snakemake([], work, "--list-rules")
     assert listed.returncode == 0, listed.stderr[-3000:]
-    return Plan(planned_jobs(done.stdout + done.stderr), listed.stdout.split())
+    log = done.stdout + done.stderr
+    return Plan(planned_jobs(log), listed.stdout.split(), planned_resources(log))
+
+
+def planned_resources(log: str) -> dict[str, dict[str, str]]:
+    """Each job of a dry run's log with its ``resources:`` line (``{name: value}``), by
+    its first output, or its rule for a job without output."""
+    out = {}
+    for block in re.split(r"\n(?=(?:local)?rule \w+:\n)", log):
+        head = re.match(r"(?:local)?rule (\w+):\n", block)
+        if head:
+            output = re.search(r"^    output: ([^,\n]*)", block, re.M)
+            line = re.search(r"^    resources: (.*)$", block, re.M)
+            pairs = (item.split("=", 1) for item in line[1].split(", ")) if line else ()
+            out[output[1] if output else head[1]] = dict(pairs)
+    return out
 
 
 def record_configuration(folder, scenario=None, departures=()) -> None:

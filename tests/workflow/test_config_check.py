@@ -11,13 +11,11 @@ from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,
     load_schema,
-    memory_errors,
     numbers_from_strings,
+    points_errors,
     rows_per_job,
-    time_errors,
 )
-from tennis_stroke.pipeline.job_time import TIME_ENV, study_jobs
-from tennis_stroke.pipeline.memory import BATCH_BYTES_PER_STROKE, format_size
+from tennis_stroke.pipeline.resources import DEFAULT_MAX_POINTS
 
 SCHEMA = ROOT / "workflow" / "schemas" / "config.schema.yaml"
 GOOD = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
@@ -153,78 +151,39 @@ BAD = [  # (path, value, fragment of the message)
     ),
     (("model_ladder", "rungs", 0, "colour"), "red", "'colour' was unexpected"),
     (("model_ladder",), _DELETE, "config key 'model_ladder' is missing (required)"),
-    # memory, estimated from the grid sizes (the job failed with MemoryError 179 GiB)
+    # a job's points against the declared bound (the job failed with MemoryError 179 GiB)
     (
         ("angle_maps", "theta0", "step"),
         1e-6,
-        "'angle_maps': a Figs. 2-3 map job (60000001 x 401 strokes) needs about 9.98 TiB",
+        "'angle_maps': a Figs. 2-3 map job (60000001 x 401 strokes) holds 24060000401 points, "
+        "above max_points_per_job = 10000000",
     ),
-    (("max_memory",), "1M", "'angle_maps': a Figs. 2-3 map job (241 x 401 strokes) needs"),
-    (("max_memory",), "lots", "config key 'max_memory': memory size must be a number"),
-    (("max_memory",), 1.5, "'max_memory': 1.5 is not of type 'string', 'integer', 'null'"),
+    (("max_points_per_job",), 1000, "'angle_maps': a Figs. 2-3 map job (241 x 401 strokes) holds"),
+    (("max_points_per_job",), "lots", "'max_points_per_job': 'lots' is not of type 'integer'"),
+    (("max_points_per_job",), 1.5, "'max_points_per_job': 1.5 is not of type 'integer', 'null'"),
+    (("max_points_per_job",), 0, "'max_points_per_job': 0 is less than the minimum of 1"),
     (
         ("mass_length", "coarse_step"),
         1e-4,
         "'mass_length': a Figs. 5-6 map job (13 x 7.80e+12 strokes)",
     ),
     (
-        ("solver_study", "optimum", "reference_step"),
-        1e-5,
-        "'solver_study.optimum': the optimum search with steps 1/1e-05 deg",
-    ),
-    (
-        ("torque_delay", "fig9", "tau"),
-        {"start": 0.0, "stop": 0.3, "step": 1e-12},
-        "'torque_delay.fig9': a Fig. 9 map job (1 x 300000000001 strokes) needs",
-    ),
-    # the sampled curves (the job tried to allocate 14.9 GiB) and the claims' searches
-    (
-        ("fig4", "samples"),
-        2_000_000_000,
-        "'fig4.samples': the curves of the Fig. 4 strokes (4000000000 stroke-samples) needs",
-    ),
-    (
-        ("torque_delay", "strokes", "samples"),
-        100_000_000,
-        "'torque_delay.strokes.samples': the curves of the Figs. 10-12 strokes (200000000",
-    ),
-    (
-        ("search", "angle_step"),
-        1e-4,
-        "'search.angle_step': the search of the Figs. 2-3 map's claims (search.angle_step",
-    ),
-    (
-        ("search", "tau_step"),
-        1e-9,
-        "'search': the search of the Fig. 7 map's claims (search.C2_step = 0.5, "
-        "search.tau_step = 1e-09: 6300000021 strokes at once",
-    ),
-    (
-        ("search", "psi_F_step"),
-        1e-6,
-        "'search': the search of the Fig. 13 map's claims (search.psi_F_step = 1e-06",
-    ),
-    # time, estimated from the studies' steps and counts (issue 56: a step of 1e-12 s
-    # was planned and its job would have run for about 826 h a stroke)
-    (
-        ("solver_study", "rk4_steps"),
-        [2e-3, 1e-12],
-        "config key 'solver_study.rk4_steps.1': the work-precision study would take about ",
-    ),
-    (
-        ("solver_study", "stability", "cases"),
-        [["tennis_stroke.DOP853", 5e-8], ["fixed.RK4", 1e-12]],
-        "config key 'solver_study.stability.cases.1': the stability study would take about ",
-    ),
-    (
         ("solver_study", "stability", "k_contact", "num"),
         1_000_000,
-        "'solver_study.stability.cases.10': the stability study would take about 275 h "
-        "(1000000 spring constants, each up to 50000 RK4 steps of 1e-05 s: 214 h), above "
-        "the limit of 24 h",
+        "'solver_study.stability.k_contact': the stability map (11 cases x 1000000 spring "
+        "constants) holds 11000000 points",
     ),
-    (("max_job_hours",), 0.0, "'max_job_hours': 0.0 is less than or equal to the minimum"),
-    (("max_job_hours",), "long", "'max_job_hours': 'long' is not of type 'number', 'null'"),
+    # an RK4 step that would compute for days (issue 56): the smallest step declared
+    (
+        ("solver_study", "rk4_steps"),
+        [1.0e-12],
+        "'solver_study.rk4_steps.0': RK4 step of case 'fixed.RK4' must be at least 1e-05 s",
+    ),
+    (
+        ("solver_study", "stability", "cases", 10, 1),
+        1.0e-6,
+        "'solver_study.stability.cases.10': RK4 step of case 'fixed.RK4' must be at least",
+    ),
 ]
 
 
@@ -276,89 +235,60 @@ def test_every_bad_config_stops_snakemake_with_one_line(path, value, fragment, t
     assert not (tmp_path / "results").exists()
 
 
-def test_chunks_make_a_large_map_fit():
-    """The memory check is per job: chunks of rows bring a map under the limit."""
+def test_the_bound_is_per_job_and_a_gathering_holds_its_whole_map():
+    """Chunks bring a map's jobs under the bound; gathering them holds every stroke of the
+    map at once, and the plan names that job then."""
     config = copy.deepcopy(GOOD)
-    config["max_memory"] = "35M"
-    config["chunks"] = {"mass_length": 13}
-    assert "'angle_maps': a Figs. 2-3 map job (241 x 401" in config_errors(config, SCHEMA)[0]
-    config["chunks"]["angle_map"] = 4
+    config["max_points_per_job"] = 100_000
+    config["angle_maps"]["theta0"]["step"] = 0.125  # 481 x 401 strokes
+    assert (
+        "'angle_maps': a Figs. 2-3 map job (481 x 401 strokes) holds 192881 points"
+        in (config_errors(config, SCHEMA)[0])
+    )
+    config["chunks"] = {"angle_map": 2}
+    (error,) = config_errors(config, SCHEMA)
+    assert "'angle_maps': gathering the Figs. 2-3 map (192881 strokes) holds" in error
+    config["max_points_per_job"] = 200_000
     assert config_errors(config, SCHEMA) == []
 
 
-def test_readings_searched_in_lockstep_multiply_a_search_s_memory():
+def test_readings_searched_in_lockstep_multiply_a_search_s_points():
     """The robustness job searches its readings together: a bracket that fits one reading
-    can exceed the limit for all of them, and the plan says so before any job."""
+    can exceed the bound for all of them, and the plan says so before any job."""
     config = copy.deepcopy(GOOD)
-    config["max_memory"] = "12G"
-    config["search"]["angle_step"] = 1e-3  # 241 x 100001 strokes: about 9.7 GiB
-    assert list(memory_errors(config, 1)) == []
-    (error,) = memory_errors(config, 32)
+    config["max_points_per_job"] = 30_000_000
+    config["search"]["angle_step"] = 1e-3  # 241 x 100001 strokes
+    assert list(points_errors(config, 1)) == []
+    (error,) = points_errors(config, 32)
     assert error.startswith("config key 'search.angle_step': the search of the Figs. 2-3 ")
-    needed = format_size(32 * 24100241 * BATCH_BYTES_PER_STROKE)
-    assert f"24100241 strokes at once for each of 32 readings) needs about {needed}" in error
+    assert "24100241 strokes at once for each of 32 readings) holds 771207712 points" in error
 
 
 @pytest.mark.workflow
 def test_planning_counts_the_readings_searched_in_lockstep(tmp_path):
-    """The workflow checks the memory once, for the readings of the largest robustness
+    """The workflow checks the points once, for the readings of the largest robustness
     job (config/readings.yaml: its readings over its chunks), before any job."""
     multiverse = load_yaml(ROOT / "config" / "readings.yaml")["multiverse"]
     largest = rows_per_job(multiverse["readings"], multiverse["chunks"])
     assert largest > 1
     config = copy.deepcopy(GOOD)
-    config["max_memory"] = "12G"
+    config["max_points_per_job"] = 30_000_000
     config["search"]["angle_step"] = 1e-3
     done = run_snakemake("report", workdir(tmp_path, config), "-n")
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert done.returncode == 1 and len(lines) == 1, lines
-    assert f"24100241 strokes at once for each of {largest} readings) needs about" in lines[0]
+    assert f"24100241 strokes at once for each of {largest} readings) holds" in lines[0]
 
 
-def test_a_study_s_time_is_estimated_from_its_counts_and_refused_above_the_limit(monkeypatch):
-    """The limit: the config key, else the environment variable, else 24 h; the estimate
-    grows with the strokes and falls with the RK4 step, and the line names the key of
-    the job's dearest part."""
-    monkeypatch.delenv(TIME_ENV, raising=False)
-    config = copy.deepcopy(GOOD)
-    work_precision, parts = next(study_jobs(config))
-    total = sum(part[2] for part in parts)
-    assert work_precision == "the work-precision study" and 1.0 < total < 3600.0
-    config["max_job_hours"] = total / 3600.0 / 2
-    (error,) = time_errors(config)
-    assert error.startswith("config key 'solver_study.scipy_tolerances.0': the work-precision")
-    assert error.endswith("(config key 'max_job_hours') (rule: time)")
-    config["max_job_hours"] = None
-    monkeypatch.setenv(TIME_ENV, str(total / 3600.0 / 2))
-    (error,) = time_errors(config)
-    assert f"({TIME_ENV}) (rule: time)" in error
-    monkeypatch.setenv(TIME_ENV, "soon")
-    assert list(time_errors(config)) == [
-        f"{TIME_ENV}: a job's time limit must be a number of hours > 0, got 'soon' (rule: hours)"
-    ]
-    monkeypatch.delenv(TIME_ENV)
-    doubled = copy.deepcopy(GOOD)
-    doubled["solver_study"]["strokes"] *= 2
-    halved = copy.deepcopy(GOOD)
-    halved["solver_study"]["rk4_steps"] = [h / 2 for h in GOOD["solver_study"]["rk4_steps"]]
-    for changed in (doubled, halved):
-        _, more = next(study_jobs(changed))
-        rk4 = [p[2] for p in more if "rk4_steps" in p[0]]
-        assert sum(rk4) == pytest.approx(2 * sum(p[2] for p in parts if "rk4_steps" in p[0]))
-
-
-def test_the_time_estimate_counts_the_batches_the_studies_time():
-    from tennis_stroke.pipeline import job_time
-    from tennis_stroke.studies import timing
-
-    assert job_time.TIMING_STROKES == timing.TIMING_STROKES
-
-
-def test_the_shipped_config_declares_max_memory_with_a_default():
+def test_the_shipped_config_leaves_the_bound_to_the_package():
     schema = yaml.safe_load(SCHEMA.read_text())
-    spec = schema["properties"]["max_memory"]
-    assert spec["default"] is None and "TENNIS_STROKE_MAX_MEMORY" in spec["description"]
-    assert GOOD["max_memory"] is None
+    spec = schema["properties"]["max_points_per_job"]
+    assert spec["default"] is None and "DEFAULT_MAX_POINTS" in spec["description"]
+    assert GOOD["max_points_per_job"] is None
+    bad = copy.deepcopy(GOOD)
+    bad["angle_maps"]["theta0"]["step"] = 0.002  # 30001 x 401 strokes
+    assert 30001 * 401 > DEFAULT_MAX_POINTS
+    assert f"above max_points_per_job = {DEFAULT_MAX_POINTS}" in config_errors(bad, SCHEMA)[0]
 
 
 @pytest.mark.parametrize(

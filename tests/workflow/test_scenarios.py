@@ -87,15 +87,15 @@ def test_a_change_of_the_base_stroke_moves_the_files_of_secs_5_6_only():
         ),
         ("s", {"torque_delay": {"base": 1}}, "scenario 's': config key 'torque_delay'"),
         ("s", {"solver": {"method": "Euler"}}, "scenario 's': config key 'solver.method'"),
-        # every size key against the memory estimate (the job tried to allocate 14.9 GiB)
+        # every size key against the bound on a job's points (the job tried to allocate 14.9 GiB)
         (
             "s",
-            {"fig4": {"samples": 2_000_000_000}, "max_memory": "8G"},
+            {"fig4": {"samples": 2_000_000_000}, "max_points_per_job": 5_000_000},
             "scenario 's': config key 'fig4.samples': the curves of the Fig. 4 strokes",
         ),
         (
             "s",
-            {"search": {"tau_step": 1e-9}, "max_memory": "8G"},
+            {"search": {"tau_step": 1e-9}, "max_points_per_job": 5_000_000},
             "scenario 's': config key 'search': the search of the Fig. 7 map's claims",
         ),
     ],
@@ -357,8 +357,7 @@ def _changed(value):
 #: Leaves of config.yaml that :func:`_changed` cannot move: names and structured lists.
 UNMOVED = {
     "solver.method",
-    "max_memory",
-    "max_job_hours",
+    "max_points_per_job",
     "model",
     "figure_curves",
     "fig4.strokes",

@@ -101,3 +101,20 @@ def test_a_figure_job_s_code_is_its_own_drawing_and_no_other(report_plan):
         else:
             assert not used, rule
     assert figure_jobs == len(FIGURES)
+
+
+def test_every_job_asks_for_memory_and_time_from_its_points(report_plan):
+    """Every planned job declares mem_mb and runtime (a cluster enforces them); a job's
+    request grows with its points: Fig. 2's map (241 x 401 strokes) asks more than Fig.
+    9's delay curve (601) and than a figure (none)."""
+    from tennis_stroke.pipeline.resources import asked
+
+    asks = report_plan.resources
+    assert len(asks) == len(report_plan.jobs)
+    missing = [job for job, r in asks.items() if not {"mem_mb", "runtime"} <= set(r)]
+    assert missing == []
+    fig2 = asks["results/chunks/angle_maps/fig2/0-of-1.nc"]
+    fig9 = asks["results/chunks/torque_delay/fig9/0-of-1.nc"]
+    figure = asks["results/figures/fig02_angle_map.png"]
+    assert int(fig2["mem_mb"]) == asked(241 * 401)["mem_mb"] > int(fig9["mem_mb"])
+    assert int(fig9["mem_mb"]) > int(figure["mem_mb"]) == asked(0)["mem_mb"]

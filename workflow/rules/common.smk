@@ -37,6 +37,7 @@ from tennis_stroke.pipeline.runs import (
     guard_checkout,
     stems,
 )
+from tennis_stroke.pipeline.resources import asked
 from tennis_stroke.pipeline.targets import targets
 from tennis_stroke.replication.registry import FIGURES
 
@@ -66,6 +67,8 @@ sys.executable = shell_safe(sys.executable)
 # and writing after it (tennis_stroke.io.interrupts.stop_with_snakemake).
 os.environ[PARENT_ENV] = process_identity(os.getpid())
 CODE = CodeInputs(workflow.basedir)
+# What a job without points asks of the scheduler (tennis_stroke.pipeline.resources).
+LIGHT = asked(0)
 # Every result and page as it is before any job, kept until the run has made the new
 # one: Snakemake removes a job's outputs when it starts the job, and a job that fails
 # or is stopped would take its earlier file with it.  A failed or stopped run puts each

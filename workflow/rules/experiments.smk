@@ -5,9 +5,10 @@
 # results/scenarios/NAME/, its params from the scenario's configuration,
 # tennis_stroke.pipeline.scenarios).  A job's params are the config values its row reads
 # (and the model and solver settings for a model row): changing any other key reruns
-# nothing of it.  Its code inputs are the modules its job imports.  Threads, memory and
-# runtime are resources: `--set-threads` or a profile (profiles/slurm) changes them,
-# never the science config.
+# nothing of it.  Its code inputs are the modules its job imports.  Each job asks for
+# memory and time from its points (tennis_stroke.pipeline.resources): a cluster enforces
+# them, `--resources mem_mb=...` bounds a machine; `--set-threads`, `--set-resources` or
+# a profile (profiles/slurm) changes them, never the science config.
 #
 # The robustness analysis is the report's longest chain of jobs (identification ->
 # screen -> chunks -> claims), so its jobs go first when they are ready, and the
@@ -29,6 +30,9 @@ rule simulate:
     wildcard_constraints:
         stem=stems(chunked=False, family="paper"),
     threads: 1
+    resources:
+        mem_mb=RUNS.row_resources("mem_mb"),
+        runtime=RUNS.row_resources("runtime"),
     params:
         experiment=RUNS.row_param("experiment"),
         args=RUNS.row_param("args"),
@@ -51,6 +55,9 @@ rule study:
     wildcard_constraints:
         stem=stems(chunked=False, family="study"),
     threads: 1
+    resources:
+        mem_mb=RUNS.row_resources("mem_mb"),
+        runtime=RUNS.row_resources("runtime"),
     params:
         experiment=RUNS.row_param("experiment"),
         args=RUNS.row_param("args"),
@@ -71,6 +78,9 @@ rule simulate_chunk:
     wildcard_constraints:
         stem=stems(chunked=True),
     threads: 1
+    resources:
+        mem_mb=RUNS.row_resources("mem_mb"),
+        runtime=RUNS.row_resources("runtime"),
     params:
         experiment=RUNS.row_param("experiment"),
         args=RUNS.row_param("args"),
@@ -91,6 +101,9 @@ rule gather_map:
         "benchmarks/workflow/{run}gather_map/{map}.tsv"
     wildcard_constraints:
         map=CHUNKED_MAPS,
+    resources:
+        mem_mb=RUNS.map_resources("mem_mb"),
+        runtime=RUNS.map_resources("runtime"),
     params:
         max_failure_share=lambda w: RUNS.configuration(w)["max_failure_share"],
         relabel=lambda w: w.map in CHUNKED,  # a map of the table: its labels again
@@ -111,6 +124,9 @@ rule identification:
         "benchmarks/workflow/identification.tsv"
     priority: CHAIN_PRIORITY
     threads: 1
+    resources:
+        mem_mb=RUNS.search_resources("mem_mb"),
+        runtime=RUNS.search_resources("runtime"),
     params:
         **fit_set_arguments(config),
         common=job_params.common_params(config),
@@ -134,6 +150,9 @@ rule robustness_screen:
         "benchmarks/workflow/robustness_screen.tsv"
     priority: CHAIN_PRIORITY
     threads: 2
+    resources:
+        mem_mb=RUNS.search_resources("mem_mb", lockstep=True),
+        runtime=RUNS.search_resources("runtime", lockstep=True),
     params:
         **fit_set_arguments(config),
         common=job_params.common_params(config),
@@ -155,6 +174,9 @@ rule robustness_chunk:
         "benchmarks/workflow/robustness_chunk_{chunk}-of-{chunks}.tsv"
     priority: CHAIN_PRIORITY
     threads: 1
+    resources:
+        mem_mb=RUNS.search_resources("mem_mb", lockstep=True),
+        runtime=RUNS.search_resources("runtime", lockstep=True),
     params:
         common=job_params.common_params(config),
         experiments=job_params.paper_experiments(config),
@@ -178,6 +200,9 @@ rule claims_validation:
         group="|".join(VALIDATION_GROUPS),
     priority: CHAIN_PRIORITY // 2
     threads: 1
+    resources:
+        mem_mb=RUNS.search_resources("mem_mb"),
+        runtime=RUNS.search_resources("runtime"),
     params:
         common=job_params.common_params(config),
         experiments=lambda w: job_params.group_config(config, w.group),
@@ -197,6 +222,9 @@ rule model_ladder:
     benchmark:
         "benchmarks/workflow/model_ladder.tsv"
     threads: 1
+    resources:
+        mem_mb=RUNS.search_resources("mem_mb"),
+        runtime=RUNS.search_resources("runtime"),
     params:
         common=job_params.common_params(config),
         experiments=job_params.paper_experiments(config),

@@ -22,6 +22,8 @@ rule figure:
         "benchmarks/workflow/{run}figure_{name}.tsv"
     wildcard_constraints:
         name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
+    resources:
+        **LIGHT,
     params:
         figure=RUNS.figure_entry,
         marks=RUNS.figure_marks,
@@ -46,6 +48,8 @@ rule scenario_comparison:
         "benchmarks/workflow/scenarios/{scenario}/compare_{name}.tsv"
     wildcard_constraints:
         name="|".join(PAPER_FIGURES),
+    resources:
+        **LIGHT,
     params:
         figure=RUNS.figure_entry,
         marks=RUNS.figure_marks,

@@ -23,6 +23,8 @@ rule claims:
     benchmark:
         "benchmarks/workflow/{run}claims.tsv"
     threads: 1
+    resources:
+        **LIGHT,
     params:
         files=RUNS.files,
         experiments=lambda w: job_params.paper_experiments(RUNS.configuration(w)),
@@ -36,6 +38,8 @@ rule claims:
 rule report:
     input:
         targets(),
+    resources:
+        **LIGHT,
 
 
 rule report_page:
@@ -57,6 +61,8 @@ rule report_page:
         "logs/report.log",
     benchmark:
         "benchmarks/workflow/report_page.tsv"
+    resources:
+        **LIGHT,
     params:
         config=config,
         benchmarks="benchmarks/workflow",
@@ -82,6 +88,8 @@ rule scenario_report:
         "logs/scenarios/{scenario}/report.log",
     benchmark:
         "benchmarks/workflow/scenarios/{scenario}/report_page.tsv"
+    resources:
+        **LIGHT,
     params:
         scenario=RUNS.record,
         figures=RUNS.figure_table,
@@ -101,6 +109,8 @@ rule unknown_scenario:
         top="results|report",
         unknown=RUNS.unknown_pattern,
         path=".+",
+    resources:
+        **LIGHT,
 
 
 # Before the rules that make any file of a run: a scenario's path they do not make for a
@@ -120,6 +130,8 @@ rule unknown_scenario_file:
         top="results|report",
         declared=RUNS.declared_names,
         path=UNKNOWN_SCENARIO_PATH,
+    resources:
+        **LIGHT,
 
 
 # The replication as an article (ReScience C style) and its metadata, written from the
@@ -146,6 +158,8 @@ rule article:
         "logs/article.log",
     benchmark:
         "benchmarks/workflow/article.tsv"
+    resources:
+        **LIGHT,
     params:
         benchmarks="benchmarks/workflow",
     script:
@@ -169,6 +183,8 @@ rule scenario_article:
         "logs/scenarios/{scenario}/article.log",
     benchmark:
         "benchmarks/workflow/scenarios/{scenario}/article.tsv"
+    resources:
+        **LIGHT,
     params:
         scenario=RUNS.record,
     script:

@@ -6,12 +6,11 @@ search range the wrong way round), then the package's own checks: the model over
 through :func:`tennis_stroke.model.params.resolve_params` (every parameter's unit and
 bounds), the solver section and the work-precision tolerances through
 :class:`~tennis_stroke.solver.settings.SolverSettings` (the accuracy bound), the
-stability cases through :func:`tennis_stroke.studies.methods.check_case` (the methods
-that exist), then the memory of every map's job (:mod:`tennis_stroke.pipeline.memory`)
-against the limit (config key ``max_memory``), and last the time of every solver study's
-job (:mod:`tennis_stroke.pipeline.job_time`) against its limit (``max_job_hours``): a step
-or a count that costs time, not memory.  The Snakefile prints the first message and
-exits before any job starts.
+stability cases and RK4 steps through :func:`tennis_stroke.studies.methods.check_case`
+(the methods that exist, the smallest RK4 step), and last the points of every job
+(:func:`job_points`) against the declared bound ``max_points_per_job``
+(:mod:`tennis_stroke.pipeline.resources`, which also says what each job asks of the
+scheduler).  The Snakefile prints the first message and exits before any job starts.
 """
 
 from __future__ import annotations
@@ -19,7 +18,6 @@ from __future__ import annotations
 import copy
 import functools
 import math
-import os
 from collections.abc import Iterator, Mapping
 from decimal import Decimal
 from pathlib import Path
@@ -27,23 +25,14 @@ from pathlib import Path
 import numpy as np
 
 from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
-from ..experiments.specs import BOUND_KEYS, EXPERIMENTS
+from ..experiments.specs import BOUND_KEYS, EXPERIMENTS, Experiment
 from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
 from ..inference.search_plan import BRACKET_KEYS, SEARCHED, search_strokes
 from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
 from ..model.params import CHOICES, PARAMETERS, ParameterError, resolve_params
 from ..solver.settings import SolverSettingError, SolverSettings
 from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case
-from .job_time import JobTimeError, check_time, study_jobs, time_limit
-from .memory import (
-    WORD,
-    MemoryLimitError,
-    batch_bytes,
-    check_memory,
-    curve_bytes,
-    memory_limit,
-    result_bytes,
-)
+from .resources import DEFAULT_MAX_POINTS
 
 
 def _walk(node, parts=()) -> Iterator[tuple[tuple, object]]:
@@ -142,6 +131,11 @@ def _solver_errors(config: Mapping) -> Iterator[str]:
             )
     for name, scene in (study.get("scenes") or {}).items():
         yield from _scene_errors(name, scene)
+    for i, step in enumerate(study.get("rk4_steps") or []):
+        try:
+            check_case("fixed.RK4", step)
+        except ValueError as exc:
+            yield f"config key 'solver_study.rk4_steps.{i}': {exc} (rule: methods)"
     for i, case in enumerate((study.get("stability") or {}).get("cases") or []):
         try:
             check_case(*case)
@@ -189,56 +183,56 @@ def _requested_chunks(config: Mapping, key: str) -> int:
 
 
 def map_jobs(config: Mapping, readings: int = 1) -> Iterator[tuple[str, str, int]]:
-    """``(config key, what, peak bytes)`` of the workflow's largest jobs, from the sizes
-    alone (nothing is allocated): the largest chunk job of every row of the table of
-    experiments that runs a batch of strokes, the gathering of each chunked map (the
-    chunks and the whole map in memory at once), the sampled curves of the rows that
-    draw them, the first batch of every claim's search (``readings`` of them searched in
-    lockstep, the largest robustness job's), and the solver studies' searches."""
-    threads = os.cpu_count() or 1
-    history = SolverSettings().history
-    yield from _experiment_jobs(config, threads, history)
-    yield from _search_jobs(config, readings, threads, history)
-    yield from _study_jobs(config, threads, history)
+    """``(config key, what, points)`` of the workflow's largest jobs, from the sizes alone
+    (nothing is allocated): the largest chunk job of every row of the table of
+    experiments that runs a batch of strokes, the gathering of each chunked map, the
+    sampled curves of the rows that draw them, the first batch of every claim's search
+    (``readings`` of them searched in lockstep, the largest robustness job's), and the
+    solver studies' searches."""
+    yield from _experiment_jobs(config)
+    yield from search_jobs(config, readings)
+    yield from _study_jobs(config)
 
 
-def _experiment_jobs(config: Mapping, threads: int, history: int) -> Iterator[tuple[str, str, int]]:
+def job_points(e: Experiment, config: Mapping) -> tuple[int, str]:
+    """The points of the largest job of row ``e`` under ``config`` (the strokes of its
+    batches in one chunk, or its curves' samples) and what they are, for a message."""
+    args = e.arguments(config)
+    if e.samples is not None:
+        points = e.samples(args)
+        return points, f"the curves of the {e.label} ({_n(points)} stroke-samples)"
+    if e.strokes is None:
+        return 0, e.label
+    batches = e.strokes(args)
+    rows = e.row_count(args)
+    per_job = rows_per_job(rows, _requested_chunks(config, e.chunks)) if e.chunks else rows
+    sizes = [b // rows * per_job for b in batches]
+    if len(sizes) == 1:
+        return sizes[0], f"a {e.label} job ({_n(per_job)} x {_n(sizes[0] // per_job)} strokes)"
+    shown = " + ".join(_n(s) for s in sizes)
+    return sum(sizes), f"a {e.label} job ({_n(per_job)} rows, {shown} strokes)"
+
+
+def _experiment_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
     """The jobs of :func:`map_jobs` that the rows of the table of experiments run: the
     sampled curves, the largest chunk job of a batch of strokes, a chunked map's gathering."""
     for e in EXPERIMENTS.values():
         if e.samples is None and e.strokes is None:
             continue
         try:
-            args = e.arguments(config)
+            points, what = job_points(e, config)
         except ConfigKeyError:  # a key the schema gives a default: checked once it has it
             continue
         if e.samples is not None:
-            points = e.samples(args)
-            yield (
-                e.key_of("samples" if "samples" in e.args else "stroke.samples"),
-                f"the curves of the {e.label} ({_n(points)} stroke-samples)",
-                curve_bytes(points),
-            )
-        if e.strokes is None:
+            yield e.key_of("samples" if "samples" in e.args else "stroke.samples"), what, points
             continue
-        batches = e.strokes(args)
-        rows = e.row_count(args)
-        per_job = rows_per_job(rows, _requested_chunks(config, e.chunks)) if e.chunks else rows
-        sizes = [b // rows * per_job for b in batches]
-        if len(sizes) == 1:
-            what = f"a {e.label} job ({_n(per_job)} x {_n(sizes[0] // per_job)} strokes)"
-        else:
-            shown = " + ".join(_n(s) for s in sizes)
-            what = f"a {e.label} job ({_n(per_job)} rows, {shown} strokes)"
-        yield e.section, what, sum(batch_bytes(s, threads, history) for s in sizes)
+        yield e.section, what, points
         if e.gathered:
-            n = batches[0]
-            yield e.section, f"gathering the {e.label} ({_n(n)} strokes)", 2 * result_bytes(n)
+            n = e.strokes(e.arguments(config))[0]
+            yield e.section, f"gathering the {e.label} ({_n(n)} strokes)", n
 
 
-def _search_jobs(
-    config: Mapping, readings: int, threads: int, history: int
-) -> Iterator[tuple[str, str, int]]:
+def search_jobs(config: Mapping, readings: int) -> Iterator[tuple[str, str, int]]:
     """The first batch of every claim's search of :func:`map_jobs`, ``readings`` of them
     in lockstep."""
     together = max(1, int(readings))
@@ -253,17 +247,13 @@ def _search_jobs(
             steps[0] if len(steps) == 1 else steps[0].partition(".")[0],
             f"the search of the {e.label}'s claims ({shown}: {_n(n)} strokes at once"
             + (f" for each of {together} readings)" if together > 1 else ")"),
-            batch_bytes(n * together, threads, history),
+            n * together,
         )
 
 
-def _study_jobs(config: Mapping, threads: int, history: int) -> Iterator[tuple[str, str, int]]:
+def _study_jobs(config: Mapping) -> Iterator[tuple[str, str, int]]:
     """The solver studies' jobs of :func:`map_jobs`: the optimum searches and the
     stability map."""
-
-    def job(n_strokes: int) -> int:
-        return batch_bytes(n_strokes, threads, history)
-
     study = config["solver_study"]
     opt = study["optimum"]
     th_range, de_range = OPTIMUM_THETA0_RANGE, OPTIMUM_DELTA0_RANGE
@@ -275,7 +265,7 @@ def _study_jobs(config: Mapping, threads: int, history: int) -> Iterator[tuple[s
             "solver_study.optimum",
             f"the optimum search with steps {coarse_step:g}/{fine_step:g} deg "
             f"({_n(points)} points, {_n(coarse)} + {_n(fine)} strokes each)",
-            job(points * coarse) + job(points * fine),
+            points * max(coarse, fine),
         )
     for bracket, _ in opt.get("searches", []):
         coarse = bracket_size(*th_range, bracket) * bracket_size(*de_range, bracket)
@@ -283,47 +273,29 @@ def _study_jobs(config: Mapping, threads: int, history: int) -> Iterator[tuple[s
             "solver_study.optimum",
             f"the optimum search with a {bracket:g} deg bracket ({_n(points)} points, "
             f"{_n(coarse)} strokes each at once)",
-            job(points * coarse),
+            points * coarse,
         )
     k = study["stability"]["k_contact"]
     cases = len(study["stability"]["cases"])
     yield (
         "solver_study.stability.k_contact",
         f"the stability map ({cases} cases x {_n(k['num'])} spring constants)",
-        WORD * int(k["num"]) * (1 + 5 * cases),  # log10 k grid, five fields per case
+        int(k["num"]) * cases,
     )
 
 
-def memory_errors(config: Mapping, readings: int = 1) -> Iterator[str]:
-    """The first job of :func:`map_jobs` above the memory limit, as a one-line message
-    (``readings``: searched in lockstep by the largest robustness job)."""
-    try:
-        limit = memory_limit(config.get("max_memory"), "config key 'max_memory'")
-    except ValueError as exc:
-        yield f"{exc} (rule: memory size)"
-        return
-    for key, what, needed in map_jobs(config, readings):
-        try:
-            check_memory(needed, what, limit)
-        except MemoryLimitError as exc:
-            yield f"config key {key!r}: {exc} (rule: memory)"
-            return
-
-
-def time_errors(config: Mapping) -> Iterator[str]:
-    """The first solver study's job whose time estimate
-    (:func:`tennis_stroke.pipeline.job_time.study_jobs`) is above the limit (config key
-    ``max_job_hours``), as a one-line message naming the key of its dearest part."""
-    try:
-        limit = time_limit(config.get("max_job_hours"), "config key 'max_job_hours'")
-    except ValueError as exc:
-        yield f"{exc} (rule: hours)"
-        return
-    for job, parts in study_jobs(config):
-        try:
-            check_time(job, parts, limit)
-        except JobTimeError as exc:
-            yield f"{exc} (rule: time)"
+def points_errors(config: Mapping, readings: int = 1) -> Iterator[str]:
+    """The first job of :func:`map_jobs` with more points than ``max_points_per_job``, as
+    a one-line message naming its config key (``readings``: searched in lockstep by the
+    largest robustness job)."""
+    bound = config.get("max_points_per_job") or DEFAULT_MAX_POINTS
+    for key, what, points in map_jobs(config, readings):
+        if points > bound:
+            yield (
+                f"config key {key!r}: {what} holds {_n(points)} points, above "
+                f"max_points_per_job = {_n(bound)} (a coarser step, more chunks, or a "
+                "larger bound) (rule: points per job)"
+            )
             return
 
 
@@ -476,13 +448,8 @@ def _parsed_schema(path: Path, mtime_ns: int, size: int) -> dict:
 
 def config_errors(config: Mapping, schema_path: str | Path, readings: int = 1) -> list[str]:
     """Every problem of ``config`` as one-line messages (empty: the config is good);
-    ``readings``: how many readings the largest job searches in lockstep (the memory
-    check, :func:`memory_errors`); last the solver studies' time (:func:`time_errors`)."""
+    ``readings``: how many readings the largest job searches in lockstep (the bound on
+    a job's points, :func:`points_errors`)."""
     schema = load_schema(schema_path)
     errors = schema_errors(config, schema, "config")
-    return (
-        errors
-        or list(_semantic_errors(config))
-        or list(memory_errors(config, readings))
-        or list(time_errors(config))
-    )
+    return errors or list(_semantic_errors(config)) or list(points_errors(config, readings))

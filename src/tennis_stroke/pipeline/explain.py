@@ -80,8 +80,8 @@ def effect(key: str, claims: Sequence[Mapping]) -> KeyEffect:
         note = "checked when a map is gathered: moves no number (reruns the gatherings)"
     elif key.startswith("chunks."):
         note = "splits the map into jobs: moves no number (reruns the map's jobs)"
-    elif key in ("max_memory", "max_job_hours"):
-        note = "a limit checked before any job: moves no number"
+    elif key == "max_points_per_job":
+        note = "a bound checked before any job, and each job's resources: moves no number"
     moving = [] if note else rows
     inference = [
         name for name, keys in INFERENCE_READS.items() if any(related(key, r) for r in keys)

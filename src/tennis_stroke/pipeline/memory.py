@@ -1,14 +1,15 @@
 """Memory of a batch of strokes, estimated before anything is allocated, and the limit.
 
 A grid of strokes costs memory in proportion to its size, so a mistyped grid (a step of
-1e-6 degrees, 31623 x 31623 points) would grow until the machine or the job's limit
-stops it with a traceback.  Every entry point estimates first (:func:`batch_bytes`,
-:func:`result_bytes`) and refuses with one line (:func:`check_memory`) beyond
-:func:`memory_limit`: the command line before a sweep, the workflow's config check
-before any job.
+1e-6 degrees, 31623 x 31623 points) would grow until the machine stops it with a
+traceback.  ``tennis-stroke sweep`` runs on the user's machine, with no scheduler to
+enforce a job's memory (the workflow's jobs ask for theirs and are bounded by
+``max_points_per_job``, :mod:`tennis_stroke.pipeline.resources`), so it estimates first
+(:func:`batch_bytes`, :func:`result_bytes`) and refuses with one line
+(:func:`check_memory`) beyond :func:`memory_limit`.
 
-The limit, first found wins: an explicit value (``tennis-stroke sweep --max-memory``,
-the workflow's config key ``max_memory``), the environment variable
+The limit, first found wins: an explicit value (``tennis-stroke sweep --max-memory``),
+the environment variable
 :data:`MEMORY_ENV` (``TENNIS_STROKE_MAX_MEMORY``), else :data:`MEMORY_SHARE` of the
 memory this process may use (the physical memory, or less under a cgroup limit or an
 address-space ``ulimit``).  Sizes are bytes or a number with ``K``, ``M``, ``G``, ``T``
@@ -30,15 +31,12 @@ from pathlib import Path
 
 import numpy as np
 
-from ..experiments.specs import CURVE_VARIABLES
 from ..model.dynamics import N_CF
 from ..solver.integrate import HISTORY_COLS
 from ..solver.results import COUNT_FIELDS, DEGREE_FIELDS, N_OUT, RESULT_FIELDS
 
 #: Bytes of one float64 or int64 value.
 WORD = np.dtype(np.float64).itemsize
-#: Variables of the sampled curves of a single stroke.
-N_CURVES = len(CURVE_VARIABLES)
 #: Result fields that :func:`tennis_stroke.solver.results.results_from_output` copies
 #: out of the compiled output: the counts (to int64) and the angles (to degrees); the
 #: others are views of it.
@@ -52,14 +50,6 @@ _COPIED_FIELDS = len(COUNT_FIELDS) + len(DEGREE_FIELDS)
 #: bytes per stroke for a grid given as broadcast axes, 440 for flat angle arrays (which
 #: the caller holds as well).
 BATCH_BYTES_PER_STROKE = WORD * (2 + 1 + N_CF + N_OUT + _COPIED_FIELDS)
-#: Peak bytes per (stroke, time) point of the sampled curves of single strokes
-#: (:func:`tennis_stroke.experiments.strokes.trajectories`), an upper bound: each curve
-#: variable held twice and four values more, 8 x (2 x 13 + 4) = 240 bytes.  The compiled
-#: curves (:func:`tennis_stroke.solver.curves.stroke_curves`) hold 7 values a sample, the
-#: dataset 13, the stick figure's points 6 more while they are stacked.  Measured (peak
-#: resident memory over Fig. 4's two strokes at 400,000 samples each, written to netCDF,
-#: 2026-12-06): 185 bytes, for the free swing and the stroke with the ball alike.
-CURVE_BYTES_PER_SAMPLE = WORD * (2 * N_CURVES + 4)
 #: Bytes per stroke of the result fields (every field one int64 or float64).
 RESULT_BYTES_PER_STROKE = WORD * len(RESULT_FIELDS)
 #: Share of the usable memory a computation may take by default: the rest is left to
@@ -81,11 +71,6 @@ def batch_bytes(n_strokes: int, threads: int = 1, history: int = 512) -> int:
     threads (each keeps a swing history of ``history`` rows)."""
     per_thread = (int(history) + 1) * HISTORY_COLS * WORD
     return int(n_strokes) * BATCH_BYTES_PER_STROKE + max(1, int(threads)) * per_thread
-
-
-def curve_bytes(points: int) -> int:
-    """Peak bytes of the sampled curves of ``points`` (stroke, time) points."""
-    return int(points) * CURVE_BYTES_PER_SAMPLE
 
 
 def result_bytes(n_strokes: int) -> int:
@@ -170,11 +155,10 @@ def memory_limit(
 ) -> tuple[int, str]:
     """The memory limit (bytes) and where it comes from, for messages.
 
-    ``explicit`` (from ``source``, e.g. ``"--max-memory"`` or ``"config key
-    'max_memory'"``) wins, then the environment variable :data:`MEMORY_ENV`, then
-    :data:`MEMORY_SHARE` of :func:`usable_memory`; the default never exceeds the address
-    space left under a ``ulimit``.  The default's description names ``source`` and
-    :data:`MEMORY_ENV` as the ways to change it.
+    ``explicit`` (from ``source``, e.g. ``"--max-memory"``) wins, then the environment
+    variable :data:`MEMORY_ENV`, then :data:`MEMORY_SHARE` of :func:`usable_memory`; the
+    default never exceeds the address space left under a ``ulimit``.  The default's
+    description names ``source`` and :data:`MEMORY_ENV` as the ways to change it.
 
     Raises
     ------

@@ -29,7 +29,8 @@ from ..replication.marks import mark_values
 from ..replication.registry import FIGURES
 from . import params as job_params
 from .checkout import hold_folder, installed_difference, runs_no_code
-from .config_check import config_errors, numbers_from_strings, rows_per_job
+from .config_check import config_errors, job_points, numbers_from_strings, rows_per_job, search_jobs
+from .resources import asked
 from .scenarios import (
     FOLDER,
     SCENARIOS_FILE,
@@ -254,6 +255,41 @@ class Runs:
         name = self.scenario_name(wildcards)
         where = "results" if name is None else folder(name)
         return [f"{where}/chunks/{wildcards.map}/{i}-of-{n}.nc" for i in range(n)]
+
+    # -- resources --------------------------------------------------------------------
+
+    def row_resources(self, name: str):
+        """A resources function (``mem_mb`` or ``runtime``): what a job of the table's row
+        (its ``stem`` wildcard) asks, from its points in its run's configuration."""
+
+        def value(wildcards):
+            points, _ = job_points(ROWS[wildcards.stem], self.configuration(wildcards))
+            return asked(points)[name]
+
+        return value
+
+    def map_resources(self, name: str):
+        """A resources function: what gathering a chunked map asks (all its strokes)."""
+
+        def value(wildcards):
+            if wildcards.map == ROBUSTNESS_MAP:
+                return asked(self.space.raw["multiverse"]["readings"])[name]
+            e = CHUNKED[wildcards.map]
+            batches = e.strokes(e.arguments(self.configuration(wildcards))) if e.strokes else [0]
+            return asked(batches[0])[name]
+
+        return value
+
+    def search_resources(self, name: str, lockstep: bool = False):
+        """A resources function: what a job running the claims' searches asks, from the
+        largest search's first batch in the paper's configuration, for one reading or
+        (``lockstep``) for a robustness chunk's readings at once."""
+        readings = 1
+        if lockstep:
+            multiverse = self.space.raw["multiverse"]
+            readings = rows_per_job(multiverse["readings"], multiverse["chunks"])
+        points = max((p for _, _, p in search_jobs(self.config, readings)), default=0)
+        return lambda wildcards: asked(points)[name]
 
     # -- claims -----------------------------------------------------------------------
 

@@ -17,6 +17,10 @@ METHODS = {
     "scipy": ("RK45", "RK23", "DOP853", "Radau", "BDF", "LSODA"),
     "fixed": ("RK4",),
 }
+#: The smallest step (s) of fixed-step RK4 a study may take: 5e4 steps over the 0.5 s of
+#: the stability study's contact, each a Python call.  A smaller step is a typo whose job
+#: would compute for days (``rk4_steps: [1.0e-12]``, issue 56), refused before any job.
+MIN_RK4_STEP = 1.0e-5
 
 
 def parse_method(method: str) -> tuple[str, str]:
@@ -44,6 +48,11 @@ def check_case(method: str, setting: float) -> tuple[str, str]:
     ):
         what = "RK4 step (s)" if family == "fixed" else "tolerance"
         raise ValueError(f"{what} of case {method!r} must be a number > 0, got {setting!r}")
+    if family == "fixed" and setting < MIN_RK4_STEP:
+        raise ValueError(
+            f"RK4 step of case {method!r} must be at least {MIN_RK4_STEP:g} s "
+            f"(studies.methods.MIN_RK4_STEP), got {setting!r}"
+        )
     if family == "tennis_stroke":
         SolverSettings(method=name, rtol=setting, atol=setting, accuracy_bound=False)
     return family, name
