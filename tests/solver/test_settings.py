@@ -9,7 +9,7 @@ import pytest
 import yaml
 
 from tennis_stroke import ParameterError, SolverSettings, strike, strike_batch
-from tennis_stroke.pipeline.memory import (
+from tennis_stroke.experiments.memory import (
     BATCH_BYTES_PER_STROKE,
     MEMORY_ENV,
     MemoryLimitError,

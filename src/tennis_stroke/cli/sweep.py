@@ -77,7 +77,7 @@ def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress)
 def run(args: argparse.Namespace) -> int:
     from ..io.netcdf import check_writable, result_dataset, write_netcdf
     from ..model.params import resolve_params
-    from ..pipeline.memory import batch_bytes, check_memory, memory_limit, result_bytes
+    from ..experiments.memory import batch_bytes, check_memory, memory_limit, result_bytes
     from ..solver.results import OK
     from ..solver.stroke import default_threads
 

@@ -15,7 +15,7 @@ memory this process may use (the physical memory, or less under a cgroup limit o
 address-space ``ulimit``).  Sizes are bytes or a number with ``K``, ``M``, ``G``, ``T``
 (powers of 1024: ``8G``, ``512MiB``, ``1.5 GB``).
 
-The estimate lives with the workflow's support, not in the solver whose arrays it
+The estimate lives with the experiments, not in the solver whose arrays it
 counts: a change here must not invalidate the compiled solver's cache
 (:mod:`tennis_stroke._cache`).
 """
