@@ -7,8 +7,6 @@ import os
 import sys
 from pathlib import Path
 
-from snakemake.utils import validate
-
 from tennis_stroke.experiments.specs import (
     IDENTIFICATION_FILES,
     INFERENCE_RESULTS,
@@ -23,7 +21,6 @@ from tennis_stroke.io.interrupts import PARENT_ENV, process_identity
 from tennis_stroke.pipeline import params as job_params
 from tennis_stroke.pipeline.checkout import runs_no_code, shell_safe
 from tennis_stroke.pipeline.code_inputs import CodeInputs
-from tennis_stroke.pipeline.config_check import canonical, load_schema
 from tennis_stroke.pipeline.kept import keep, restore, unrecord
 from tennis_stroke.pipeline.runs import (
     CHUNKED,
@@ -43,14 +40,9 @@ from tennis_stroke.replication.registry import FIGURES
 
 SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
 try:
-    # the claims, the reading space and the config against its schema and bounds
+    # the claims, the reading space and the config (its defaults filled in, checked
+    # against its schema and bounds, one spelling per value): once per start
     _adhoc, READING_SPACE = checked_config(config, SCHEMA)
-    validate(config, "../schemas/config.schema.yaml", set_default=True)
-    # one spelling per value (C2: 5 is 5.0, keys in the schema's order): equal settings,
-    # equal job params, no rerun
-    _canonical = canonical(config, load_schema(SCHEMA))
-    config.clear()
-    config.update(_canonical)
     # the scenarios (config/scenarios.yaml and --config scenarios=...), each checked as
     # the paper's configuration is; a bad one is a warning line, never a stop
     RUNS = Runs.declared(config, READING_SPACE, _adhoc, SCHEMA)

@@ -75,9 +75,9 @@ def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress)
 
 
 def run(args: argparse.Namespace) -> int:
+    from ..experiments.memory import batch_bytes, check_memory, memory_limit, result_bytes
     from ..io.netcdf import check_writable, result_dataset, write_netcdf
     from ..model.params import resolve_params
-    from ..experiments.memory import batch_bytes, check_memory, memory_limit, result_bytes
     from ..solver.results import OK
     from ..solver.stroke import default_threads
 

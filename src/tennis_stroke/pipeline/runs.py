@@ -29,7 +29,16 @@ from ..replication.marks import mark_values
 from ..replication.registry import FIGURES
 from . import params as job_params
 from .checkout import hold_folder, installed_difference, runs_no_code
-from .config_check import config_errors, job_points, numbers_from_strings, rows_per_job, search_jobs
+from .config_check import (
+    canonical,
+    config_errors,
+    job_points,
+    load_schema,
+    numbers_from_strings,
+    rows_per_job,
+    search_jobs,
+    with_defaults,
+)
 from .resources import asked
 from .scenarios import (
     FOLDER,
@@ -69,14 +78,16 @@ class PlanningError(Exception):
 
 
 def checked_config(config: dict, schema: Path) -> tuple[object, ReadingSpace]:
-    """Check the workflow ``config`` (changed in place: nested ``--config`` values, which
-    arrive as strings, become numbers again; the scenarios given on the command line are
-    taken out, returned first), the claims (config/claims.yaml: ids, result files,
-    measurements and their arguments, tolerances, else they fail after every
-    simulation) and the reading space (config/readings.yaml, with the claims its fit
-    sets name: the robustness analysis' chunks are planned from it); then the config
-    against ``schema`` and its bounds, counting the readings the largest robustness job
-    searches in lockstep.  Returns the command line's scenarios and the reading space."""
+    """Check the workflow ``config``, the one validation of a Snakemake start (changed in
+    place: nested ``--config`` values, which arrive as strings, become numbers again; the
+    scenarios given on the command line are taken out, returned first; the schema's
+    defaults filled in, every value in one spelling, :func:`canonical`), the claims
+    (config/claims.yaml: ids, result files, measurements and their arguments,
+    tolerances, else they fail after every simulation) and the reading space
+    (config/readings.yaml, with the claims its fit sets name: the robustness analysis'
+    chunks are planned from it); then the config against ``schema`` and its bounds,
+    counting the readings the largest robustness job searches in lockstep.  Returns the
+    command line's scenarios and the reading space."""
     config.update(numbers_from_strings(config))
     adhoc = config.pop("scenarios", None)
     errors = claim_errors("config/claims.yaml")
@@ -89,11 +100,21 @@ def checked_config(config: dict, schema: Path) -> tuple[object, ReadingSpace]:
     except ReadingSpaceError as exc:
         raise PlanningError("readings", str(exc)) from None
     multiverse = space.raw["multiverse"]
+    loaded = load_schema(schema)
+    if isinstance(config, Mapping):
+        filled = with_defaults(config, loaded)
+        config.clear()
+        config.update(filled)
     errors = config_errors(
         config, schema, rows_per_job(multiverse["readings"], multiverse["chunks"])
     )
     if errors:
         raise PlanningError("config", errors[0])
+    # one spelling per value (C2: 5 is 5.0, keys in the schema's order): equal settings,
+    # equal job params, no rerun
+    spelled = canonical(config, loaded)
+    config.clear()
+    config.update(spelled)
     return adhoc, space
 
 
