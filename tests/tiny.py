@@ -25,7 +25,6 @@ TINY = {
             "tau": {"start": 0.0, "stop": 0.2, "step": 0.1},
         },
         "fig8": {
-            "C2": 5.0,
             "delta0": {"start": 0.0, "stop": 100.0, "step": 50.0},
             "tau": {"start": 0.0, "stop": 0.2, "step": 0.1},
         },

@@ -56,7 +56,8 @@ def test_overrides_merge_key_by_key_and_replace_lists_whole():
 
 def test_a_change_of_the_base_stroke_moves_the_files_of_secs_5_6_only():
     config = scenario_config(BASE, "s", BASE_STROKE, SCHEMA)
-    assert changed_results(BASE, config) == ["fig9", "delay", "elbow_map", "elbow"]
+    # the Sec. V stroke's C2 is Fig. 8's too (one value of the paper, one key)
+    assert changed_results(BASE, config) == ["fig8", "fig9", "delay", "elbow_map", "elbow"]
     files = resolved_results(BASE, config, "s")
     assert files["fig9"] == "results/scenarios/s/torque_delay/fig9.nc"
     assert files["fig2"] == PAPER_RESULTS["fig2"] == "results/angle_maps/fig2.nc"
@@ -283,8 +284,9 @@ def test_the_readme_is_never_written_from_a_scenario_or_a_departure(tmp_path):
 
 def test_each_key_names_what_it_drives():
     e = explain("torque_delay.base_stroke.C2", PAPER, CLAIMS)
-    assert e.rows == ("fig9", "delay", "elbow_map", "elbow")
+    assert e.rows == ("fig8", "fig9", "delay", "elbow_map", "elbow")
     assert e.figures == (
+        "fig08_delay_delta0",
         "fig09_v_tau",
         "fig10_omegas_delay",
         "fig11_strobe_tau_H",

@@ -286,11 +286,13 @@ def _angle_map(fig: str, index: int) -> Experiment:
     )
 
 
-def _delay_map(fig: str, first: str, other: str, section: str = "") -> Experiment:
-    """A delay map of Figs. 7-9: ``first`` (its chunked axis) and ``other`` read from
-    ``torque_delay.{section}`` (default: the figure's own section), ``tau`` from the
-    figure's."""
-    section = section or fig
+def _delay_map(
+    fig: str, first: str, other: str, *, first_from: str = "", other_from: str = ""
+) -> Experiment:
+    """A delay map of Figs. 7-9: ``first`` (its chunked axis) read from
+    ``torque_delay.{first_from}`` and ``other`` from ``torque_delay.{other_from}`` (default:
+    the figure's own section; ``base_stroke``: the Sec. V-VI stroke's value, which the
+    figure does not write again), ``tau`` from the figure's."""
     return Experiment(
         fig,
         f"results/torque_delay/{fig}.nc",
@@ -298,8 +300,8 @@ def _delay_map(fig: str, first: str, other: str, section: str = "") -> Experimen
         {
             "L1": "torque_delay.L1",
             "theta0": "torque_delay.theta0",
-            first: f"torque_delay.{section}.{first}",
-            other: f"torque_delay.{section}.{other}",
+            first: f"torque_delay.{first_from or fig}.{first}",
+            other: f"torque_delay.{other_from or fig}.{other}",
             "tau": f"torque_delay.{fig}.tau",
         },
         (*STROKE_VARIABLES, "best_tau", "best_v_out", "v_out_tau0"),
@@ -387,8 +389,8 @@ EXPERIMENTS: dict[str, Experiment] = {
             strokes=_mass_length_strokes,
         ),
         _delay_map("fig7", "C2", "delta0"),
-        _delay_map("fig8", "delta0", "C2"),
-        _delay_map("fig9", "delta0", "C2", section="base_stroke"),
+        _delay_map("fig8", "delta0", "C2", other_from="base_stroke"),
+        _delay_map("fig9", "delta0", "C2", first_from="base_stroke", other_from="base_stroke"),
         Experiment(
             "delay",
             "results/strokes/delay.nc",

@@ -139,7 +139,7 @@ def controls(config: Mapping, figure: str, fitted: Collection[str] = ()) -> list
         ("torque_delay.L1", "L1 of Fig. 9", "m", *_bounds(l1)),
         ("torque_delay.theta0", "theta0 of Fig. 9", "degree", 0.0, 180.0),
         ("torque_delay.base_stroke.delta0", "delta0 of Fig. 9", "degree", -90.0, 180.0),
-        ("torque_delay.base_stroke.C2", "C2 of Fig. 9", "N m", None, None),
+        ("torque_delay.base_stroke.C2", "C2 of Figs. 8-14", "N m", None, None),
     ):
         out.append(Control(key, label, unit, value_at(config, key), low, high))
     return out
