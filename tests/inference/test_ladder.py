@@ -6,13 +6,13 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from snakemake.utils import validate
 from tiny import TINY
 
 from tennis_stroke import strike
 from tennis_stroke.inference import ladder as ld
 from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.inference.ladder_plan import LadderError, check_ladder, rung_model
+from tennis_stroke.pipeline.config_check import load_schema, with_defaults
 
 ROOT = Path(__file__).resolve().parents[2]
 CLAIMS = load_claims(ROOT / "config" / "claims.yaml")
@@ -21,7 +21,7 @@ CLAIMS = load_claims(ROOT / "config" / "claims.yaml")
 @pytest.fixture(scope="module")
 def tiny_ladder():
     config = copy.deepcopy(TINY)
-    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    config.update(with_defaults(config, load_schema(ROOT / "workflow/schemas/config.schema.yaml")))
     return ld.evaluate_ladder(CLAIMS, config, threads=1)
 
 

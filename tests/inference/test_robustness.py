@@ -14,6 +14,7 @@ from tennis_stroke.inference import multiverse as mv
 from tennis_stroke.inference import robustness as ev
 from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.inference.reading_space import CLAIM_LEVEL, load_reading_space
+from tennis_stroke.pipeline.config_check import load_schema, with_defaults
 from tennis_stroke.replication import robustness as rb
 from tennis_stroke.replication.claims import evaluate
 from tennis_stroke.solver.settings import SolverSettings
@@ -230,13 +231,12 @@ def test_claims_across_readings_equal_each_reading_measured_alone(space, claims)
     curve_files_of and number_files_of) equals the one through each reading's datasets."""
     import copy
 
-    from snakemake.utils import validate
     from tiny import TINY, TINY_READINGS
 
     from tennis_stroke.inference.targeted import curve_files_of, number_files_of, targeted_files_of
 
     config = copy.deepcopy(TINY)
-    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    config.update(with_defaults(config, load_schema(ROOT / "workflow/schemas/config.schema.yaml")))
     raw = dict(space.raw)
     raw["multiverse"] = {
         **raw["multiverse"],

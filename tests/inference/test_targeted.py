@@ -14,6 +14,7 @@ from tennis_stroke.experiments.specs import EXPERIMENTS
 from tennis_stroke.inference import measures as ms
 from tennis_stroke.inference import search_plan
 from tennis_stroke.inference import targeted as tg
+from tennis_stroke.pipeline.config_check import load_schema, with_defaults
 from tennis_stroke.solver.settings import SolverSettings
 from tennis_stroke.solver.stroke import rhs_evaluations
 
@@ -115,11 +116,10 @@ def test_readings_searched_in_lockstep_get_the_files_each_gets_alone():
     grids; docs/inference.md, "Every reading's search in lockstep"); and so with the
     robustness chunk's memo, which runs fewer strokes."""
     from conftest import assert_same_results
-    from snakemake.utils import validate
     from tiny import TINY
 
     config = copy.deepcopy(TINY)
-    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    config.update(with_defaults(config, load_schema(ROOT / "workflow/schemas/config.schema.yaml")))
     models = [
         {"k_contact": 7800.0, "ball_mass": 0.058, "inertia": "uniform_rod"},
         {
@@ -168,14 +168,13 @@ def test_the_curve_files_of_readings_at_once_are_each_reading_s_datasets():
     bit each reading's own dataset (paper_results, one reading at a time) in every
     variable the stack holds, under both curves; the stack holds every variable a
     claim can read (the dataset's, less the labels and the delay's ``tau``)."""
-    from snakemake.utils import validate
     from tiny import TINY
 
     from tennis_stroke.inference.multiverse import paper_results
     from tennis_stroke.inference.reading_space import CURVE_FILES
 
     config = copy.deepcopy(TINY)
-    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    config.update(with_defaults(config, load_schema(ROOT / "workflow/schemas/config.schema.yaml")))
     models = [
         {"k_contact": 7800.0, "ball_mass": 0.058},
         {"k_contact": 300.0, "inertia": "paper_text", "contact_lead_rule": "half_period"},
@@ -205,11 +204,10 @@ def test_the_number_files_of_readings_at_once_are_each_reading_s_files():
     readings, unknowns and Table I's force delay differing), each one batch for all the
     readings, bit for bit each reading's own file (the workflow's k sensitivity,
     table1_numbers) in every variable the stack holds."""
-    from snakemake.utils import validate
     from tiny import TINY
 
     config = copy.deepcopy(TINY)
-    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
+    config.update(with_defaults(config, load_schema(ROOT / "workflow/schemas/config.schema.yaml")))
     models = [
         {"k_contact": 7800.0, "ball_mass": 0.058, "inertia": "uniform_rod"},
         {"k_contact": 300.0, "ball_mass": 0.057, "inertia": "paper_text"},

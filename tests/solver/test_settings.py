@@ -104,14 +104,18 @@ def test_the_workflow_schema_leaves_the_bound_to_the_package():
     assert "MAX_RTOL" in solver["rtol"]["description"]
 
 
-def test_the_workflow_schema_s_solver_defaults_and_methods_are_the_package_s():
-    """The solver's defaults live in SolverSettings and its methods in METHOD_IDS; the
-    config schema (whose defaults Snakemake fills in) must give the same, everywhere it
-    names a method."""
+def test_the_solver_s_defaults_and_methods_have_one_home():
+    """The solver's defaults live in SolverSettings and its methods in METHOD_IDS: the
+    schema file writes neither (not a default, not a method name), and the schema the
+    workflow checks with gives exactly the package's, everywhere it names a method."""
+    from tennis_stroke.pipeline.config_check import load_schema
     from tennis_stroke.solver.settings import METHOD_IDS
 
-    text = (ROOT / "workflow/schemas/config.schema.yaml").read_text()
-    schema = yaml.safe_load(text)
+    path = ROOT / "workflow/schemas/config.schema.yaml"
+    text = path.read_text()
+    assert "5.0e-8" not in text and "default: DOP853" not in text
+    assert "[DOP853, DP54]" not in text and "[DP54, DOP853]" not in text
+    schema = load_schema(path)
     solver = schema["properties"]["solver"]["properties"]
     default = SolverSettings()
     for key in ("method", "rtol", "atol"):

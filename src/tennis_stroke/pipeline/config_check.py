@@ -30,7 +30,7 @@ from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_
 from ..inference.search_plan import BRACKET_KEYS, SEARCHED, search_strokes
 from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
 from ..model.params import CHOICES, PARAMETERS, ParameterError, resolve_params
-from ..solver.settings import SolverSettingError, SolverSettings
+from ..solver.settings import METHOD_IDS, SolverSettingError, SolverSettings
 from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case
 from .resources import DEFAULT_MAX_POINTS
 
@@ -443,7 +443,23 @@ def load_schema(schema_path: str | Path) -> dict:
 
 @functools.lru_cache(maxsize=4)
 def _parsed_schema(path: Path, mtime_ns: int, size: int) -> dict:
-    return load_yaml(path)
+    return with_package_values(load_yaml(path))
+
+
+def with_package_values(schema: dict) -> dict:
+    """``schema`` with what the package owns, which the file does not write again: the
+    solver's defaults (``method``, ``rtol``, ``atol``) from
+    :class:`~tennis_stroke.solver.settings.SolverSettings` and the methods that exist
+    (:data:`~tennis_stroke.solver.settings.METHOD_IDS`), for the solver section and a
+    model ladder rung's."""
+    default = SolverSettings()
+    solver = schema["properties"]["solver"]["properties"]
+    for key in ("method", "rtol", "atol"):
+        solver[key]["default"] = getattr(default, key)
+    rung = schema["properties"]["model_ladder"]["properties"]["rungs"]["items"]
+    for spec in (solver["method"], rung["properties"]["solver"]["properties"]["method"]):
+        spec["enum"] = list(METHOD_IDS)
+    return schema
 
 
 def config_errors(config: Mapping, schema_path: str | Path, readings: int = 1) -> list[str]:
