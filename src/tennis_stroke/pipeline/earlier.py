@@ -1,18 +1,12 @@
-"""The earlier file of each output a run is about to make, kept beside it until its job
-has made the new one.  Snakemake removes a job's outputs when it starts the job, and
-its ``update()`` flag, which keeps them, copies them into ``.snakemake/backups``,
-copies a failed job's back over the file and records the job as complete with the new
-params, so that the old file looks up to date (snakemake/snakemake#3808; #1150).
+"""A job's earlier output, kept beside it until the job has made the new one: Snakemake
+removes a job's outputs when it starts it, and its ``update()`` flag copies them into
+``.snakemake/backups``, back over the file after a failure, and then records the failed
+job as complete with the new params (snakemake/snakemake#3808; #1150).
 
-:func:`keep` hard-links each existing output of the planned jobs to a hidden name in its
-own folder (``results/x/.fig9.nc.earlier``): the same file system, nothing copied, and a
-file system that refuses the link keeps nothing of that file, in one line.  At the end
-of a run (:func:`settle`; the Snakefile's ``onsuccess`` and ``onerror``, and at the next
-run's start after ``kill -9``) each kept file goes: the output is there and complete, or
-the earlier file is renamed back over a missing or incomplete one (a rename: no space
-needed, never a partial file), dated 1970 and without Snakemake's records of it, so the
-next run plans its job again.  Only files of a run in progress (or killed) are kept:
-``--delete-all-output`` after a run leaves nothing behind.
+:func:`keep` hard-links each output to a hidden name in its own folder (one file system:
+never a copy); :func:`settle`, when the run ends or the next one starts, drops it or
+renames it back (no space needed, never a partial file) dated 1970 and unrecorded, so the
+job runs again.  Nothing stays after a run: ``--delete-all-output`` frees every result.
 """
 
 from __future__ import annotations
@@ -21,12 +15,9 @@ import os
 import sys
 from pathlib import Path
 
-#: The name an earlier file is kept under, in its output's folder.
-PREFIX, SUFFIX = ".", ".earlier"
-#: The folders of the workflow's outputs.
-TOPS = ("results", "report")
-#: The modification time (s since 1970) of a file put back: older than any input.
-STALE_TIME = 0
+#: The name an earlier file is kept under, in its output's folder; the outputs' folders;
+#: the modification time (s since 1970) of a file put back, older than any input.
+PREFIX, SUFFIX, TOPS, STALE_TIME = ".", ".earlier", ("results", "report"), 0
 
 
 def beside(path: str | Path) -> Path:
