@@ -164,19 +164,20 @@ def run_snakemake(targets, workdir, *options, timeout=300):
 
 def paused_write(target, workdir, pause: float, timeout: float = 300) -> subprocess.Popen:
     """Force ``target``'s job in ``workdir`` on one core, its write paused ``pause`` s
-    (``io.netcdf.TEST_PAUSE_ENV``), in a session of its own (``os.killpg`` signals the
-    whole run), and return the running process once the job is inside its write (a
-    ``.tmp`` file under ``results/``).  Fails, the run killed, if it ends before writing
-    or writes nothing within ``timeout`` s."""
-    from tennis_stroke.io.netcdf import TEST_PAUSE_ENV
-
+    (``tests/pause/sitecustomize.py``, on the jobs' PYTHONPATH), in a session of its own
+    (``os.killpg`` signals the whole run), and return the running process once the job
+    is inside its write (a ``.tmp`` file under ``results/``).  Fails, the run killed, if
+    it ends before writing or writes nothing within ``timeout`` s."""
+    path = os.pathsep.join(
+        filter(None, [str(ROOT / "tests" / "pause"), os.environ.get("PYTHONPATH")])
+    )
     run = subprocess.Popen(
         snakemake_command(target, workdir, "--cores", "1", "-f"),
         start_new_session=True,
         stdout=subprocess.PIPE,
         stderr=subprocess.PIPE,
         text=True,
-        env={**os.environ, TEST_PAUSE_ENV: str(pause)},
+        env={**os.environ, "PYTHONPATH": path, "TENNIS_STROKE_TEST_WRITE_PAUSE": str(pause)},
     )
     deadline = time.monotonic() + timeout
     try:

@@ -197,7 +197,7 @@ def test_a_signal_while_a_job_writes_ends_the_run_at_once(tmp_path, signum, line
     finishes the write with the signal deferred, removes its temporary file, ends with
     one line, and Snakemake stops; nothing hangs, nothing else is lost.  A write of the
     tiny run lasts milliseconds, so the job pauses inside it
-    (``io.netcdf.TEST_PAUSE_ENV``).  Snakemake removes a job's outputs when it starts the
+    (``tests/pause/sitecustomize.py``).  Snakemake removes a job's outputs when it starts the
     job (checked below, before the signal); the stopped run puts the earlier one back
     (tests/workflow/test_workflow_failsafe.py)."""
     work = workdir(tmp_path, TINY, TINY_READINGS)

@@ -633,12 +633,25 @@ def test_a_failed_job_leaves_the_earlier_result_until_the_new_one_is_made(tmp_pa
     again = run_snakemake(target, work, "--cores", "1", timeout=600)
     assert again.returncode == 0, again.stderr[-3000:]
     assert (work / target).stat().st_mtime > 0 and PUT_BACK not in again.stderr
+    assert_nothing_kept(work)
+    # the kept copies stayed in .snakemake: --delete-all-output freed nothing of them
+    deleted = run_snakemake("report", work, "--delete-all-output", "--cores", "1")
+    assert deleted.returncode == 0, deleted.stderr[-3000:]
+    assert not [p for p in (work / "results").rglob("*") if p.is_file()]
+
+
+def assert_nothing_kept(work):
+    """A run that ended leaves no earlier file of its own (pipeline.earlier) and no copy
+    of a result in Snakemake's folder."""
+    assert not list(work.rglob("*.earlier"))
+    snakemake = work / ".snakemake"
+    assert not list(snakemake.glob("tennis-stroke-kept*")) and not (snakemake / "backups").exists()
 
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
 def test_a_stopped_run_leaves_the_earlier_result_of_its_job(tmp_path, signum):
     """The issue's case: a work-precision job stopped while it runs (here paused inside
-    its write, ``io.netcdf.TEST_PAUSE_ENV``) took results/solver_study/work_precision.nc
+    its write, ``tests/pause/sitecustomize.py``) took results/solver_study/work_precision.nc
     with it.  Now the stopped run puts the earlier file back, dated 1970."""
     work = workdir(tmp_path, TINY, TINY_READINGS)
     target = "results/solver_study/work_precision.nc"
@@ -657,5 +670,6 @@ def test_a_stopped_run_leaves_the_earlier_result_of_its_job(tmp_path, signum):
     assert (work / target).read_bytes() == earlier
     assert (work / target).stat().st_mtime == 0
     assert PUT_BACK + target in stderr.splitlines(), stderr[-2000:]
+    assert_nothing_kept(work)
     plan = run_snakemake(target, work, "-n")
     assert plan.returncode == 0 and "gather_map" in planned_jobs(plan.stdout + plan.stderr)

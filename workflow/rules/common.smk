@@ -19,9 +19,9 @@ from tennis_stroke.experiments.specs import (
 )
 from tennis_stroke.io.interrupts import PARENT_ENV, process_identity
 from tennis_stroke.pipeline import params as job_params
-from tennis_stroke.pipeline.checkout import runs_no_code, shell_safe
+from tennis_stroke.pipeline.checkout import shell_safe
 from tennis_stroke.pipeline.code_inputs import CodeInputs
-from tennis_stroke.pipeline.kept import keep, restore, unrecord
+from tennis_stroke.pipeline import earlier
 from tennis_stroke.pipeline.runs import (
     CHUNKED,
     CHUNKED_MAPS,
@@ -61,17 +61,24 @@ os.environ[PARENT_ENV] = process_identity(os.getpid())
 CODE = CodeInputs(workflow.basedir)
 # What a job without points asks of the scheduler (tennis_stroke.pipeline.resources).
 LIGHT = asked(0)
-# Every result and page as it is before any job, kept until the run has made the new
-# one: Snakemake removes a job's outputs when it starts the job, and a job that fails
-# or is stopped would take its earlier file with it.  A failed or stopped run puts each
-# one back, dated 1970 and without Snakemake's records of it, so that its job runs again
-# (tennis_stroke.pipeline.kept).
-KEPT = keep() if workflow.is_main_process and not runs_no_code(sys.argv[1:]) else []
+# The earlier file of each output a job is about to replace, kept beside it until the
+# job has made the new one (Snakemake removes a job's outputs when it starts the job);
+# at the end each is dropped or, for a failed or stopped job, put back dated 1970 and
+# unrecorded, so that its job runs again (tennis_stroke.pipeline.earlier).
+
+
+onstart:
+    if workflow.is_main_process:
+        earlier.settle(workflow.persistence)  # a killed run's
+        earlier.keep(workflow.persistence.all_outputfiles())
+
+
+onsuccess:
+    earlier.settle(workflow.persistence)
 
 
 onerror:
-    put_back = restore(KEPT)
-    unrecord(workflow.persistence, put_back)
+    put_back = earlier.settle(workflow.persistence)
     if put_back:
         sys.stderr.write(
             f"tennis-stroke: {len(put_back)} earlier result(s) put back until their jobs "

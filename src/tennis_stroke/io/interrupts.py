@@ -10,6 +10,12 @@ finishes or fails on its own, its temporary file is removed instead of renamed, 
 the signal is delivered again afterwards.  SIGTERM, which would end the interpreter
 without cleanup, raises :class:`Terminated` where :func:`terminate_raises` is in force
 (the command line and the workflow's jobs).
+
+Snakemake 9.27 does not stop its local jobs when it ends (on SIGTERM it waits for them,
+SIGINT to its process alone and ``kill -9`` leave them running and writing; measured
+2026-12-07; snakemake/snakemake#448, #492 open), so a job watches it
+(:func:`stop_with_snakemake`) and ``whatif`` signals Snakemake's whole process group
+(:func:`run_forwarding`).
 """
 
 from __future__ import annotations

@@ -16,7 +16,6 @@ import os
 import platform
 import subprocess
 import tempfile
-import time
 from collections.abc import Mapping
 from datetime import UTC, datetime
 from functools import cache
@@ -378,7 +377,6 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
         except OSError as exc:
             raise OutputError(f"cannot write {str(path)!r}: {exc}") from None
         try:
-            _test_pause()
             cf_encoded(ds).to_netcdf(tmp, engine="netcdf4")
             if received:
                 tmp.unlink(missing_ok=True)
@@ -396,22 +394,6 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
             tmp.unlink(missing_ok=True)
             raise
     return path
-
-
-#: Fault injection for the tests of interrupts: seconds to pause inside a write, with
-#: the signals deferred and the temporary file created (a real write of the tiny
-#: workflow lasts milliseconds, too short to be hit by a signal on purpose).  Unset: no
-#: pause.
-TEST_PAUSE_ENV = "TENNIS_STROKE_TEST_WRITE_PAUSE"
-
-
-def _test_pause() -> None:
-    pause = os.environ.get(TEST_PAUSE_ENV)
-    if pause:
-        try:
-            time.sleep(float(pause))
-        except ValueError:
-            raise OutputError(f"{TEST_PAUSE_ENV}={pause!r} is not a number of seconds") from None
 
 
 #: Free bytes below which a failed write is put down to a full disk (the netCDF library

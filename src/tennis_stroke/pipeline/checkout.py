@@ -12,9 +12,10 @@ site-packages, not the checkout's ``src/tennis_stroke``: an edit of the checkout
 rerun jobs (their code inputs are the checkout's files) that then run the unedited copy.
 :func:`installed_difference` names the first module in which the two differ.
 
-One run at a time in a working folder (:func:`hold_folder`): Snakemake's own locks
-cannot tell a live run from a dead one, so a second run was told to ``--unlock`` the
-live run's locks, and a run killed with ``kill -9`` left locks that stopped the next.
+One run at a time in a working folder (:func:`hold_folder`), by an ``flock`` the kernel
+lets go when the run ends: Snakemake's lock files name the files a run uses, not the run,
+so it cannot tell a live run from a dead one and tells both to ``--unlock``
+(``snakemake/exceptions.py``, ``LockException``; no upstream issue found).
 """
 
 from __future__ import annotations
@@ -132,10 +133,7 @@ def hold_folder(argv: list[str]) -> str | None:
         os.close(fd)
         who = f" (Snakemake, pid {pid})" if pid else ""
         stop = f"kill -INT {pid}" if pid else "Ctrl-C in its terminal"
-        return (
-            f"another run is active in this folder{who}: wait for it to end, or stop it "
-            f"({stop}); its locks are live: do not --unlock them"
-        )
+        return f"another run is active in this folder{who}: wait for it to end, or stop it ({stop})"
     except OSError:
         os.close(fd)
         return None
