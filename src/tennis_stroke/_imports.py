@@ -21,9 +21,10 @@ NAME = PACKAGE.name
 _NUMBA = re.compile(r"^[ \t]*(?:import[ \t]+numba\b|from[ \t]+numba[ \t.])", re.M)
 
 
+@cache
 def module_path(module: str) -> Path | None:
     """The source file of package module ``module`` (dotted, below the package; ``""``
-    for the package itself), or None if it is not one."""
+    for the package itself), or None if it is not one (looked up once per process)."""
     base = PACKAGE.joinpath(*module.split(".")) if module else PACKAGE
     if base.with_suffix(".py").is_file():
         return base.with_suffix(".py")
@@ -137,13 +138,23 @@ def closure(files: Iterable[Path | str] = (), modules: Iterable[str] = ()) -> li
         (todo if PACKAGE in path.parents else outside).append(path)
     for path in outside:
         todo.extend(module_path(m) for m in imports_of_file(path))
+    for path in todo:
+        if path is not None:
+            seen.update(_closure_of(path))
+    return sorted(seen)
+
+
+@cache
+def _closure_of(start: Path) -> frozenset[Path]:
+    """The package's source files that run when the module at ``start`` is imported."""
+    todo, seen = [start], set()
     while todo:
         path = todo.pop()
         if path is None or path in seen:
             continue
         seen.add(path)
         todo.extend(module_path(m) for m in imports_of_file(path))
-    return sorted(seen)
+    return frozenset(seen)
 
 
 def compiled_modules() -> list[str]:
