@@ -28,9 +28,11 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from importlib import import_module
 
+import numpy as np
+
 from ..io.config_files import value_at
 from ..solver.results import FILE_NAMES, RESULT_FIELDS
-from .grids import axis_size, bracket_size
+from .grids import axis, axis_size, bracket_size
 
 #: Variables of every file of strokes (one per stroke result field).
 STROKE_VARIABLES = tuple(FILE_NAMES.get(k, k) for k in RESULT_FIELDS)
@@ -158,6 +160,19 @@ class Experiment:
             )
             for name, key in self.args.items()
         }
+
+    def axis_ends(self, config: Mapping, coord: str) -> tuple[float, float, str] | None:
+        """The first and last value of the file's axis ``coord`` under ``config`` and the
+        config key it comes from: the grid of a range (:func:`~.grids.axis`), a list's
+        smallest and largest item, a single value twice; None where no argument of the
+        row is that axis."""
+        key = self.args.get(coord)
+        if not isinstance(key, str):
+            return None
+        value = value_at(config, key)
+        values = axis(value) if isinstance(value, Mapping) else np.atleast_1d(value)
+        values = np.asarray(values, dtype=float)
+        return float(values.min()), float(values.max()), key
 
     def row_count(self, arguments: Mapping) -> int:
         """Points of the axis it is chunked along (1 for an unchunked row)."""
