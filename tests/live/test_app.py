@@ -150,6 +150,19 @@ def test_a_value_out_of_bounds_is_refused_and_the_old_kept(shared):
     assert session.generation["all"] == before  # nothing recomputed
 
 
+def test_initial_angles_more_than_a_turn_before_the_hit_are_refused(shared):
+    """Fig. 9's theta0 at 300 deg with delta0 52.5 deg: each within its bounds, but the
+    racket would pass phi = 360 deg and hit a turn later; refused by the workflow's rule
+    of the initial angles, the old value kept (issue 66, case 2)."""
+    session = app.Session(shared, Document())
+    settle(session)
+    before = session.generation["all"]
+    session.widgets["torque_delay.theta0"].value = "300"
+    assert session.widgets["torque_delay.theta0"].value == "90"
+    assert "initial angles theta0 + delta0 must be &lt; 360 degree" in session.error.text
+    assert session.generation["all"] == before  # nothing recomputed
+
+
 def test_failed_strokes_show_as_failed_never_as_numbers(shared):
     session = app.Session(shared, Document())
     settle(session)
