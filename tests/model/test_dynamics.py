@@ -314,17 +314,3 @@ def test_the_stick_figure_has_the_rods_lengths_and_eq_10s_hitting_point():
     down = rod_points(0.0, np.pi / 2, 0.0, 0.0, cf)
     assert (down["x_wrist"], down["y_wrist"]) == pytest.approx((0.0, -0.35))
     assert (down["x_racket"], down["y_racket"]) == pytest.approx((0.68, -0.35))
-
-
-def test_every_path_s_coefficients_take_the_rule_of_the_initial_angles():
-    """The coefficients of a stroke are where its angles enter the model (the compiled,
-    scipy and fixed-step paths and the studies): a start more than a turn before the hit
-    is refused there (issue 66, case 2), the same bits come out for every other."""
-    from tennis_stroke.model.dynamics import CF_PHI0, CF_THETA0, coefficients
-    from tennis_stroke.model.params import ParameterError, resolve_params
-
-    with pytest.raises(ParameterError, match="theta0 \\+ delta0 must be < 360 degree"):
-        coefficients(resolve_params(), 300.0, np.array([50.0, 81.5]))
-    row = coefficients(resolve_params(), 120, 81.5)[0]
-    assert row[CF_THETA0] == np.radians(120.0)
-    assert row[CF_PHI0] == np.radians(120.0) + np.radians(81.5)

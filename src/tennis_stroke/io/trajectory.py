@@ -91,7 +91,7 @@ def stroke_dataset(stroke: ReferenceStroke, times: object = None) -> xr.Dataset:
     Raises
     ------
     ParameterError
-        If ``stroke`` is not a :class:`~tennis_stroke.solver.reference.ReferenceStroke`
+        If ``stroke`` is not a :class:`tennis_stroke.solver.reference.ReferenceStroke`
         or ``times`` are not finite numbers in increasing order.
     """
     if not isinstance(stroke, ReferenceStroke):

@@ -41,8 +41,6 @@ from collections.abc import Mapping
 import numpy as np
 from numba import njit
 
-from .params import initial_angles
-
 # Trig layout (compiled path).
 SIN_TH, COS_TH, SIN_PH, COS_PH, OMEGA1, OMEGA2, THETA, PHI, BALL_S, BALL_W = range(10)
 N_CONTACT = 10  # components in contact; the swing integrates the first 8
@@ -153,10 +151,9 @@ def coefficients(params: Mapping[str, object], theta0_deg, delta0_deg) -> np.nda
     ndarray, shape (n_strokes, N_CF)
         One row per stroke, all arrays broadcast together and flattened (C order).
     """
-    theta0_deg, delta0_deg = initial_angles(theta0_deg, delta0_deg)
     g = {k: np.asarray(v, dtype=float) for k, v in params.items() if not _is_choice(v)}
-    th0 = np.radians(theta0_deg)
-    ph0 = th0 + np.radians(delta0_deg)
+    th0 = np.radians(np.asarray(theta0_deg, dtype=float))
+    ph0 = th0 + np.radians(np.asarray(delta0_deg, dtype=float))
     shape = np.broadcast_shapes(th0.shape, ph0.shape, *(v.shape for v in g.values()))
     h1, h2 = g["L1"] / 2.0, g["L2"] / 2.0
     psi = np.radians(g["psi_F_deg"])

@@ -172,9 +172,9 @@ PARAMETERS: dict[str, ParamSpec] = {
 #: it would pass ``phi = 360`` deg, the hitting position, and hit a turn later (issue
 #: 66: ``theta0 = 480`` gave 258 km/h where ``120`` gives 156).  The paper's strokes lie
 #: far inside (``theta0`` 60-120 deg, ``delta0`` 0-100 deg).  Every entry point goes
-#: through :func:`initial_angles`: the model's coefficients of a stroke
-#: (:func:`tennis_stroke.model.dynamics.coefficients`), the config check and the
-#: explorer's controls.
+#: through :func:`initial_angles`: the solvers' (``strike_batch`` and so ``strike``,
+#: ``solve_stroke``, ``free_swing``, the fixed-step ``fixed_step_stroke``), ``sweep``,
+#: the config check and the explorer's controls.
 INITIAL_ANGLES: dict[str, ParamSpec] = {
     s.name: s
     for s in [

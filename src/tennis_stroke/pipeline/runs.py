@@ -23,7 +23,6 @@ from .._imports import PACKAGE as INSTALLED
 from ..experiments.grids import chunk_count
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, RESULT_FILES, sorted_data
 from ..inference.claims import claim_axis_errors, claim_errors, load_claims
-from ..inference.multiverse import experiment_config
 from ..inference.paper_config import PaperConfigError, load_paper_inputs
 from ..inference.reading_space import ReadingSpace, ReadingSpaceError, load_reading_space
 from ..replication.marks import mark_values
@@ -97,7 +96,7 @@ def checked_config(config: dict, schema: Path) -> tuple[object, ReadingSpace]:
     claims = load_claims("config/claims.yaml")
     errors = claim_axis_errors(claims, config, "config/claims.yaml") or claim_axis_errors(
         claims,
-        experiment_config(config, space, {})[0],
+        space.at_resolution(config),
         "config/claims.yaml",
         " at the robustness analysis' resolution, config/readings.yaml",
     )

@@ -51,7 +51,7 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.impact import instant_contact
-from ..model.params import ParameterError, one_stroke, resolve_params
+from ..model.params import ParameterError, initial_angles, one_stroke, resolve_params
 from .compiled import ensure_compiled
 from .results import (
     EARLY_CONTACT,
@@ -292,6 +292,7 @@ def free_swing(
     """
     resolved = resolve_params(params)
     one_stroke("free_swing", resolved, theta0_deg, delta0_deg)
+    initial_angles(theta0_deg, delta0_deg)
     _check_options(rtol=rtol, atol=atol, t_end=t_end)
     cf = coefficients(resolved, theta0_deg, delta0_deg)[0]
     solver = {"path": "scipy solve_ivp", "method": "DOP853", "rtol": rtol, "atol": atol}
@@ -356,6 +357,7 @@ def solve_stroke(
     """
     resolved = resolve_params(params)
     one_stroke("solve_stroke", resolved, theta0_deg, delta0_deg)
+    initial_angles(theta0_deg, delta0_deg)
     _check_options(rtol=rtol, atol=atol, t_max=t_max, contact_min_steps=contact_min_steps)
     _check_options(follow_through=follow_through, lower=0.0)
     cf = coefficients(resolved, theta0_deg, delta0_deg)[0]
@@ -375,7 +377,7 @@ _DURATIONS = ("t_max", "follow_through", "t_end")
 def _check_options(lower: float | None = None, **options: object) -> None:
     """Each of ``options`` (by name) a finite number above 0 (at least ``lower`` where
     given) and, for a duration, at most :data:`MAX_STROKE_TIME`; a
-    :class:`~tennis_stroke.model.params.ParameterError` naming it otherwise (NaN or inf
+    :class:`tennis_stroke.model.params.ParameterError` naming it otherwise (NaN or inf
     made the phases loop for ever)."""
     for name, value in options.items():
         number = isinstance(value, int | float | np.integer | np.floating) and not isinstance(

@@ -583,7 +583,7 @@ def strike(
     """Simulate one stroke; returns the result fields as Python scalars plus ``status_name``.
 
     The initial angles and parameters are one value each (:func:`strike_batch` takes
-    arrays): an array is a :class:`~tennis_stroke.model.params.ParameterError`."""
+    arrays): an array is a :class:`tennis_stroke.model.params.ParameterError`."""
     one_stroke("strike", resolve_params(params), theta0_deg, delta0_deg)
     res = strike_batch(theta0_deg, delta0_deg, params, settings, threads=1)
     out: dict[str, object] = {k: v.item() for k, v in res.items()}
