@@ -147,7 +147,10 @@ def test_sweep_writes_cf_netcdf(tmp_path, capsys):
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "L2=0"], "'L2' must be > 0"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "nope=1"], "is no model parameter"),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "C2=x"], "must be a number"),
-        (["strike", "--theta0", "90", "--delta0", "3", "--set", "C2"], "expects KEY=VALUE"),
+        (
+            ["strike", "--theta0", "90", "--delta0", "3", "--set", "C2"],
+            "--set 'C2': expected KEY=VALUE",
+        ),
         (["strike", "--theta0", "90", "--delta0", "3", "--set", "tau=nan"], "must be finite"),
         (["strike", "--theta0", "90", "--delta0", "3", "--method", "RK4"], "invalid choice"),
         (["strike", "--theta0", "90", "--delta0", "3", "--rtol", "0"], "'rtol' must be > 0"),
@@ -219,6 +222,17 @@ def test_sweep_writes_cf_netcdf(tmp_path, capsys):
             "a sweep of 120000000001 x 90000000001 strokes needs about",
         ),
         (["sweep", "--theta0", "60:inf:3", "--delta0", "0:90:3", "--out", "x.nc"], "finite"),
+        # issue 66: a turn too far gave ok and 258.2 km/h (case 2); NUM 1 dropped STOP and
+        # START = STOP gave NUM equal points (case 13); the last of two --set won (case 12)
+        (["strike", "--theta0", "480", "--delta0", "81.5"], "'theta0' must be <= 360 degree"),
+        (["sweep", "--theta0", "280:300:3", *DELTA_OUT], "got 300 + 90 = 390"),
+        (["sweep", "--theta0", "60:120:1", *DELTA_OUT], "--theta0 NUM 1 gives START alone"),
+        (["sweep", "--theta0", "60:60:5", *DELTA_OUT], "--theta0 START = STOP is one point"),
+        (
+            ["strike", "--theta0", "90", "--delta0", "3", "--set", "M2=0.3", "--set", "M2=0.5"],
+            "--set 'M2=0.5': 'M2' is set twice (also --set 'M2=0.3')",
+        ),
+        (["sweep", *SMALL_GRID, "--set", "C2=1", "--set", " C2 =2"], "'C2' is set twice"),
         (
             ["sweep", "--theta0", "60:120:3", "--delta0", "0:90:3", "--out", "/nonexistent/x.nc"],
             "does not exist",

@@ -70,6 +70,14 @@ def test_a_range_whose_span_overflows_is_one_line_without_warnings(tmp_path, cap
     assert code == 2 and "overflows" in _one_error_line(err)
 
 
+def test_a_range_of_huge_angles_is_one_line_without_warnings(tmp_path, capsys):
+    """numpy's RuntimeWarning lines came before the error line (issue 66, case 14): the
+    rule of the initial angles refuses the grid at its ends, before it is made."""
+    argv = ["sweep", "--theta0", "1e308:1.7e308/1e307", "--delta0", "0:1:2"]
+    code, _, err = _run(capsys, *argv, "--out", str(tmp_path / "x.nc"))
+    assert code == 2 and "'theta0' must be <= 360 degree" in _one_error_line(err)
+
+
 def test_a_cache_folder_that_is_a_file_is_one_line(tmp_path):
     (tmp_path / "cache").write_text("a file")
     env = {"PATH": "/usr/bin:/bin", "XDG_CACHE_HOME": str(tmp_path / "cache")}

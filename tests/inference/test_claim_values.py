@@ -86,3 +86,28 @@ def test_a_measure_across_readings_reads_each_reading_s_own_coordinate():
     assert measure_optimum(other, "tau") == 0.2  # a dataset: one reading, a float
     with pytest.raises(ClaimError, match=r"f: no tau = 0 on its axis \(nearest 0.1\)"):
         measure_stacks({"file": "f", "var": "w", "sel": {"tau": 0.0}}, files)
+
+
+ARM = xr.Dataset(
+    {"best_delta0": ("theta0", [40.0, 30.0, 20.0])}, coords={"theta0": [60.0, 90.0, 120.0]}
+)
+
+
+@pytest.mark.parametrize("theta0", [130.0, 500.0, -1000.0])
+def test_a_measurement_refuses_a_value_off_its_file_s_axis(theta0):
+    """130 and 500 deg were read at 120 deg's row, -1000 at 60 deg's (issue 66, case 1)."""
+    from tennis_stroke.inference.measures import OffAxisError, measure_best_delta0
+
+    with pytest.raises(OffAxisError, match=f"theta0 = {theta0:g} lies off the file's theta0 axis"):
+        measure_best_delta0(ARM, theta0)
+
+
+@pytest.mark.parametrize(
+    "theta0, expected",
+    [(120.0, 20.0), (120.0 + 1e-8, 20.0), (60.0 - 1e-8, 40.0), (100.0, 30.0), (105.0, 20.0)],
+)
+def test_a_value_on_the_axis_is_read_at_its_nearest_grid_point(theta0, expected):
+    """Between grid points the nearer one (a tie: the later); an end within rounding."""
+    from tennis_stroke.inference.measures import measure_best_delta0
+
+    assert measure_best_delta0(ARM, theta0) == expected

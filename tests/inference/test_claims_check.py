@@ -11,7 +11,13 @@ import yaml
 from conftest import ROOT
 
 from tennis_stroke.experiments.specs import PAPER_RESULTS
-from tennis_stroke.inference.claims import ClaimError, claim_errors, load_claims, measure
+from tennis_stroke.inference.claims import (
+    ClaimError,
+    claim_axis_errors,
+    claim_errors,
+    load_claims,
+    measure,
+)
 from tennis_stroke.inference.measures import MEASUREMENTS, Stack
 
 CLAIMS = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())
@@ -219,7 +225,10 @@ def test_every_measurement_says_what_it_takes(name):
     kinds = []
     for p in parameters:
         literal = typing.get_origin(p.annotation) is typing.Literal
-        assert literal or p.annotation in KNOWN_ANNOTATIONS, (name, p.name, p.annotation)
+        on_axis = typing.get_origin(p.annotation) is typing.Annotated and typing.get_args(
+            p.annotation
+        )[0] in (float, int)
+        assert literal or on_axis or p.annotation in KNOWN_ANNOTATIONS, (name, p.name)
         kinds.append(p.annotation is Stack)
     assert kinds[0] and kinds == sorted(kinds, reverse=True), name
 
@@ -239,3 +248,38 @@ def test_sel_takes_a_position_or_a_coordinate_value():
     assert measure({**spec, "sel": {"delta0": 2, "tau": 0.0}}, {"f": ds}) == 4.0
     with pytest.raises(ClaimError, match=r"f: no delta0 = 52.4 on its axis \(nearest 52.5\)"):
         measure({**spec, "sel": {"delta0": 52.4, "tau": 0}}, {"f": ds})
+
+
+PAPER_CONFIG = yaml.safe_load((ROOT / "config" / "config.yaml").read_text())
+
+
+def _axis_errors(claim_id, config=PAPER_CONFIG, **values):
+    claims = copy.deepcopy(CLAIMS["claims"])
+    next(c for c in claims if c["id"] == claim_id)["measure"].update(values)
+    return claim_axis_errors(claims, config, "claims.yaml")
+
+
+@pytest.mark.parametrize("theta0", [130.0, 500.0, -1000.0, 120.001, 59.99])
+def test_a_claim_read_off_its_file_s_axis_is_refused_before_any_job(theta0):
+    """Fig. 2's map spans theta0 60-120 deg (config/config.yaml): a claim at 130 deg was
+    read at the nearest row, 120 deg's value, and passed for it (issue 66, case 1)."""
+    errors = _axis_errors("fig2_best_delta0_at_120", theta0=theta0)
+    assert errors == [
+        f"claims.yaml: claim 'fig2_best_delta0_at_120': theta0 = {theta0:g} lies off the "
+        "theta0 axis of file 'fig2', 60 to 120 (config key 'angle_maps.theta0'): a "
+        "measurement reads a value on its axis, never beyond"
+    ]
+
+
+@pytest.mark.parametrize("theta0", [120.0, 120.0 + 1e-9, 60.0 - 1e-9, 90.1, 60])
+def test_a_claim_on_its_axis_passes_between_grid_points_and_at_a_float_end(theta0):
+    assert _axis_errors("fig2_best_delta0_at_120", theta0=theta0) == []
+
+
+def test_the_axis_is_the_config_s_grid_of_the_file():
+    """A mass-length claim's M2 against Figs. 5-6's M2 grid (mass_length.M2)."""
+    assert (
+        "m2 = 0.6 lies off the M2 axis of file 'ml', 0.2 to 0.5 (config key "
+        in (_axis_errors("fig5_heavy_racket_trend", m2=0.6)[0])
+    )
+    assert _axis_errors("fig5_heavy_racket_trend", m2=0.5) == []

@@ -169,3 +169,9 @@ def test_bad_sample_times_are_a_parameter_error(times, fragment):
     stroke = solve_stroke(*FIG4_A, rtol=1e-6, atol=1e-6)
     with pytest.raises(ParameterError, match=fragment):
         stroke_dataset(stroke, times)
+
+
+def test_a_dataset_of_anything_but_a_solved_stroke_is_a_parameter_error():
+    """``stroke_dataset({})`` was ``AttributeError: 'segments'`` (issue 66, case 18)."""
+    with pytest.raises(ParameterError, match="stroke must be a ReferenceStroke .*, got dict"):
+        stroke_dataset({})

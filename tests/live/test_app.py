@@ -91,7 +91,12 @@ def test_a_change_shows_the_strokes_at_the_new_setting(shared):
     theta, delta = np.arange(110.0, 112.01, 0.25), np.arange(10.0, 14.01, 0.5)
     expected = strike_batch(theta[:, None], delta[None, :], {"M2": 0.35, "L1": 0.3})
     np.testing.assert_array_equal(data["image"][0], expected["v_out_kmh"].T.astype(np.float32))
-    assert session.claims_source.data["status"][0] in ("pass", "fail", "used_for_fit")
+    verdicts = dict(zip(*(session.claims_source.data[k] for k in ("id", "status")), strict=True))
+    # the map spans theta0 110-112 deg: a claim at 120 deg is off its axis, no verdict
+    # (it was read at the 112 deg row, issue 66); the others have theirs
+    assert verdicts.pop("fig2_best_delta0_at_120") == compute.OFF_AXIS
+    assert set(verdicts.values()) <= {"pass", "fail", "used_for_fit", compute.OFF_AXIS}
+    assert {"pass", "fail", "used_for_fit"} & set(verdicts.values())
     assert "full map (9 x 9)" in session.status.text and session.error.text == ""
 
 
@@ -142,6 +147,19 @@ def test_a_value_out_of_bounds_is_refused_and_the_old_kept(shared):
     session.widgets["model.M2"].value = "-1.0"
     assert session.widgets["model.M2"].value == "0.3"
     assert "M2: -1 is outside" in session.error.text and "kept 0.3" in session.error.text
+    assert session.generation["all"] == before  # nothing recomputed
+
+
+def test_initial_angles_more_than_a_turn_before_the_hit_are_refused(shared):
+    """Fig. 9's theta0 at 300 deg with delta0 52.5 deg: each within its bounds, but the
+    racket would pass phi = 360 deg and hit a turn later; refused by the workflow's rule
+    of the initial angles, the old value kept (issue 66, case 2)."""
+    session = app.Session(shared, Document())
+    settle(session)
+    before = session.generation["all"]
+    session.widgets["torque_delay.theta0"].value = "300"
+    assert session.widgets["torque_delay.theta0"].value == "90"
+    assert "initial angles theta0 + delta0 must be &lt; 360 degree" in session.error.text
     assert session.generation["all"] == before  # nothing recomputed
 
 

@@ -13,7 +13,12 @@ from tennis_stroke.experiments.specs import merged
 from tennis_stroke.inference.reading_space import claims_and_readings
 from tennis_stroke.io.config_files import load_yaml
 from tennis_stroke.live import compute, controls
-from tennis_stroke.model.params import PARAMETERS, ParameterError, resolve_params
+from tennis_stroke.model.params import (
+    INITIAL_ANGLES,
+    PARAMETERS,
+    ParameterError,
+    resolve_params,
+)
 from tennis_stroke.pipeline.scenarios import (
     ScenarioError,
     load_scenarios,
@@ -129,6 +134,14 @@ def test_every_model_parameter_has_a_control_with_its_bounds(paper):
                     resolve_params({name: spec.lower})
         if spec.upper is not None:
             assert control.high == spec.upper
+    for name in INITIAL_ANGLES:  # Fig. 9's initial angles: the table's bounds (issue 66)
+        key = "torque_delay.theta0" if name == "theta0" else "torque_delay.base_stroke.delta0"
+        spec = INITIAL_ANGLES[name]
+        assert (by_key[key].low, by_key[key].high, by_key[key].unit) == (
+            spec.lower,
+            spec.upper,
+            spec.unit,
+        )
     assert by_key["model.inertia"].choices == ("uniform_rod", "paper_text")
     assert set(by_key["solver.method"].choices) == {"DOP853", "DP54"}
     for tolerance in by_key["solver.rtol"].choices:

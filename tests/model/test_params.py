@@ -7,9 +7,11 @@ import numpy as np
 import pytest
 
 from tennis_stroke.model.params import (
+    INITIAL_ANGLES,
     PARAMETERS,
     READINGS,
     ParameterError,
+    initial_angles,
     parse_value,
     resolve_params,
     two_body_period,
@@ -134,3 +136,64 @@ def test_a_bad_choice_among_per_stroke_choices_is_named():
         resolve_params({"inertia": bad})
     with pytest.raises(ParameterError, match="reading 'inertia' must be one of"):
         resolve_params({"inertia": np.array([1.0, 2.0])})
+
+
+@pytest.mark.parametrize(
+    "theta0, delta0, fragment",
+    [
+        (480.0, 81.5, "initial angle 'theta0' must be <= 360 degree, got 480"),
+        (120.0, 801.5, "initial angle 'delta0' must be <= 360 degree, got 801.5"),
+        (-1000.0, 81.5, "initial angle 'theta0' must be >= -360 degree, got -1000"),
+        # each within a turn, but the racket more than a turn before the hit
+        (300.0, 81.5, "theta0 + delta0 must be < 360 degree (the racket starts less than"),
+        (180.0, 180.0, "got 180 + 180 = 360"),  # at the hitting position, a turn early
+        # one of many strokes is enough, and the message names it
+        (np.array([60.0, 300.0]), np.array([[20.0], [70.0]]), "got 300 + 70 = 370"),
+    ],
+)
+def test_an_initial_angle_beyond_a_turn_is_refused(theta0, delta0, fragment):
+    """The swing passed phi = 360 deg and hit a turn later: theta0 = 480 deg gave 258.2
+    km/h with status ok where 120 deg gives 155.7 (issue 66, case 2)."""
+    with pytest.raises(ParameterError, match=re.escape(fragment)):
+        initial_angles(theta0, delta0)
+
+
+@pytest.mark.parametrize(
+    "theta0, delta0",
+    [
+        (60.0, 0.0),  # the corners of the paper's maps (Figs. 2-3, 5-6, 8)
+        (120.0, 100.0),
+        (90.0, -2.17),  # a delta0 below the maps' (the unbounded optimum of issue 66)
+        (-30.0, -20.0),  # a racket past the hit: a status (no_phi_zero), not a refusal
+        (359.0, -360.0),
+        (179.0, 180.9999),
+    ],
+)
+def test_every_start_less_than_a_turn_before_the_hit_is_accepted(theta0, delta0):
+    th, de = initial_angles(theta0, delta0)
+    assert (float(th), float(de)) == (theta0, delta0)
+
+
+def test_the_initial_angles_are_declared_as_the_parameters_are():
+    """One table states the rule: units and bounds, read by the explorer and the docs."""
+    assert {n: (s.unit, s.lower, s.upper) for n, s in INITIAL_ANGLES.items()} == {
+        "theta0": ("degree", -360, 360),
+        "delta0": ("degree", -360, 360),
+    }
+
+
+@pytest.mark.parametrize("params", ["M2=0.5", 0, [("M2", 0.5)], 0.5])
+def test_params_that_are_not_a_mapping_are_refused(params):
+    """A string failed inside dict(), and 0 (falsy) was ignored: the paper's stroke came
+    back for 'params=0' (issue 66, case 18)."""
+    with pytest.raises(ParameterError, match="params must be a mapping of names to values"):
+        resolve_params(params)
+
+
+def test_a_masked_array_is_refused_not_computed_unmasked():
+    """numpy drops the mask: the masked entries were computed (issue 66, case 19)."""
+    masked = np.ma.masked_array([0.3, 0.4], mask=[False, True])
+    with pytest.raises(ParameterError, match="parameter 'M2' must not be a masked array"):
+        resolve_params({"M2": masked})
+    with pytest.raises(ParameterError, match="initial angle 'theta0' must not be a masked"):
+        initial_angles(np.ma.masked_array([90.0, 120.0], mask=[0, 1]), 30.0)

@@ -41,3 +41,12 @@ def test_fixed_step_rk4_meets_the_ball_as_the_cheap_rungs_do(rung):
     res = fixed_step_stroke(120.0, 81.5, {"contact_model": rung}, 1e-4)
     assert res["v_out_kmh"] == pytest.approx(ref["v_out_kmh"], abs=1e-3)
     assert res["t_separation"] == res["t_contact_start"] == res["t_phi0"]
+
+
+def test_fixed_step_rk4_takes_the_rule_of_the_initial_angles():
+    """A start more than a turn before the hit (theta0 + delta0 = 380 deg) is refused on
+    this path too: it would pass phi = 360 deg and hit a turn later (issue 66, case 2)."""
+    from tennis_stroke.model.params import ParameterError
+
+    with pytest.raises(ParameterError, match="theta0 \\+ delta0 must be < 360 degree"):
+        fixed_step_stroke(300.0, 80.0, {}, 1e-4)

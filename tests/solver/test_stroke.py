@@ -269,6 +269,18 @@ def test_fig4_strokes(stroke, t_contact, theta_c, omega1, omega2, v_out):
         (lambda: strike_batch(90.0, 45.0, threads=True), "threads must be a whole number"),
         (lambda: strike(90.0, 45.0, settings={"rtol": 1e-9, "speed": 2}), "'speed'"),
         (lambda: strike(90.0, 45.0, settings="DOP853"), "settings must be a SolverSettings"),
+        # issue 66: a turn too far gave ok and 258.2 / 288.4 km/h (case 2); an array,
+        # a string or 0 for params, a masked array (cases 18, 19)
+        (lambda: strike(480.0, 81.5), "initial angle 'theta0' must be <= 360 degree"),
+        (lambda: strike_batch(120.0, [81.5, 801.5]), "initial angle 'delta0' must be <= 360"),
+        (lambda: strike(np.array([120.0, 100.0]), 81.5), "strike computes one stroke"),
+        (lambda: strike(90.0, 45.0, {"M2": np.array([0.5, 0.4])}), "parameter 'M2' must be one"),
+        (lambda: strike(90.0, 45.0, "M2=0.5"), "params must be a mapping of names to values"),
+        (lambda: strike(90.0, 45.0, 0), "params must be a mapping of names to values"),
+        (
+            lambda: strike_batch(np.ma.masked_array([90.0, 120.0], [False, True]), 45.0),
+            "initial angle 'theta0' must not be a masked array",
+        ),
     ],
 )
 def test_every_refused_input_is_a_parameter_error(call, fragment):

@@ -203,6 +203,48 @@ def test_bad_config_gives_one_line_naming_the_key(path, value, fragment):
     assert fragment in errors[0], errors[0]
 
 
+@pytest.mark.parametrize(
+    "path, value, fragment",
+    [
+        # `whatif --set torque_delay.theta0=450` gave 69.9 km/h, a turn late (issue 66)
+        (
+            ("torque_delay", "theta0"),
+            450.0,
+            "config key 'torque_delay.theta0': initial angle 'theta0' must be <= 360 degree, "
+            "got 450 (rule: initial angles)",
+        ),
+        (  # each angle within a turn, but Fig. 8's delta0 up to 100 deg: 400 deg in all
+            ("torque_delay", "theta0"),
+            300.0,
+            "config keys 'torque_delay.theta0' and 'torque_delay.fig8.delta0': initial angles "
+            "theta0 + delta0 must be < 360 degree",
+        ),
+        (
+            ("fig4", "strokes"),
+            [[120.0, 81.5], [75.0, 801.5]],
+            "config key 'fig4.strokes': initial angle 'delta0' must be <= 360 degree",
+        ),
+        (
+            ("mass_length", "delta0_range"),
+            [0.0, 300.0],
+            "config keys 'mass_length.theta0_range' and 'mass_length.delta0_range': initial",
+        ),
+        (
+            ("angle_maps", "theta0"),
+            {"start": -400.0, "stop": 120.0, "step": 0.25},
+            "config key 'angle_maps.theta0': initial angle 'theta0' must be >= -360 degree",
+        ),
+        (("solver_study", "convergence", "delta0"), 500.0, "'solver_study.convergence.delta0'"),
+    ],
+)
+def test_an_initial_angle_beyond_a_turn_is_refused_naming_its_keys(path, value, fragment):
+    """Every initial angle a row of the table reads, by the one rule of the angles."""
+    config = copy.deepcopy(GOOD)
+    _set(config, path, value)
+    errors = config_errors(config, SCHEMA)
+    assert errors and fragment in errors[0], errors
+
+
 @pytest.mark.workflow
 def test_snakemake_stops_before_any_job_without_traceback(tmp_path):
     config = copy.deepcopy(GOOD)

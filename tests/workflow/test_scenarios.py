@@ -487,6 +487,19 @@ def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
             ["whatif", "x", "--set", "L1=0.5", "--figure", "fig2"],
             "model.L1 does not reach the Figs. 2-3 map (it reads angle_maps.L1.0)",
         ),
+        # issue 66: an arm a turn too far gave 69.9 km/h (case 2), the last of two --set
+        # won (case 12), -j -3 went to Snakemake (case 17)
+        (
+            ["whatif", "x", "--set", "torque_delay.theta0=450", "-n"],
+            "scenario 'x': config key 'torque_delay.theta0': initial angle 'theta0' must be "
+            "<= 360 degree, got 450",
+        ),
+        (
+            ["whatif", "x", "--set", "M2=0.3", "--set", "model.M2=0.5", "-n"],
+            "--set 'model.M2=0.5': 'M2' is set twice (also --set 'M2=0.3')",
+        ),
+        (["whatif", "x", "--set", "M2=0.4", "-j", "-3", "-n"], "-j/--cores must be >= 1, got -3"),
+        (["whatif", "x", "--set", "M2=0.4", "-j", "0", "-n"], "-j/--cores must be >= 1, got 0"),
     ]
     for where, runs in ((tmp_path, cases), (ROOT, cases_root)):
         monkeypatch.chdir(where)

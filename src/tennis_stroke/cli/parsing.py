@@ -131,25 +131,45 @@ def add_model_options(p: argparse.ArgumentParser) -> None:
         )
 
 
+def set_items(items: Sequence[str]) -> list[tuple[str, str]]:
+    """``--set KEY=VALUE`` items as ``(KEY, VALUE)`` pairs, stripped, for every command
+    that takes ``--set`` (``strike``, ``sweep``, ``whatif``).  A key given twice is
+    refused, naming it (the last would win silently); ``model.NAME`` and ``NAME`` are
+    one key (``whatif`` reads both as the model's ``NAME``)."""
+    out: list[tuple[str, str]] = []
+    seen: dict[str, str] = {}
+    for item in items:
+        key, sep, value = item.partition("=")
+        key = key.strip()
+        if not sep or not key:
+            raise ValueError(f"--set {item!r}: expected KEY=VALUE")
+        name = key.removeprefix("model.")
+        if name in seen:
+            raise ValueError(
+                f"--set {item!r}: {name!r} is set twice (also --set {seen[name]!r}); give "
+                "each key once"
+            )
+        seen[name] = item
+        out.append((key, value.strip()))
+    return out
+
+
 def parse_set(items: Sequence[str]) -> dict[str, object]:
     """``--set NAME=VALUE`` items of a command that takes model parameters, readings and
-    options by name: a name that is none of them is refused with the closest names, as
-    every command refuses a name or key it does not know."""
+    options by name (:func:`set_items`): a name that is none of them is refused with the
+    closest names, as every command refuses a name or key it does not know."""
     from ..io.config_files import did_you_mean
     from ..model.params import known_names, parse_value
 
     out: dict[str, object] = {}
-    for item in items:
-        key, sep, value = item.partition("=")
-        if not sep or not key:
-            raise ValueError(f"--set expects KEY=VALUE, got {item!r}")
-        key = key.strip()
+    for key, value in set_items(items):
+        item = f"{key}={value}"
         if key not in known_names():
             raise ValueError(
                 f"--set {item!r}: {key!r} is no model parameter, reading or option"
                 f"{did_you_mean(key, known_names())} ('tennis-stroke params' lists them)"
             )
-        out[key] = parse_value(key, value.strip())
+        out[key] = parse_value(key, value)
     return out
 
 

@@ -10,8 +10,9 @@ import numpy as np
 
 #: The two forms of a range on the command line, as ``--help`` and the errors say them.
 RANGE_FORMS = (
-    "START:STOP:NUM (NUM points from START to STOP, both included) or START:STOP/STEP "
-    "(from START to STOP in steps of STEP, which must land on STOP; the config's form)"
+    "START:STOP:NUM (NUM points from START to STOP, both included: NUM 1 only where STOP "
+    "is START) or START:STOP/STEP (from START to STOP in steps of STEP, which must land "
+    "on STOP; the config's form)"
 )
 
 
@@ -63,6 +64,16 @@ def range_spec(text: str, name: str) -> GridRange:
         ) from None
     if num < 1:
         raise ValueError(f"{option} NUM must be >= 1, got {num}")
+    if num == 1 and stop != start:  # linspace would give START alone
+        raise ValueError(
+            f"{option} NUM 1 gives START alone, never STOP {stop:g} (both ends are included): "
+            f"give NUM >= 2, or {start:g}:{start:g}:1 for one point, got {text!r}"
+        )
+    if num > 1 and stop == start:  # linspace would give NUM equal coordinates
+        raise ValueError(
+            f"{option} START = STOP is one point, not {num}: give NUM 1, or a STOP above "
+            f"START, got {text!r}"
+        )
     return GridRange(start, stop, num)
 
 

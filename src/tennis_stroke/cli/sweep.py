@@ -77,12 +77,14 @@ def _sweep_blocks(theta0, delta0, overrides, settings, threads, block, progress)
 def run(args: argparse.Namespace) -> int:
     from ..experiments.memory import batch_bytes, check_memory, memory_limit, result_bytes
     from ..io.netcdf import check_writable, result_dataset, write_netcdf
-    from ..model.params import resolve_params
+    from ..model.params import initial_angles, resolve_params
     from ..solver.results import OK
     from ..solver.stroke import default_threads
 
     theta_range = range_spec(args.theta0, "theta0")
     delta_range = range_spec(args.delta0, "delta0")
+    ends = [np.array([r.start, r.stop]) for r in (theta_range, delta_range)]
+    initial_angles(ends[0][:, None], ends[1][None, :])  # the grid's corners, nothing made
     overrides = parse_set(args.set)
     params = resolve_params(overrides)
     settings = solver_settings(args)

@@ -40,7 +40,11 @@ def run(args: argparse.Namespace) -> int:
     from .._cache import cache_problem
     from ..io.interrupts import run_forwarding
     from ..pipeline.whatif import plan_whatif
+    from .parsing import set_items
 
+    set_items(args.set)  # each key once
+    if args.cores < 1:
+        raise ValueError(f"-j/--cores must be >= 1, got {args.cores}")
     if not Path("Snakefile").is_file():
         raise ValueError(f"no Snakefile in {Path.cwd()}: run whatif from the project's folder")
     problem = cache_problem()  # Snakemake's own message is a long traceback

@@ -28,9 +28,11 @@ from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from importlib import import_module
 
+import numpy as np
+
 from ..io.config_files import value_at
 from ..solver.results import FILE_NAMES, RESULT_FIELDS
-from .grids import axis_size, bracket_size
+from .grids import axis, axis_size, bracket_size
 
 #: Variables of every file of strokes (one per stroke result field).
 STROKE_VARIABLES = tuple(FILE_NAMES.get(k, k) for k in RESULT_FIELDS)
@@ -64,6 +66,8 @@ SEC5_STROKE = {
 SEC5_BOUNDS = {"stroke.L1": "L1", "stroke.C2": "C2", "stroke.tau_L": "tau", "stroke.tau_H": "tau"}
 #: The model parameters the rows of the Sec. V-VI stroke set themselves, and whence.
 SEC5_SETS = {"L1": "stroke.L1", "C2": "stroke.C2", "tau": "stroke.tau_L"}
+#: The initial angles of the Sec. V-VI base stroke (checked before any job).
+SEC5_ANGLES = ("stroke.theta0", "stroke.delta0")
 
 
 def _points(value) -> int:
@@ -98,7 +102,11 @@ class Experiment:
     have, checked before any job; ``sets``: the model parameters the row's function sets
     itself at every stroke, each with the argument it takes it from (an axis or a value
     of its own), so a model override of them reaches nothing of it and is not passed to
-    its job (:meth:`reads_instead` names the config key it reads).
+    its job (:meth:`reads_instead` names the config key it reads); ``angles``: the
+    arguments holding its strokes' initial angles, checked before any job by the rule of
+    :data:`tennis_stroke.model.params.INITIAL_ANGLES`: ``(theta0, delta0)``, every
+    theta0 with every delta0 (values, ranges or search ranges), or one argument of
+    ``(theta0, delta0)`` pairs.
     """
 
     key: str
@@ -119,6 +127,7 @@ class Experiment:
     rule: str = ""
     bounds: Mapping[str, str] = field(default_factory=dict)
     sets: Mapping[str, str] = field(default_factory=dict)
+    angles: tuple[str, ...] = ()
 
     @property
     def stem(self) -> str:
@@ -158,6 +167,19 @@ class Experiment:
             )
             for name, key in self.args.items()
         }
+
+    def axis_ends(self, config: Mapping, coord: str) -> tuple[float, float, str] | None:
+        """The first and last value of the file's axis ``coord`` under ``config`` and the
+        config key it comes from: the grid of a range (:func:`~.grids.axis`), a list's
+        smallest and largest item, a single value twice; None where no argument of the
+        row is that axis."""
+        key = self.args.get(coord)
+        if not isinstance(key, str):
+            return None
+        value = value_at(config, key)
+        values = axis(value) if isinstance(value, Mapping) else np.atleast_1d(value)
+        values = np.asarray(values, dtype=float)
+        return float(values.min()), float(values.max()), key
 
     def row_count(self, arguments: Mapping) -> int:
         """Points of the axis it is chunked along (1 for an unchunked row)."""
@@ -278,6 +300,7 @@ def _angle_map(fig: str, index: int) -> Experiment:
         section="angle_maps",
         bounds={"L1": "L1"},
         sets={"L1": "L1"},
+        angles=("theta0", "delta0"),
         threaded=True,
         chunks="chunks.angle_map",
         rows="theta0",
@@ -309,6 +332,7 @@ def _delay_map(
         section=f"torque_delay.{fig}",
         bounds={"L1": "L1", "C2": "C2", "tau": "tau"},
         sets={"L1": "L1", "C2": "C2", "tau": "tau"},
+        angles=("theta0", "delta0"),
         threaded=True,
         chunks="chunks.delay_map",
         rows=first,
@@ -339,6 +363,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             (*STROKE_VARIABLES, *CURVE_VARIABLES),
             "Fig. 4 strokes",
             section="fig4",
+            angles=("strokes",),
             samples=lambda a: len(a["strokes"]) * int(a["samples"]),
         ),
         Experiment(
@@ -355,6 +380,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             section="k_sensitivity",
             bounds={"k_range": "k_contact"},
             sets={"k_contact": "k_range"},
+            angles=("strokes",),
             threaded=True,
             strokes=lambda a: (len(a["strokes"]) * int(a["points"]),),
         ),
@@ -382,6 +408,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             section="mass_length",
             bounds={"M2": "M2", "L1": "L1"},
             sets={"M2": "M2", "L1": "L1"},
+            angles=("theta0_range", "delta0_range"),
             rule="mass_length",
             threaded=True,
             chunks="chunks.mass_length",
@@ -401,6 +428,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             section="torque_delay.strokes",
             bounds=SEC5_BOUNDS,
             sets=SEC5_SETS,
+            angles=SEC5_ANGLES,
             rule="delay_strokes",
             samples=lambda a: 2 * int(a["stroke"]["samples"]),  # tau_L and tau_H
         ),
@@ -426,6 +454,7 @@ EXPERIMENTS: dict[str, Experiment] = {
                 "psi_F_deg": "psi_f",
                 "t_F": "tau_f",
             },
+            angles=SEC5_ANGLES,
             rule="elbow_force_map",
             threaded=True,
             chunks="chunks.elbow_force_map",
@@ -459,6 +488,7 @@ EXPERIMENTS: dict[str, Experiment] = {
                 "psi_F_deg": "force.table1_psi",
                 "t_F": "force.table1_tau_F",
             },
+            angles=SEC5_ANGLES,
             rule="elbow_force_strokes",
             # each direction of Table I and the stroke without the force
             samples=lambda a: (len(a["force"]["table1_psi"]) + 1) * int(a["stroke"]["samples"]),
@@ -514,6 +544,7 @@ EXPERIMENTS: dict[str, Experiment] = {
             section="solver_study.convergence",
             family="study",
             model=False,
+            angles=("theta0", "delta0"),
         ),
         Experiment(
             "stability",
@@ -578,6 +609,11 @@ def fit_set_arguments(config: Mapping) -> dict[str, object]:
 #: The config keys whose values rows of the table put into the model, and the model
 #: parameter each is (``Experiment.bounds``: ``torque_delay.L1`` is an ``L1``, in m): what
 #: the config check bounds and a scenario's note gives a unit.
+#: The config keys of the initial angles the table's rows read (:attr:`Experiment.angles`):
+#: ``(theta0 key, delta0 key)``, or ``(key,)`` of ``(theta0, delta0)`` pairs.
+ANGLE_KEYS: tuple[tuple[str, ...], ...] = tuple(
+    dict.fromkeys(tuple(e.key_of(a) for a in e.angles) for e in EXPERIMENTS.values() if e.angles)
+)
 BOUND_KEYS: dict[str, str] = {
     e.key_of(argument): parameter
     for e in EXPERIMENTS.values()

@@ -31,7 +31,7 @@ import xarray as xr
 
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS
 from ..io.config_files import ConfigFileError, load_yaml
-from .measures import MEASUREMENTS, Stack, per_reading, pick
+from .measures import AXIS_TOLERANCE, MEASUREMENTS, OnAxis, Stack, off_axis, per_reading, pick
 
 EXPECTATIONS = ("reproduce", "known_deviation")
 #: The fields every claim has.
@@ -157,7 +157,7 @@ def measure_stacks(spec: Mapping, files: Mapping[str, Stack]) -> np.ndarray:
 
 #: How close a ``sel`` value must be to a coordinate value (relative to the axis' span,
 #: or absolute on a one-point axis): what a decimal number in YAML can say of it.
-SEL_TOLERANCE = 1e-9
+SEL_TOLERANCE = AXIS_TOLERANCE
 
 
 def selection(stack: Stack, var: str, sel: Mapping, file: str = "") -> dict[str, np.ndarray]:
@@ -191,8 +191,30 @@ def _number(value) -> bool:
     return isinstance(value, int | float) and not isinstance(value, bool)
 
 
+def _bare(annotation):
+    """A parameter's type without its ``Annotated`` metadata (:class:`OnAxis`)."""
+    if typing.get_origin(annotation) is typing.Annotated:
+        return typing.get_args(annotation)[0]
+    return annotation
+
+
+def axis_arguments(name: str) -> dict[str, str]:
+    """The arguments of measurement ``name`` that are values of a coordinate of its file
+    (annotated :class:`~tennis_stroke.inference.measures.OnAxis`): argument ->
+    coordinate."""
+    signature = inspect.signature(MEASUREMENTS[name], eval_str=True)
+    return {
+        key: meta.coord
+        for key, parameter in signature.parameters.items()
+        if typing.get_origin(parameter.annotation) is typing.Annotated
+        for meta in parameter.annotation.__metadata__
+        if isinstance(meta, OnAxis)
+    }
+
+
 def _fits(value, annotation) -> bool:
     """True if an argument ``value`` fits a measurement parameter's ``annotation``."""
+    annotation = _bare(annotation)
     if typing.get_origin(annotation) is typing.Literal:
         return value in typing.get_args(annotation) and not isinstance(value, bool)
     if annotation is float:
@@ -213,7 +235,7 @@ def _argument_errors(name: str, n_files: int, args: Mapping) -> Iterator[str]:
         yield f"measurement {name!r} with {n_files} file(s) and arguments {dict(args)}: {exc}"
         return
     for key, value in bound.arguments.items():
-        annotation = signature.parameters[key].annotation
+        annotation = _bare(signature.parameters[key].annotation)
         if key in args and annotation is Stack:
             yield f"measurement {name!r}: {key!r} is a file (give it in 'file'), not an argument"
         elif key in args and not _fits(value, annotation):
@@ -335,6 +357,36 @@ def _claims_file_errors(raw: object, path: str | Path, files: Collection[str]) -
             errors.append(f"{path}: duplicate claim id {cid!r}")
         seen.add(cid)
         errors.extend(f"{path}: claim {cid!r}: {e}" for e in _claim_errors(claim, files))
+    return errors
+
+
+def claim_axis_errors(
+    claims: list[Mapping], config: Mapping, path: str | Path, where: str = ""
+) -> list[str]:
+    """The claims (checked by :func:`claim_errors`) whose measurement reads a value of a
+    file's coordinate (an :class:`~tennis_stroke.inference.measures.OnAxis` argument,
+    ``theta0: 120.0``) beyond the ends of that file's axis under the workflow
+    ``config`` (its grid in the table of experiments,
+    :meth:`~tennis_stroke.experiments.specs.Experiment.axis_ends`): one line each naming
+    the claim, the argument and the axis (``where``: which configuration, said after
+    it).  The measurement refuses such a value too when it reads the file; a value
+    between two grid points is read at the nearer one."""
+    errors = []
+    for claim in claims:
+        spec = claim["measure"]
+        if "function" not in spec:
+            continue
+        for argument, coord in axis_arguments(spec["function"]).items():
+            value = spec[argument]
+            for name in claim_files(claim):
+                ends = EXPERIMENTS[name].axis_ends(config, coord) if name in EXPERIMENTS else None
+                if ends is not None and off_axis(ends[0], ends[1], value):
+                    errors.append(
+                        f"{path}: claim {claim['id']!r}: {argument} = {value:g} lies off the "
+                        f"{coord} axis of file {name!r}, {ends[0]:g} to {ends[1]:g} (config "
+                        f"key {ends[2]!r}{where}): a measurement reads a value on its axis, "
+                        "never beyond"
+                    )
     return errors
 
 

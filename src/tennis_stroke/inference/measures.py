@@ -18,7 +18,8 @@ from __future__ import annotations
 import functools
 import warnings
 from collections.abc import Callable, Mapping, Sequence
-from typing import Literal
+from dataclasses import dataclass
+from typing import Annotated, Literal
 
 import numpy as np
 import xarray as xr
@@ -217,18 +218,57 @@ def measure_fig9(ds: Stack, what: Literal["v_L", "v_H", "tau_H", "gain_percent"]
     return {"v_L": v_l, "v_H": v_h, "gain_percent": 100 * (v_h / v_l - 1)}[what]
 
 
-def nearest(axis: np.ndarray, value: float) -> np.ndarray:
-    """The position of the value nearest ``value`` in each reading's ``axis`` (reading
-    first; a tie goes to the later position, as ``sel(method="nearest")`` on a rising
-    axis)."""
+#: How far beyond its axis' ends a value may lie and still be on it, relative to the
+#: axis' span (absolute on a one-point axis): what a decimal number in YAML can say of a
+#: grid's end (``120.0`` against ``119.99999999999``).  A claim's ``sel`` value must lie
+#: this close to a grid point (:func:`tennis_stroke.inference.claims.selection`).
+AXIS_TOLERANCE = 1e-9
+
+
+@dataclass(frozen=True)
+class OnAxis:
+    """The annotation of a measurement argument that is a value of the coordinate
+    ``coord`` of its file (``theta0: Annotated[float, OnAxis("theta0")]``): the value
+    must lie on the axis (between its ends, within :data:`AXIS_TOLERANCE`), checked when
+    the file is read (:func:`nearest`) and, from the config's grid of the file, before
+    any job (:func:`tennis_stroke.inference.claims.claim_axis_errors`)."""
+
+    coord: str
+
+
+class OffAxisError(ValueError):
+    """A measurement's argument lies beyond the ends of its file's axis (one line)."""
+
+
+def off_axis(low, high, value: float):
+    """Whether ``value`` lies beyond the axis from ``low`` to ``high`` (arrays: one axis
+    per reading), by more than :data:`AXIS_TOLERANCE`."""
+    slack = AXIS_TOLERANCE * np.maximum(np.asarray(high) - np.asarray(low), 1.0)
+    return (value < np.asarray(low) - slack) | (value > np.asarray(high) + slack)
+
+
+def nearest(axis: np.ndarray, value: float, coord: str) -> np.ndarray:
+    """The position of the value nearest ``value`` in each reading's ``axis`` of
+    coordinate ``coord`` (reading first; a tie goes to the later position, as
+    ``sel(method="nearest")`` on a rising axis).  A value between two grid points is
+    read at the nearer; a value beyond the axis' ends raises :class:`OffAxisError`
+    (its nearest row is another point's value, not this one's)."""
+    low, high = np.min(axis, axis=1), np.max(axis, axis=1)
+    beyond = off_axis(low, high, value)
+    if np.any(beyond):
+        r = int(np.argmax(beyond))
+        raise OffAxisError(
+            f"{coord} = {value:g} lies off the file's {coord} axis ({low[r]:g} to "
+            f"{high[r]:g}): a measurement reads a value on its axis, never beyond"
+        )
     gap = np.abs(axis - value)
     return axis.shape[1] - 1 - np.argmin(gap[:, ::-1], axis=1)
 
 
 @one_or_many
-def measure_best_delta0(ds: Stack, theta0: float) -> np.ndarray:
+def measure_best_delta0(ds: Stack, theta0: Annotated[float, OnAxis("theta0")]) -> np.ndarray:
     """Figs. 2-3: the best delta0 at ``theta0`` (the red line)."""
-    at = nearest(ds["theta0"], theta0)
+    at = nearest(ds["theta0"], theta0, "theta0")
     return pick(ds["best_delta0"], ds.axis("best_delta0", "theta0"), at)
 
 
@@ -344,10 +384,12 @@ def measure_k_spread(ds: Stack) -> np.ndarray:
 
 
 @one_or_many
-def measure_mass_trend(ds: Stack, m2: float, sign: Literal[-1, 1]) -> np.ndarray:
+def measure_mass_trend(
+    ds: Stack, m2: Annotated[float, OnAxis("M2")], sign: Literal[-1, 1]
+) -> np.ndarray:
     """Fig. 5: 1 if the fastest v_out at ``M2`` changes with L1 (largest vs smallest) in
     the direction ``sign``."""
-    row = pick(ds["v_out_best"], ds.axis("v_out_best", "M2"), nearest(ds["M2"], m2))
+    row = pick(ds["v_out_best"], ds.axis("v_out_best", "M2"), nearest(ds["M2"], m2, "M2"))
     return (np.sign(per_reading(row[:, -1] - row[:, 0])) == sign).astype(float)
 
 
@@ -385,8 +427,10 @@ def measure_table1_minimum(ds: Stack) -> np.ndarray:
 
 #: Named measurements: function(stacks..., **args) -> one value per reading.  The
 #: parameters annotated :class:`Stack` take the claim's files in order, the others its
-#: arguments; the annotations (``float``, ``int``, ``str``, ``Literal[...]``) are checked
-#: before any job (:func:`tennis_stroke.inference.claims.claim_errors`).
+#: arguments; the annotations (``float``, ``int``, ``str``, ``Literal[...]``, and
+#: :class:`OnAxis` for a value of a file's coordinate) are checked before any job
+#: (:func:`tennis_stroke.inference.claims.claim_errors`,
+#: :func:`tennis_stroke.inference.claims.claim_axis_errors`).
 MEASUREMENTS: dict[str, Callable[..., np.ndarray]] = {
     name.removeprefix("measure_"): fn
     for name, fn in globals().items()

@@ -27,7 +27,7 @@ from collections.abc import Mapping, Sequence
 import numpy as np
 import xarray as xr
 
-from ..experiments.specs import EXPERIMENTS, compute, merged
+from ..experiments.specs import EXPERIMENTS, compute
 from ..io.netcdf import labelled, provenance
 from ..model.params import PARAMETERS
 from ..solver.settings import SolverSettings
@@ -272,12 +272,8 @@ def experiment_config(
     ``mass_length`` merged over their sections, ``fig7_tau`` as Fig. 7's ``tau``) with
     ``reading``'s experiment unknowns, and the model overrides of ``reading`` (readings
     and parameters) on top of the config's ``model``."""
-    resolution = dict(space.raw["multiverse"]["resolution"])
-    fig7_tau = resolution.pop("fig7_tau", None)
-    cfg = merged(config, resolution)
-    # a config pruned to what one job reads may lack these sections
-    if fig7_tau is not None and "fig7" in cfg.get("torque_delay", {}):
-        cfg["torque_delay"]["fig7"]["tau"] = dict(fig7_tau)
+    cfg = space.at_resolution(config)
+    # a config pruned to what one job reads may lack this section
     if "table1_tau_F" in reading and "elbow_force" in cfg:
         cfg["elbow_force"]["table1_tau_F"] = float(reading["table1_tau_F"])
     model = dict(cfg.get("model") or {})

@@ -21,6 +21,7 @@ from pathlib import Path
 import numpy as np
 import yaml
 
+from ..experiments.specs import merged
 from ..io.config_files import ConfigFileError, load_yaml, schema_errors
 from ..model.params import PARAMETERS, READINGS, ParameterError, resolve_params
 
@@ -115,6 +116,17 @@ class ReadingSpace:
     def quoting_of_claim(self) -> dict[str, str]:
         """Claim id -> the quoting group (``fig4_theta`` ...) that decides its variable."""
         return {c: g for g, spec in self.raw["quoting"].items() for c in spec.get("claims", [])}
+
+    def at_resolution(self, config: Mapping) -> dict:
+        """The workflow ``config`` at the multiverse's resolution: its ``angle_maps`` and
+        ``mass_length`` merged over their sections, ``fig7_tau`` as Fig. 7's ``tau``
+        (a config pruned to what one job reads may lack that section)."""
+        resolution = dict(self.raw["multiverse"]["resolution"])
+        fig7_tau = resolution.pop("fig7_tau", None)
+        cfg = merged(config, resolution)
+        if fig7_tau is not None and "fig7" in cfg.get("torque_delay", {}):
+            cfg["torque_delay"]["fig7"]["tau"] = dict(fig7_tau)
+        return cfg
 
 
 def _check(condition: bool, message: str) -> None:

@@ -91,8 +91,13 @@ def stroke_dataset(stroke: ReferenceStroke, times: object = None) -> xr.Dataset:
     Raises
     ------
     ParameterError
-        If ``times`` are not finite numbers in increasing order.
+        If ``stroke`` is not a :class:`tennis_stroke.solver.reference.ReferenceStroke`
+        or ``times`` are not finite numbers in increasing order.
     """
+    if not isinstance(stroke, ReferenceStroke):
+        raise ParameterError(
+            f"stroke must be a ReferenceStroke (from solve_stroke), got {type(stroke).__name__}"
+        )
     times = sample_times(stroke) if times is None else _checked_times(times)
     lab = stroke.lab_frame(times)
     results = {}

@@ -20,7 +20,7 @@ import numpy as np
 from ..experiments.specs import merged
 from ..io.config_files import value_at
 from ..model.listing import origin
-from ..model.params import CHOICES, PARAMETERS
+from ..model.params import CHOICES, INITIAL_ANGLES, PARAMETERS
 from ..solver.settings import METHOD_IDS, SolverSettings
 from .compute import FIGURES
 
@@ -135,10 +135,11 @@ def controls(config: Mapping, figure: str, fitted: Collection[str] = ()) -> list
             note=l1.description,
         )
     )
+    theta0, delta0 = INITIAL_ANGLES["theta0"], INITIAL_ANGLES["delta0"]
     for key, label, unit, low, high in (  # values the paper states (Sec. V)
         ("torque_delay.L1", "L1 of Fig. 9", "m", *_bounds(l1)),
-        ("torque_delay.theta0", "theta0 of Fig. 9", "degree", 0.0, 180.0),
-        ("torque_delay.base_stroke.delta0", "delta0 of Fig. 9", "degree", -90.0, 180.0),
+        ("torque_delay.theta0", "theta0 of Fig. 9", theta0.unit, *_bounds(theta0)),
+        ("torque_delay.base_stroke.delta0", "delta0 of Fig. 9", delta0.unit, *_bounds(delta0)),
         ("torque_delay.base_stroke.C2", "C2 of Figs. 8-14", "N m", None, None),
     ):
         out.append(Control(key, label, unit, value_at(config, key), low, high))

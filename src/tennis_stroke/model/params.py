@@ -164,6 +164,70 @@ PARAMETERS: dict[str, ParamSpec] = {
 }
 
 
+#: The initial angles of a stroke (degrees, counter-clockwise from -y, Fig. 1): not model
+#: parameters (every stroke of a map has its own: they are the maps' axes), declared as
+#: they are, each within one turn either way.  The racket swings clockwise from
+#: ``phi0 = theta0 + delta0`` to the hit at ``phi = 0`` (the first time it gets there),
+#: so it must start less than one turn before it: ``phi0 <`` :data:`MAX_PHI0`.  Beyond,
+#: it would pass ``phi = 360`` deg, the hitting position, and hit a turn later (issue
+#: 66: ``theta0 = 480`` gave 258 km/h where ``120`` gives 156).  The paper's strokes lie
+#: far inside (``theta0`` 60-120 deg, ``delta0`` 0-100 deg).  Every entry point goes
+#: through :func:`initial_angles`: the solvers' (``strike_batch`` and so ``strike``,
+#: ``solve_stroke``, ``free_swing``, the fixed-step ``fixed_step_stroke``), ``sweep``,
+#: the config check and the explorer's controls.
+INITIAL_ANGLES: dict[str, ParamSpec] = {
+    s.name: s
+    for s in [
+        ParamSpec(
+            "theta0", None, "degree", "initial angle of rod 1 (the arm)", lower=-360, upper=360
+        ),
+        ParamSpec(
+            "delta0",
+            None,
+            "degree",
+            "initial angle of rod 2 to rod 1 (phi0 - theta0)",
+            lower=-360,
+            upper=360,
+        ),
+    ]
+}
+#: The initial racket angle ``phi0 = theta0 + delta0`` is below this (degrees): the
+#: racket starts less than one turn before the hit (:data:`INITIAL_ANGLES`).
+MAX_PHI0 = 360.0
+
+
+def initial_angle(name: str, value: object) -> np.ndarray:
+    """Initial angle ``name`` (``theta0`` or ``delta0``; degrees, a number or an array)
+    as an array of floats, finite and within its bounds (:data:`INITIAL_ANGLES`), or
+    :class:`ParameterError` naming it."""
+    arr = real_array(f"initial angle {name!r}", value)
+    _check_bounds(INITIAL_ANGLES[name], arr, "initial angle")
+    return arr
+
+
+def initial_angles(theta0: object, delta0: object) -> tuple[np.ndarray, np.ndarray]:
+    """``theta0`` and ``delta0`` (degrees; numbers or arrays that broadcast) as arrays of
+    floats, checked by the rule of :data:`INITIAL_ANGLES`: finite, each within its
+    bounds, and ``theta0 + delta0 <`` :data:`MAX_PHI0`.  Raises :class:`ParameterError`
+    naming the angle."""
+    th, de = initial_angle("theta0", theta0), initial_angle("delta0", delta0)
+    try:
+        phi0 = th + de
+    except ValueError:
+        raise ParameterError(
+            f"the initial angles do not broadcast to one shape: {th.shape}, {de.shape}"
+        ) from None
+    if not np.all(phi0 < MAX_PHI0):
+        at = np.unravel_index(np.argmax(phi0), phi0.shape)
+        t, d = np.broadcast_to(th, phi0.shape)[at], np.broadcast_to(de, phi0.shape)[at]
+        raise ParameterError(
+            f"initial angles theta0 + delta0 must be < {MAX_PHI0:g} degree (the racket "
+            f"starts less than a turn before the hit at phi = 0; beyond, it passes phi = "
+            f"{MAX_PHI0:g} deg and hits a turn later), got {t:g} + {d:g} = {t + d:g}"
+        )
+    return th, de
+
+
 @dataclass(frozen=True)
 class Reading:
     """One ambiguity of the paper: the named choices, the default and the literal one."""
@@ -243,9 +307,15 @@ def _has_bool(value: object) -> bool:
 def real_array(what: str, value: object) -> np.ndarray:
     """``value`` as an array of finite floats, or :class:`ParameterError` naming ``what``:
     a boolean, a string, None or an array holding one is not a number (numpy would take
-    ``True`` for 1 and ``'2'`` for 2), nor is a ragged list."""
+    ``True`` for 1 and ``'2'`` for 2), nor is a ragged list; a masked array is refused
+    (numpy would compute its masked entries)."""
     if value is None or isinstance(value, (str, bytes)) or _has_bool(value):
         raise _not_a_number(what, value)
+    if isinstance(value, np.ma.MaskedArray):  # numpy would drop the mask silently
+        raise ParameterError(
+            f"{what} must not be a masked array (its masked entries would be computed as "
+            "numbers): give the values to compute, e.g. values.compressed()"
+        )
     try:
         arr = np.asarray(value)
         if arr.dtype == object:
@@ -304,20 +374,18 @@ def _below_upper(spec: ParamSpec, x):
     return True if spec.upper is None else x <= spec.upper
 
 
-def _check_bounds(spec: ParamSpec, arr: np.ndarray) -> None:
+def _check_bounds(spec: ParamSpec, arr: np.ndarray, kind: str = "parameter") -> None:
     lo, hi = spec.lower, spec.upper
     unit = "" if spec.unit == "1" else f" {spec.unit}"  # a dimensionless bound reads bare
     if not np.all(_above_lower(spec, arr)):
         rel = ">" if spec.strict else ">="
-        raise ParameterError(
-            f"parameter {spec.name!r} must be {rel} {lo:g}{unit}, got {_show(arr)}"
-        )
+        raise ParameterError(f"{kind} {spec.name!r} must be {rel} {lo:g}{unit}, got {_show(arr)}")
     if not np.all(_below_upper(spec, arr)):
-        raise ParameterError(f"parameter {spec.name!r} must be <= {hi:g}{unit}, got {_show(arr)}")
+        raise ParameterError(f"{kind} {spec.name!r} must be <= {hi:g}{unit}, got {_show(arr)}")
 
 
 def _show(arr: np.ndarray) -> str:
-    return f"{float(arr):g}" if arr.ndim == 0 else f"values in [{arr.min():g}, {arr.max():g}]"
+    return f"{arr.item():g}" if arr.size == 1 else f"values in [{arr.min():g}, {arr.max():g}]"
 
 
 def parse_value(name: str, text: str) -> float | str:
@@ -403,9 +471,17 @@ def resolve_params(overrides: Mapping[str, object] | None = None) -> dict[str, o
     Raises
     ------
     ParameterError
-        Unknown name, non-numeric, non-finite or out-of-bounds value, unknown choice.
+        Not a mapping; unknown name, non-numeric, non-finite or out-of-bounds value,
+        unknown choice.
     """
-    overrides = dict(overrides or {})
+    if overrides is None:
+        overrides = {}
+    if not isinstance(overrides, Mapping):
+        raise ParameterError(
+            "params must be a mapping of names to values, e.g. {'M2': 0.5}, got "
+            f"{_brief(overrides)}"
+        )
+    overrides = dict(overrides)
     out: dict[str, object] = {}
     for name, reading in CHOICES.items():
         out[name] = _choice(reading, overrides.pop(name, reading.default))
@@ -440,6 +516,25 @@ def _scalar(arr: np.ndarray) -> float | np.ndarray:
     """A 0-d array becomes a Python float (so JSON and netCDF attributes stay plain)."""
     arr = np.asarray(arr, dtype=float)
     return float(arr) if arr.ndim == 0 else arr
+
+
+def one_stroke(caller: str, resolved: Mapping[str, object], theta0: object, delta0: object) -> None:
+    """Refuse arrays where ``caller`` computes one stroke (``strike``, ``solve_stroke``):
+    the initial angles and every resolved parameter and choice must be one value each
+    (an array's other values would be dropped); :class:`ParameterError` naming the
+    first that is not."""
+    named = {"initial angle 'theta0'": theta0, "initial angle 'delta0'": delta0}
+    named.update((f"parameter {k!r}", v) for k, v in resolved.items())
+    for what, value in named.items():
+        try:
+            size = np.size(value)
+        except ValueError:  # a ragged list: real_array names it
+            size = 1
+        if size != 1:
+            raise ParameterError(
+                f"{caller} computes one stroke: {what} must be one value, got "
+                f"{_brief(value)} (strike_batch takes arrays)"
+            )
 
 
 def scalar_params(params: Mapping[str, object]) -> dict[str, object]:

@@ -25,11 +25,18 @@ from pathlib import Path
 import numpy as np
 
 from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_stop
-from ..experiments.specs import BOUND_KEYS, EXPERIMENTS, Experiment
+from ..experiments.specs import ANGLE_KEYS, BOUND_KEYS, EXPERIMENTS, Experiment
 from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
 from ..inference.search_plan import BRACKET_KEYS, SEARCHED, search_strokes
 from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
-from ..model.params import CHOICES, PARAMETERS, ParameterError, resolve_params
+from ..model.params import (
+    CHOICES,
+    PARAMETERS,
+    ParameterError,
+    initial_angle,
+    initial_angles,
+    resolve_params,
+)
 from ..solver.settings import METHOD_IDS, SolverSettingError, SolverSettings
 from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_case
 from .resources import DEFAULT_MAX_POINTS
@@ -88,6 +95,7 @@ def _semantic_errors(config: Mapping) -> Iterator[str]:
     except ParameterError as exc:
         yield f"config key 'model': {exc}"
     yield from _bound_errors(config)
+    yield from _angle_errors(config)
     yield from _solver_errors(config)
     yield from _ladder_errors(config, model)
 
@@ -112,6 +120,34 @@ def _bound_errors(config: Mapping) -> Iterator[str]:
             resolve_params({name: np.asarray(_values(value), dtype=float)})
         except (ParameterError, TypeError, ValueError) as exc:
             yield f"config key {key!r}: {exc} (rule: bounds of {name})"
+
+
+def _angle_errors(config: Mapping) -> Iterator[str]:
+    """The initial angles the table's rows read (``Experiment.angles``) by the rule of
+    :data:`~tennis_stroke.model.params.INITIAL_ANGLES`, naming the config keys: each
+    angle (a value, a range's ends, a search range, a list's pairs) within its bounds,
+    and every theta0 with every delta0 of the row less than a turn before the hit."""
+    for keys in ANGLE_KEYS:
+        try:
+            values = [value_at(config, key) for key in keys]
+            if len(keys) == 1:  # (theta0, delta0) pairs
+                pairs = np.asarray(values[0], dtype=float).reshape(-1, 2)
+                theta0, delta0 = pairs[:, 0], pairs[:, 1]
+            else:  # every theta0 with every delta0
+                theta0 = np.asarray(_values(values[0]), dtype=float)[:, None]
+                delta0 = np.asarray(_values(values[1]), dtype=float)[None, :]
+        except (ConfigKeyError, TypeError, ValueError):
+            continue  # a key the schema gives a default, or not numbers: the schema's
+        named = dict(zip(("theta0", "delta0"), keys, strict=True)) if len(keys) == 2 else {}
+        try:
+            for name, key in named.items():
+                label = f"config key {key!r}"
+                initial_angle(name, theta0 if name == "theta0" else delta0)
+            label = " and ".join(map(repr, keys))
+            label = f"config key{'s' if len(keys) > 1 else ''} {label}"
+            initial_angles(theta0, delta0)
+        except ParameterError as exc:
+            yield f"{label}: {exc} (rule: initial angles)"
 
 
 def _solver_errors(config: Mapping) -> Iterator[str]:

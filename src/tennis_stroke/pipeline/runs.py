@@ -22,7 +22,7 @@ from pathlib import Path
 from .._imports import PACKAGE as INSTALLED
 from ..experiments.grids import chunk_count
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS, RESULT_FILES, sorted_data
-from ..inference.claims import claim_errors, load_claims
+from ..inference.claims import claim_axis_errors, claim_errors, load_claims
 from ..inference.paper_config import PaperConfigError, load_paper_inputs
 from ..inference.reading_space import ReadingSpace, ReadingSpaceError, load_reading_space
 from ..replication.marks import mark_values
@@ -110,6 +110,15 @@ def checked_config(config: dict, schema: Path) -> tuple[object, ReadingSpace]:
     )
     if errors:
         raise PlanningError("config", errors[0])
+    claims = load_claims("config/claims.yaml")
+    errors = claim_axis_errors(claims, config, "config/claims.yaml") or claim_axis_errors(
+        claims,
+        space.at_resolution(config),
+        "config/claims.yaml",
+        " at the robustness analysis' resolution, config/readings.yaml",
+    )
+    if errors:
+        raise PlanningError("claims", errors[0])
     # one spelling per value (C2: 5 is 5.0, keys in the schema's order): equal settings,
     # equal job params, no rerun
     spelled = canonical(config, loaded)
@@ -198,11 +207,17 @@ class Runs:
         except ScenarioError as exc:
             scenarios, errors[None] = {}, str(exc)
         configs = {}
+        claims = load_claims("config/claims.yaml")
         for name, overrides in scenarios.items():
             try:
                 configs[name] = changing_config(config, name, overrides, schema)
             except ScenarioError as exc:
                 errors[name] = str(exc)
+                continue
+            off = claim_axis_errors(claims, configs[name], "config/claims.yaml")
+            if off:
+                errors[name] = f"scenario {name!r}: {off[0]}"
+                del configs[name]
         for error in errors.values():
             sys.stderr.write(f"tennis-stroke scenario warning: {error} (the paper's runs go on)\n")
         return cls(config, space, scenarios, configs, errors, stated)

@@ -51,7 +51,7 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.impact import instant_contact
-from ..model.params import resolve_params
+from ..model.params import ParameterError, initial_angles, one_stroke, resolve_params
 from .compiled import ensure_compiled
 from .results import (
     EARLY_CONTACT,
@@ -66,6 +66,12 @@ from .results import (
 
 #: Samples per phase for ``omega2_max`` on the reference path.
 OMEGA2_SAMPLES = 512
+#: The longest time :func:`solve_stroke` simulates: ``t_max`` and ``follow_through`` are
+#: each at most this (s).  ``solve_ivp`` has no bound on its steps, and past the stroke
+#: the elbow's motion (Eq. 13) grows with t^2, so its steps shrink without end: a
+#: ``follow_through`` of 1e6 s ran until it was killed.  The paper's strokes last about
+#: 0.2 s; its figures show 0.32 s.
+MAX_STROKE_TIME = 2.0
 
 
 @dataclass
@@ -285,6 +291,9 @@ def free_swing(
     numbers (see :func:`solve_stroke` for those).
     """
     resolved = resolve_params(params)
+    one_stroke("free_swing", resolved, theta0_deg, delta0_deg)
+    initial_angles(theta0_deg, delta0_deg)
+    _check_options(rtol=rtol, atol=atol, t_end=t_end)
     cf = coefficients(resolved, theta0_deg, delta0_deg)[0]
     solver = {"path": "scipy solve_ivp", "method": "DOP853", "rtol": rtol, "atol": atol}
     ref = ReferenceStroke({}, cf=cf, params=resolved, solver={**solver, "t_end": t_end})
@@ -317,11 +326,13 @@ def solve_stroke(
     rtol, atol : float
         Tolerances passed to ``solve_ivp``.
     t_max : float
-        Longest simulated stroke (s).
+        Longest simulated stroke (s), at most :data:`MAX_STROKE_TIME`.
     contact_min_steps : float
-        The contact phase's ``max_step`` is the two-body contact duration over this.
+        The contact phase's ``max_step`` is the two-body contact duration over this
+        (> 0).
     follow_through : float
-        Free swing after separation (s), for ``omega2_max`` and to see the stroke go on.
+        Free swing after separation (s), for ``omega2_max`` and to see the stroke go on
+        (0 to :data:`MAX_STROKE_TIME`).
 
     Returns
     -------
@@ -331,6 +342,13 @@ def solve_stroke(
         points and the ball in the lab frame) or, with names and units as an
         ``xarray.Dataset``, :func:`tennis_stroke.stroke_dataset`.
 
+    Raises
+    ------
+    ParameterError
+        An option that is not a finite number in its range, an array among the
+        angles or parameters (one stroke: scalars only), an initial angle against the
+        rule of :data:`tennis_stroke.model.params.INITIAL_ANGLES`.
+
     Examples
     --------
     >>> stroke = solve_stroke(120.0, 81.5, follow_through=0.05)  # Fig. 4's stroke a
@@ -338,6 +356,10 @@ def solve_stroke(
     155.68
     """
     resolved = resolve_params(params)
+    one_stroke("solve_stroke", resolved, theta0_deg, delta0_deg)
+    initial_angles(theta0_deg, delta0_deg)
+    _check_options(rtol=rtol, atol=atol, t_max=t_max, contact_min_steps=contact_min_steps)
+    _check_options(follow_through=follow_through, lower=0.0)
     cf = coefficients(resolved, theta0_deg, delta0_deg)[0]
     res = {name: math.nan for name in RESULT_FIELDS}
     res["rhs_evals"] = 0
@@ -346,6 +368,30 @@ def solve_stroke(
     ref = ReferenceStroke(res, cf=cf, params=resolved, solver=solver)
     code = _phases(ref, cf, (method, rtol, atol), t_max, contact_min_steps, follow_through)
     return _finished(ref, code)
+
+
+#: The options of :func:`solve_stroke` that are durations, at most :data:`MAX_STROKE_TIME`.
+_DURATIONS = ("t_max", "follow_through", "t_end")
+
+
+def _check_options(lower: float | None = None, **options: object) -> None:
+    """Each of ``options`` (by name) a finite number above 0 (at least ``lower`` where
+    given) and, for a duration, at most :data:`MAX_STROKE_TIME`; a
+    :class:`tennis_stroke.model.params.ParameterError` naming it otherwise (NaN or inf
+    made the phases loop for ever)."""
+    for name, value in options.items():
+        number = isinstance(value, int | float | np.integer | np.floating) and not isinstance(
+            value, bool | np.bool_
+        )
+        low = ">= 0" if lower is not None else "> 0"
+        high = f" and <= {MAX_STROKE_TIME:g} s" if name in _DURATIONS else ""
+        fits = number and math.isfinite(value)
+        fits = fits and (value >= lower if lower is not None else value > 0)
+        fits = fits and (name not in _DURATIONS or value <= MAX_STROKE_TIME)
+        if not fits:
+            raise ParameterError(
+                f"argument {name!r} must be a finite number {low}{high}, got {value!r}"
+            )
 
 
 def _finished(ref: ReferenceStroke, code: int) -> ReferenceStroke:

@@ -40,7 +40,7 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.impact import instant_contact
-from ..model.params import resolve_params
+from ..model.params import initial_angles, resolve_params
 from .compiled import ensure_compiled
 from .results import NO_APPROACH, NO_PHI_ZERO, NO_RELEASE, OK, STATUS_NAMES, STEP_FAILURE
 
@@ -137,6 +137,7 @@ def fixed_step_stroke(
     other than ``spring``) meet the ball at ``phi = 0`` in no time
     (:func:`~tennis_stroke.model.impact.instant_contact`), as on the other paths.
     """
+    initial_angles(theta0_deg, delta0_deg)
     cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
     out = {"status": OK, "v_out_kmh": math.nan, "rhs_evals": 0}
     out |= dict.fromkeys(("t_phi0", "t_contact_start", "t_separation"), math.nan)

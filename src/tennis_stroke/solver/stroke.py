@@ -64,7 +64,7 @@ from ..model.dynamics import (
     wrist_torque,
 )
 from ..model.impact import instant_contact
-from ..model.params import ParameterError, real_array, resolve_params
+from ..model.params import ParameterError, initial_angles, one_stroke, resolve_params
 from ._kernels import N_STAGES_BY_ID, coefficient_tuple
 from .compiled import ensure_compiled
 from .integrate import (
@@ -538,7 +538,9 @@ def strike_batch(
     Parameters
     ----------
     theta0_deg, delta0_deg : array_like
-        Initial angles ``theta(0)`` and ``delta(0) = phi(0) - theta(0)`` (degrees).
+        Initial angles ``theta(0)`` and ``delta(0) = phi(0) - theta(0)`` (degrees), by
+        the rule of :data:`tennis_stroke.model.params.INITIAL_ANGLES` (each within a
+        turn, the racket less than a turn before the hit).
     params : mapping, optional
         Parameter overrides (scalars or arrays) and readings; see
         :func:`tennis_stroke.model.params.resolve_params`.
@@ -555,8 +557,7 @@ def strike_batch(
         broadcast shape.
     """
     resolved = resolve_params(params)
-    th = real_array("initial angle 'theta0'", theta0_deg)
-    de = real_array("initial angle 'delta0'", delta0_deg)
+    th, de = initial_angles(theta0_deg, delta0_deg)
     shapes = [
         th.shape,
         de.shape,
@@ -579,7 +580,11 @@ def strike(
     params: Mapping[str, object] | None = None,
     settings: SolverSettings | None = None,
 ) -> dict[str, object]:
-    """Simulate one stroke; returns the result fields as Python scalars plus ``status_name``."""
+    """Simulate one stroke; returns the result fields as Python scalars plus ``status_name``.
+
+    The initial angles and parameters are one value each (:func:`strike_batch` takes
+    arrays): an array is a :class:`tennis_stroke.model.params.ParameterError`."""
+    one_stroke("strike", resolve_params(params), theta0_deg, delta0_deg)
     res = strike_batch(theta0_deg, delta0_deg, params, settings, threads=1)
     out: dict[str, object] = {k: v.item() for k, v in res.items()}
     out["status_name"] = STATUS_NAMES[out["status"]]
