@@ -3,11 +3,13 @@ Snakemake's Python API (``snakemake.api``): the package and Snakemake are import
 so a dry run costs its parse and DAG only (about 0.4 s here, against about 3 s for a new
 ``snakemake -n`` process).
 
-Usage: ``python dry_runs.py SNAKEFILE WORKDIR TARGET < overrides.json``; reads a JSON list
-of config overrides (nested mappings, merged over the config file as ``--config`` would)
-and prints a JSON list of ``{"exit": status, "output": log}``: status 0 for a dry run that
-planned (its "Job stats" are in the log), else the workflow's exit status (1 when it
-refused the config, with its one line on stderr in the log).
+Usage: ``python dry_runs.py SNAKEFILE WORKDIR TARGET < runs.json``; reads a JSON list of
+runs, each ``{"config": overrides, "target": path, "files": {path: text}}`` (all
+optional: the config overrides are nested mappings merged over the config file as
+``--config`` would; the target defaults to TARGET; each file, relative to WORKDIR, is
+written before the run) and prints a JSON list of ``{"exit": status, "output": log,
+"stderr": its stderr}``: status 0 for a dry run that planned (its "Job stats" are in the
+log), else the workflow's exit status (1 when it refused, with its one line on stderr).
 """
 
 from __future__ import annotations
@@ -20,6 +22,7 @@ from pathlib import Path
 
 
 def dry_run(snakefile: Path, workdir: Path, target: str, override: dict) -> dict:
+    """One dry run of ``target`` with the config ``override``."""
     from snakemake.api import SnakemakeApi
     from snakemake.settings.types import (
         ConfigSettings,
@@ -28,9 +31,9 @@ def dry_run(snakefile: Path, workdir: Path, target: str, override: dict) -> dict
         ResourceSettings,
     )
 
-    log = io.StringIO()
+    log, err = io.StringIO(), io.StringIO()
     status = 0
-    with contextlib.redirect_stderr(log), contextlib.redirect_stdout(log):
+    with contextlib.redirect_stderr(_Tee(log, err)), contextlib.redirect_stdout(log):
         try:
             with SnakemakeApi(OutputSettings()) as api:
                 workflow = api.workflow(
@@ -42,13 +45,29 @@ def dry_run(snakefile: Path, workdir: Path, target: str, override: dict) -> dict
                 workflow.dag(DAGSettings(targets={target})).execute_workflow(executor="dryrun")
         except SystemExit as exc:
             status = exc.code if isinstance(exc.code, int) else 1
-    return {"exit": status, "output": log.getvalue()}
+    return {"exit": status, "output": log.getvalue(), "stderr": err.getvalue()}
+
+
+class _Tee(io.TextIOBase):
+    """A stream writing to two (the whole log, and stderr alone)."""
+
+    def __init__(self, *streams):
+        self.streams = streams
+
+    def write(self, text):
+        for stream in self.streams:
+            stream.write(text)
+        return len(text)
 
 
 def main() -> None:
     snakefile, workdir, target = Path(sys.argv[1]), Path(sys.argv[2]), sys.argv[3]
-    overrides = json.loads(sys.stdin.read())
-    print(json.dumps([dry_run(snakefile, workdir, target, o) for o in overrides]))
+    out = []
+    for run in json.loads(sys.stdin.read()):
+        for name, text in run.get("files", {}).items():
+            (workdir / name).write_text(text)
+        out.append(dry_run(snakefile, workdir, run.get("target", target), run.get("config", {})))
+    print(json.dumps(out))
 
 
 if __name__ == "__main__":

@@ -4,10 +4,13 @@ Usage: ``python tools/mutation_check.py [--only NAME ...] [--list]``
 
 Each mutant of :data:`MUTANTS` is one text substitution in one source file: the claims'
 rule (:func:`tennis_stroke.inference.claims.within`), a claim's measurement
-(:func:`~tennis_stroke.inference.claims.measure`) and the compiled solver's event
-location (:func:`tennis_stroke.solver.integrate.locate_event`).  For each, the tests it
-names run (``pytest -m "not slow"``) on a copy of the package that holds the mutant, and
-the table printed at the end says which tests failed: "survived" where none did.  The
+(:func:`~tennis_stroke.inference.claims.measure`), the config's checks
+(:func:`tennis_stroke.pipeline.config_check.config_errors`, and how a refusal reaches
+the Snakefile) and the compiled solver's event location
+(:func:`tennis_stroke.solver.integrate.locate_event`).  For each, the tests it names run
+(``pytest -m "not slow"``, or all of them where a mutant needs a real process) on a copy
+of the package that holds the mutant, and the table printed at the end says which tests
+failed: "survived" where none did.  The
 unmutated copy runs the same tests first; a test that fails there is reported and not
 counted as a kill.
 
@@ -60,6 +63,9 @@ SOLVER_TESTS = (
     "tests/solver/test_stroke.py",
     "tests/solver/test_integrate.py",
 )
+#: The config's checks: every bad case in-process, and the one Snakemake process that
+#: shows a refusal reaching the user (slow: the mutants that name it run the slow tier).
+CONFIG_TESTS = ("tests/workflow/test_config_check.py", "tests/workflow/test_scenarios.py")
 
 
 @dataclass(frozen=True)
@@ -72,6 +78,9 @@ class Mutant:
     old: str
     new: str
     tests: tuple[str, ...]
+    #: The tests' marker expression (``pytest -m``): the fast tier unless a mutant needs
+    #: a test only a real process shows.
+    marker: str = "not slow"
 
 
 MUTANTS = (
@@ -122,6 +131,43 @@ MUTANTS = (
         "value = pick(value, 1 + dims.index(dim), index)",
         "value = pick(value, 1 + dims.index(dim), index - 1)",
         CLAIM_TESTS,
+    ),
+    Mutant(
+        "config_semantic_checks_dropped",
+        "config_errors: the checks after the schema dropped (bounds, grids, the points bound)",
+        "pipeline/config_check.py",
+        "return errors or list(_semantic_errors(config)) or list(points_errors(config, readings))",
+        "return errors",
+        CONFIG_TESTS,
+    ),
+    Mutant(
+        "config_refusal_uncaught",
+        "checked_config: a refused config raised as a bare ValueError (the Snakefile's "
+        "handler misses it: a traceback, not one line)",
+        "pipeline/runs.py",
+        'raise PlanningError("config", errors[0])',
+        "raise ValueError(errors[0])",
+        ("tests/workflow/test_config_check.py",),
+        marker="",
+    ),
+    Mutant(
+        "scenario_changing_nothing_accepted",
+        "changing_config: a scenario that changes nothing of the paper's accepted",
+        "pipeline/scenarios.py",
+        "if not changes(_complete(base, loaded), _complete(config, loaded)):",
+        "if False:",
+        (
+            "tests/workflow/test_workflow_failsafe.py::test_a_bad_scenario_is_one_line_before_any_job",
+        ),
+        marker="",
+    ),
+    Mutant(
+        "gather_in_file_order",
+        "gather_chunks: the chunks concatenated in the order given, not their chunk order",
+        "pipeline/chunks.py",
+        '    parts.sort(key=lambda p: int(p.attrs["chunk_index"]))\n',
+        "",
+        ("tests/workflow/test_chunking.py",),
     ),
     Mutant(
         "locate_event_step_end",
@@ -193,9 +239,12 @@ def _copy_run(src: Path, expression: str) -> str:
     return done.stdout.strip()
 
 
-def run_tests(tests: tuple[str, ...], src: Path, work: Path) -> tuple[set[str], str]:
-    """Run ``tests`` with the package at ``src`` first on the path: the ids of the tests
-    that failed (collection errors included), and "" or why the run itself broke."""
+def run_tests(
+    tests: tuple[str, ...], src: Path, work: Path, marker: str = "not slow"
+) -> tuple[set[str], str]:
+    """Run ``tests`` (those ``marker`` selects; "": all) with the package at ``src``
+    first on the path: the ids of the tests that failed (collection errors included), and
+    "" or why the run itself broke."""
     report = work / "junit.xml"
     report.unlink(missing_ok=True)
     env = {
@@ -204,7 +253,7 @@ def run_tests(tests: tuple[str, ...], src: Path, work: Path) -> tuple[set[str], 
         "PYTHONDONTWRITEBYTECODE": "1",  # a mutant as long as the original, written
     }  # within the second, would load the other's bytecode
     env["NUMBA_CACHE_DIR"] = str(work / "numba" / _copy_run(src, "_cache.source_hash()"))
-    command = [sys.executable, "-m", "pytest", "-q", "-m", "not slow"]
+    command = [sys.executable, "-m", "pytest", "-q", *(["-m", marker] if marker else [])]
     command += ["-p", "no:cacheprovider", f"--junitxml={report}", *tests]
     # A session of its own: an interrupt stops pytest and every process it started
     # (they write into the temporary folder) before the folder is removed.
@@ -259,20 +308,21 @@ def check(mutants: list[Mutant]) -> list[tuple[Mutant, set[str], str]]:
         found = _copy_run(src, "__file__")
         if Path(found).parent != src / "tennis_stroke":
             raise SystemExit(f"the copy is not the package pytest imports ({found})")
-        baseline: dict[tuple[str, ...], set[str]] = {}
-        for tests in dict.fromkeys(m.tests for m in mutants):
-            print(f"unmutated: {len(tests)} test files ...", flush=True)
-            baseline[tests], broke = run_tests(tests, src, work)
-            if broke or baseline[tests]:
-                print(f"  fails unmutated ({broke or ', '.join(sorted(baseline[tests]))})")
+        baseline: dict[tuple[tuple[str, ...], str], set[str]] = {}
+        for tests, marker in dict.fromkeys((m.tests, m.marker) for m in mutants):
+            print(f"unmutated: {len(tests)} test files ({marker or 'all'}) ...", flush=True)
+            key = (tests, marker)
+            baseline[key], broke = run_tests(tests, src, work, marker)
+            if broke or baseline[key]:
+                print(f"  fails unmutated ({broke or ', '.join(sorted(baseline[key]))})")
         for m in mutants:
             print(f"{m.name}: {m.what} ...", flush=True)
             original = apply(m, src)
             try:
-                failed, broke = run_tests(m.tests, src, work)
+                failed, broke = run_tests(m.tests, src, work, m.marker)
             finally:
                 (src / "tennis_stroke" / m.path).write_text(original)
-            killed = failed - baseline[m.tests]
+            killed = failed - baseline[(m.tests, m.marker)]
             print(f"  killed by {len(killed)} tests" if killed else f"  survived {broke}")
             rows.append((m, killed, broke))
     return rows

@@ -130,13 +130,15 @@ def override(section, value) -> str:
     return f"{section}={yaml.safe_dump(value, default_flow_style=True).strip()}"
 
 
-def dry_runs(snakefile, work, overrides):
-    """Dry runs of the report, one per config override, in one process
-    (tests/dry_runs.py): ``[{"exit": status, "output": log}, ...]``."""
+def dry_runs(snakefile, work, overrides=(), runs=None):
+    """Dry runs of the report, one per config override (or per run of ``runs``: a config,
+    a target, files written first; tests/dry_runs.py), in one process: ``[{"exit":
+    status, "output": log, "stderr": its stderr}, ...]``."""
     command = [sys.executable, str(Path(__file__).parents[1] / "dry_runs.py")]
+    runs = [{"config": o} for o in overrides] if runs is None else runs
     done = subprocess.run(
         [*command, str(snakefile), str(work), "report"],
-        input=json.dumps(overrides),
+        input=json.dumps(runs),
         capture_output=True,
         text=True,
         timeout=600,
@@ -281,74 +283,83 @@ def test_a_bad_claim_is_refused_before_any_job(tmp_path):
     assert not (work / "results").exists() and not (work / "logs").exists()
 
 
-@pytest.mark.parametrize(
-    ("scenarios", "target", "line"),
-    [
-        # a name no scenario declares, as a target (Snakemake's own message is a traceback)
-        (
-            "a: {model: {M2: 0.35}}\n",
-            "results/scenarios/b/figures/fig02_angle_map.png",
-            "tennis-stroke scenario error: no scenario 'b' is declared (declared: a;",
-        ),
-        # a path no rule makes under a declared scenario
-        (
-            "a: {model: {M2: 0.35}}\n",
-            "results/scenarios/a/figures/study01_work_precision.png",
-            "tennis-stroke scenario error: no rule makes results/scenarios/a/figures/study01",
-        ),
-        # a bad override
-        (
-            "a: {model: {M2: -1.0}}\n",
-            "report/scenarios/a/index.html",
-            "tennis-stroke scenario error: scenario 'a': config key 'model': parameter 'M2' "
-            "must be > 0 kg, got -1",
-        ),
-        # a scenario that changes nothing (the explorer's Save at the defaults wrote one;
-        # whatif refused it while its page planned jobs)
-        (
-            "good-one: {}\n",
-            "report/scenarios/good-one/index.html",
-            "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
-        ),
-        (
-            "good-one: {model: {M2: 0.3}}\n",
-            "results/scenarios/good-one/claims.csv",
-            "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
-        ),
-        # a section only the paper's configuration runs
-        (
-            "a: {solver_study: {seed: 3}}\n",
-            "results/scenarios/a/claims.csv",
-            "tennis-stroke scenario error: scenario 'a': may not override 'solver_study'",
-        ),
-        (
-            "- a\n",
-            "report/scenarios/a/index.html",
-            "tennis-stroke scenario error: config/scenarios.yaml: must map",
-        ),
-        # an alias bomb inside one scenario (minutes and gigabytes of planning before)
-        (
-            "a:\n  model:\n    l0: &l0 [1, 2, 3, 4, 5, 6, 7, 8, 9]\n"
-            + "".join(f"    l{i}: &l{i} [{', '.join([f'*l{i - 1}'] * 9)}]\n" for i in range(1, 9)),
-            "report/scenarios/a/index.html",
-            "tennis-stroke scenario error: config/scenarios.yaml: holds 4.9e+08 values once its",
-        ),
-    ],
-)
-def test_a_bad_scenario_is_one_line_before_any_job(tmp_path, scenarios, target, line):
+#: The lines Snakemake itself writes before it builds the plan.
+PREAMBLE = ("host: " + os.uname().nodename, "Building DAG of jobs...")
+#: Bad scenario files, the file a user asks for, and the first words of the one line.
+BAD_SCENARIOS = [
+    # a name no scenario declares, as a target (Snakemake's own message is a traceback)
+    (
+        "a: {model: {M2: 0.35}}\n",
+        "results/scenarios/b/figures/fig02_angle_map.png",
+        "tennis-stroke scenario error: no scenario 'b' is declared (declared: a;",
+    ),
+    # a path no rule makes under a declared scenario
+    (
+        "a: {model: {M2: 0.35}}\n",
+        "results/scenarios/a/figures/study01_work_precision.png",
+        "tennis-stroke scenario error: no rule makes results/scenarios/a/figures/study01",
+    ),
+    # a bad override
+    (
+        "a: {model: {M2: -1.0}}\n",
+        "report/scenarios/a/index.html",
+        "tennis-stroke scenario error: scenario 'a': config key 'model': parameter 'M2' "
+        "must be > 0 kg, got -1",
+    ),
+    # a scenario that changes nothing (the explorer's Save at the defaults wrote one;
+    # whatif refused it while its page planned jobs)
+    (
+        "good-one: {}\n",
+        "report/scenarios/good-one/index.html",
+        "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
+    ),
+    (
+        "good-one: {model: {M2: 0.3}}\n",
+        "results/scenarios/good-one/claims.csv",
+        "tennis-stroke scenario error: scenario 'good-one' changes nothing of the paper's",
+    ),
+    # a section only the paper's configuration runs
+    (
+        "a: {solver_study: {seed: 3}}\n",
+        "results/scenarios/a/claims.csv",
+        "tennis-stroke scenario error: scenario 'a': may not override 'solver_study'",
+    ),
+    (
+        "- a\n",
+        "report/scenarios/a/index.html",
+        "tennis-stroke scenario error: config/scenarios.yaml: must map",
+    ),
+    # an alias bomb inside one scenario (minutes and gigabytes of planning before)
+    (
+        "a:\n  model:\n    l0: &l0 [1, 2, 3, 4, 5, 6, 7, 8, 9]\n"
+        + "".join(f"    l{i}: &l{i} [{', '.join([f'*l{i - 1}'] * 9)}]\n" for i in range(1, 9)),
+        "report/scenarios/a/index.html",
+        "tennis-stroke scenario error: config/scenarios.yaml: holds 4.9e+08 values once its",
+    ),
+]
+
+
+def test_a_bad_scenario_is_one_line_before_any_job(tmp_path):
     """Asking for a bad scenario's files is refused in one line before any job; the
-    paper's run goes on with a warning naming it (a scenario never stops it)."""
+    paper's run goes on with a warning naming it (a scenario never stops it).  Every case
+    and the paper's run beside it are dry runs of one process (tests/dry_runs.py)."""
     work = workdir(tmp_path, TINY, TINY_READINGS)
-    (work / "config" / "scenarios.yaml").write_text(scenarios)
-    done = run_snakemake(target, work, "-n")
-    assert done.returncode == 1
-    lines = [x for x in done.stderr.strip().splitlines() if "scenario warning" not in x]
-    assert len(lines) == 1 and lines[0].startswith(line), lines
+    runs = []
+    for scenarios, target, _ in BAD_SCENARIOS:
+        files = {"config/scenarios.yaml": scenarios}
+        runs += [{"target": target, "files": files}, {"target": "report", "files": files}]
+    done = dry_runs(ROOT / "Snakefile", work, runs=runs)
+    pairs = zip(BAD_SCENARIOS, done[::2], done[1::2], strict=True)
+    for (scenarios, target, line), asked, paper in pairs:
+        assert asked["exit"] == 1, (target, asked["output"][-2000:])
+        err = asked["stderr"].strip().splitlines()
+        # Snakemake's own preamble (its API logs it; the command line with -n too)
+        lines = [x for x in err if x.strip() and "scenario warning" not in x and x not in PREAMBLE]
+        assert len(lines) == 1 and lines[0].startswith(line), (target, lines)
+        assert paper["exit"] == 0, (scenarios, paper["output"][-2000:])
+        warnings = [x for x in paper["stderr"].splitlines() if x.startswith("tennis-stroke")]
+        assert all("scenario warning" in x for x in warnings), warnings
     assert not (work / "results").exists()
-    paper = run_snakemake("report", work, "-n")
-    assert paper.returncode == 0, paper.stderr[-2000:]
-    warnings = [x for x in paper.stderr.splitlines() if x.startswith("tennis-stroke")]
-    assert all("scenario warning" in x for x in warnings)
 
 
 def test_an_override_a_row_sets_itself_is_said_once_at_planning(tmp_path):
