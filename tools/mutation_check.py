@@ -170,6 +170,19 @@ MUTANTS = (
         ("tests/workflow/test_chunking.py",),
     ),
     Mutant(
+        "deferred_signal_swallowed",
+        "deferred_signals: a signal received during a write not raised again (the job "
+        "goes on after Ctrl-C)",
+        "io/interrupts.py",
+        "        signal.raise_signal(received[0])\n",
+        "        pass\n",
+        (
+            "tests/workflow/test_workflow_failsafe.py::"
+            "test_a_signal_while_a_job_writes_stops_the_run_and_keeps_the_earlier_result",
+        ),
+        marker="",
+    ),
+    Mutant(
         "locate_event_step_end",
         "locate_event: the step's end, not the root",
         "solver/integrate.py",
