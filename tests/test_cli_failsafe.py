@@ -12,6 +12,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+import yaml
 from conftest import record_configuration
 
 from tennis_stroke.cli import main
@@ -138,14 +139,15 @@ def _table(tmp_path):
     """The claims table of a run: one row per declared claim, each reproducing the paper's
     value (so passing), as the claims job would write it."""
     declared = __import__("yaml").safe_load((ROOT / "config" / "claims.yaml").read_text())
-    from tennis_stroke.replication.claims import COLUMNS
+    from tennis_stroke.replication.claims import COLUMNS, measure_text
 
     record_configuration(tmp_path)
 
     rows = [
         {
             **dict.fromkeys(COLUMNS, ""),
-            "id": c["id"],
+            **{k: str(c.get(k, "")) for k in ("id", "source", "quantity", "unit", "reason")},
+            "measure": measure_text(c["measure"]),
             "status": "pass",
             "reproduced_value": c["paper_value"],
             "paper_value": c["paper_value"],
@@ -221,6 +223,32 @@ def test_claims_refuses_a_table_edited_by_hand(
     table.to_csv(csv, index=False)
     code, _, err = _run(capsys, "claims", str(csv))
     assert code == 2 and fragment in _one_error_line(err)
+
+
+@pytest.mark.parametrize(
+    "field, change",
+    [
+        ("measure", lambda c: c["measure"].update(theta0=90.0)),  # issue 66, case 11
+        ("quantity", lambda c: c.update(quantity="another quantity")),
+        ("source", lambda c: c.update(source="Sec. IX")),
+    ],
+)
+def test_claims_names_a_table_older_than_an_edit_of_its_claims(
+    tmp_path, capsys, monkeypatch, field, change
+):
+    """Was: the table passed (only ids, paper values, tolerances and expectations were
+    compared), its value measured at theta0 = 120 graded as the claim at 90."""
+    monkeypatch.chdir(ROOT)
+    csv = tmp_path / "claims.csv"
+    _table(tmp_path).to_csv(csv, index=False)
+    raw = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())
+    change(next(c for c in raw["claims"] if c["id"] == "fig2_best_delta0_at_120"))
+    (tmp_path / "claims.yaml").write_text(yaml.safe_dump(raw))
+    assert _run(capsys, "claims", str(csv))[0] == 0  # the table of config/claims.yaml
+    code, _, err = _run(capsys, "claims", str(csv), "--claims", str(tmp_path / "claims.yaml"))
+    line = _one_error_line(err)
+    assert code == 2 and f"(claim 'fig2_best_delta0_at_120') has {field} " in line
+    assert "stale" in line
 
 
 def test_identify_refuses_a_model_section_that_is_a_list(tmp_path, capsys, monkeypatch):
