@@ -53,7 +53,7 @@ from .scenarios import (
     resolved_results,
     unreached,
 )
-from .targets import damaged_results
+from .targets import damaged_results, foreign_results
 
 #: The robustness analysis' map, gathered from chunks like the table's maps.
 ROBUSTNESS_MAP = "robustness/claims"
@@ -128,7 +128,8 @@ def checked_config(config: dict, schema: Path) -> tuple[object, ReadingSpace]:
 
 
 def guard_checkout(basedir: Path, argv: list[str]) -> None:
-    """The files a run would build on: a damaged result file (truncated, garbage) is
+    """The files a run would build on: a damaged result file (truncated, garbage), or
+    one at a row's path that its job did not write (:func:`foreign_results`), is
     named before any job (Snakemake would take it for up to date, and every job reading
     it would fail; a scenario's never stops the paper's run: a warning), and the jobs
     must run the checkout's code (an installed copy that differs would run stale code
@@ -149,6 +150,12 @@ def guard_checkout(basedir: Path, argv: list[str]) -> None:
         raise PlanningError(
             "results",
             f"{path} is damaged ({problem}): remove it and make it with: snakemake -j2 {path}",
+        )
+    for path, why in foreign_results():
+        raise PlanningError(
+            "results",
+            f"{path} is not this workflow's file ({why}: written by tennis-stroke sweep "
+            f"--out, say): move it elsewhere and make it with: snakemake -j2 {path}",
         )
     differs = installed_difference(INSTALLED, basedir / "src" / "tennis_stroke")
     if differs is not None:
