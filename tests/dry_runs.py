@@ -4,10 +4,11 @@ so a dry run costs its parse and DAG only (about 0.4 s here, against about 3 s f
 ``snakemake -n`` process).
 
 Usage: ``python dry_runs.py SNAKEFILE WORKDIR TARGET < overrides.json``; reads a JSON list
-of config overrides (nested mappings, merged over the config file as ``--config`` would)
-and prints a JSON list of ``{"exit": status, "output": log}``: status 0 for a dry run that
-planned (its "Job stats" are in the log), else the workflow's exit status (1 when it
-refused the config, with its one line on stderr in the log).
+of config overrides (nested mappings, merged over the config file as ``--config`` would),
+or of ``{"config": override, "target": path}`` for a run of its own target, and prints a
+JSON list of ``{"exit": status, "output": log}``: status 0 for a dry run that planned
+(its "Job stats" are in the log), else the workflow's exit status (1 when it refused the
+config, with its one line on stderr in the log).
 """
 
 from __future__ import annotations
@@ -48,7 +49,14 @@ def dry_run(snakefile: Path, workdir: Path, target: str, override: dict) -> dict
 def main() -> None:
     snakefile, workdir, target = Path(sys.argv[1]), Path(sys.argv[2]), sys.argv[3]
     overrides = json.loads(sys.stdin.read())
-    print(json.dumps([dry_run(snakefile, workdir, target, o) for o in overrides]))
+    runs = [
+        (o["target"], o.get("config", {}))
+        if set(o) <= {"config", "target"} and "target" in o
+        # a run with its own target (no config section is named target)
+        else (target, o)
+        for o in overrides
+    ]
+    print(json.dumps([dry_run(snakefile, workdir, t, o) for t, o in runs]))
 
 
 if __name__ == "__main__":

@@ -545,3 +545,33 @@ SCENARIO_PATHS = "|".join(
     ]
 )
 UNKNOWN_SCENARIO_PATH = rf"(?!(?:{SCENARIO_PATHS})$).+"
+#: A figure of ``results/figures/`` that the registry does not have (``fig9.png``,
+#: ``fig09_v_tua.png``): rule unknown_figure's name, so that a guess is one line
+#: (:func:`refuse_unknown_figure`), not Snakemake's traceback.  The look-ahead reads
+#: past the wildcard to the rule's ``.png`` (the pattern's end).
+UNKNOWN_FIGURE = rf"(?!(?:{_regex(FIGURES)})\.png$)[^/]+"
+
+
+def nearest_figures(name: str, n: int = 3) -> list[str]:
+    """The figures of the registry nearest to ``name``: those of its number (``fig9``:
+    ``fig09_v_tau``), else the closest spellings (difflib), always some."""
+    import difflib
+
+    number = re.fullmatch(r"([a-z]+)0*(\d+)", name)
+    if number:
+        prefix = f"{number[1]}{int(number[2]):02d}_"
+        same = [f for f in sorted(FIGURES) if f.startswith(prefix)]
+        if same:
+            return same[:n]
+    return difflib.get_close_matches(name, sorted(FIGURES), n=n, cutoff=0.0)
+
+
+def refuse_unknown_figure(wildcards) -> None:
+    """The input function of rule unknown_figure: one line naming the file and the
+    nearest figures, then exit 1."""
+    near = ", ".join(f"results/figures/{f}.png" for f in nearest_figures(wildcards.name))
+    sys.stderr.write(
+        f"tennis-stroke figure error: no rule makes results/figures/{wildcards.name}.png "
+        f"(nearest: {near}; python -m tennis_stroke.pipeline.targets lists every file)\n"
+    )
+    sys.exit(1)
