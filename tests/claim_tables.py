@@ -12,6 +12,7 @@ import yaml
 from conftest import ROOT
 
 from tennis_stroke.inference.reading_space import load_reading_space
+from tennis_stroke.replication.claims import measure_text
 from tennis_stroke.replication.robustness import EVIDENCE
 
 DECLARED = yaml.safe_load((ROOT / "config/claims.yaml").read_text())["claims"]
@@ -68,6 +69,7 @@ def declared_table(robustness: bool = True) -> pd.DataFrame:
             "status": "used_for_fit" if fit else "pass",
             "expectation": c["expectation"],
             "reason": c.get("reason", ""),
+            "measure": measure_text(c["measure"]),
             "fit_set": fit,
             "map_value": str(float(c["paper_value"])),
             "map_difference": "0.0",

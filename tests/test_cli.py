@@ -18,6 +18,7 @@ from conftest import ROOT, record_configuration
 
 from tennis_stroke import strike, strike_batch
 from tennis_stroke.cli import main
+from tennis_stroke.replication.claims import measure_text
 
 REQUIRED_PARAMS = (
     "L1",
@@ -521,21 +522,33 @@ def test_console_script_runs_as_a_process(tmp_path):
     assert "Traceback" not in done.stderr
 
 
+#: The measure of most hand-written claims tables below, a time (unit s).
+_TIME = {"file": "fig9", "var": "best_tau"}
+
+
+def _cell(spec) -> str:
+    """A claim's measure as a claims table's CSV cell holds it."""
+    return '"' + measure_text(spec).replace('"', '""') + '"'
+
+
+_MEASURE = _cell(_TIME)
+
+
 def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     table = tmp_path / "claims.csv"
     record_configuration(tmp_path)
-    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,,{value},0,agrees\n"
+    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,{measure},,{value},0,agrees\n"
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
+    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause\n"
     declared = tmp_path / "claims.yaml"  # the one claim the table holds
     claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
     claim.update(tolerance=0.1, expectation="reproduce")
     claim["measure"] = {"file": "fig9", "var": "best_tau"}
     declared.write_text(json.dumps({"claims": [claim]}))
-    table.write_text(header + row.format(value=1.5, status="fail"))
+    table.write_text(header + row.format(value=1.5, status="fail", measure=_MEASURE))
     assert main(["claims", str(table), "--claims", str(declared)]) == 1
     assert "FAIL x" in capsys.readouterr().out
-    table.write_text(header + row.format(value=1.05, status="pass"))
+    table.write_text(header + row.format(value=1.05, status="pass", measure=_MEASURE))
     assert main(["claims", str(table), "--claims", str(declared)]) == 0
 
 
@@ -546,16 +559,20 @@ def test_claims_command_exits_1_when_a_search_and_its_map_differ_without_cause(t
     table = tmp_path / "claims.csv"
     record_configuration(tmp_path)
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
+    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause\n"
     declared = tmp_path / "claims.yaml"
     claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
     claim.update(tolerance=0.1, expectation="reproduce")
     claim["measure"] = {"file": "fig9", "var": "best_tau"}
     declared.write_text(json.dumps({"claims": [claim]}))
-    table.write_text(header + "x,s,q,s,1.0,1.05,0.1,pass,reproduce,,,1.0,0.5,unexplained\n")
+    table.write_text(
+        header + f"x,s,q,s,1.0,1.05,0.1,pass,reproduce,,{_MEASURE},,1.0,0.5,unexplained\n"
+    )
     assert main(["claims", str(table), "--claims", str(declared)]) == 1
     assert "UNEXPLAINED x (default reading)" in capsys.readouterr().out
-    table.write_text(header + "x,s,q,s,1.0,1.05,0.1,pass,reproduce,,,1.0,0.5,grid_step\n")
+    table.write_text(
+        header + f"x,s,q,s,1.0,1.05,0.1,pass,reproduce,,{_MEASURE},,1.0,0.5,grid_step\n"
+    )
     assert main(["claims", str(table), "--claims", str(declared)]) == 0
     folder = tmp_path / "robustness" / "validation"  # the validation files beside the table
     folder.mkdir(parents=True)
@@ -847,19 +864,22 @@ def test_claims_prints_every_claim_as_a_table_then_the_counts(tmp_path, capsys):
     table = tmp_path / "claims.csv"
     record_configuration(tmp_path)
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,fit_set,map_value,map_difference,map_cause\n"
+    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause\n"
+    speed, angle = {"file": "fig9", "var": "best_v_out"}, {"file": "fig2", "var": "best_delta0"}
     rows = [
-        "speed,s,q,km/h,150.0,151.234567,2.0,pass,reproduce,,,151.2,0,agrees\n",
-        "angle,s,q,degree,76.0,232.4,5.0,known_deviation,known_deviation,,,232.4,0,agrees\n",
+        f"speed,s,q,km/h,150.0,151.234567,2.0,pass,reproduce,,{_cell(speed)},,151.2,0,agrees\n",
+        f"angle,s,q,degree,76.0,232.4,5.0,known_deviation,known_deviation,r,{_cell(angle)},,"
+        "232.4,0,agrees\n",
     ]
     declared = tmp_path / "claims.yaml"
     claims = [
         {"id": "speed", "unit": "km/h", "paper_value": 150.0, "tolerance": 2.0},
         {"id": "angle", "unit": "degree", "paper_value": 76.0, "tolerance": 5.0, "reason": "r"},
     ]
-    for claim, expectation in zip(claims, ("reproduce", "known_deviation"), strict=True):
-        claim.update(source="s", quantity="q", expectation=expectation)
-        claim["measure"] = {"file": "fig9", "var": "best_tau"}
+    for claim, expectation, spec in zip(
+        claims, ("reproduce", "known_deviation"), (speed, angle), strict=True
+    ):
+        claim.update(source="s", quantity="q", expectation=expectation, measure=spec)
     declared.write_text(json.dumps({"claims": claims}))
     table.write_text(header + "".join(rows))
     code, out, err = _run(capsys, "claims", str(table), "--claims", str(declared))

@@ -2,6 +2,8 @@
 device; long output names; overflowing ranges; an unusable cache folder; claims tables
 that are not one the claims job wrote; an identify config with a bad model section."""
 
+import contextlib
+import io
 import os
 import re
 import subprocess
@@ -10,6 +12,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
+import yaml
 from conftest import record_configuration
 
 from tennis_stroke.cli import main
@@ -136,14 +139,15 @@ def _table(tmp_path):
     """The claims table of a run: one row per declared claim, each reproducing the paper's
     value (so passing), as the claims job would write it."""
     declared = __import__("yaml").safe_load((ROOT / "config" / "claims.yaml").read_text())
-    from tennis_stroke.replication.claims import COLUMNS
+    from tennis_stroke.replication.claims import COLUMNS, measure_text
 
     record_configuration(tmp_path)
 
     rows = [
         {
             **dict.fromkeys(COLUMNS, ""),
-            "id": c["id"],
+            **{k: str(c.get(k, "")) for k in ("id", "source", "quantity", "unit", "reason")},
+            "measure": measure_text(c["measure"]),
             "status": "pass",
             "reproduced_value": c["paper_value"],
             "paper_value": c["paper_value"],
@@ -221,6 +225,32 @@ def test_claims_refuses_a_table_edited_by_hand(
     assert code == 2 and fragment in _one_error_line(err)
 
 
+@pytest.mark.parametrize(
+    "field, change",
+    [
+        ("measure", lambda c: c["measure"].update(theta0=90.0)),  # issue 66, case 11
+        ("quantity", lambda c: c.update(quantity="another quantity")),
+        ("source", lambda c: c.update(source="Sec. IX")),
+    ],
+)
+def test_claims_names_a_table_older_than_an_edit_of_its_claims(
+    tmp_path, capsys, monkeypatch, field, change
+):
+    """Was: the table passed (only ids, paper values, tolerances and expectations were
+    compared), its value measured at theta0 = 120 graded as the claim at 90."""
+    monkeypatch.chdir(ROOT)
+    csv = tmp_path / "claims.csv"
+    _table(tmp_path).to_csv(csv, index=False)
+    raw = yaml.safe_load((ROOT / "config" / "claims.yaml").read_text())
+    change(next(c for c in raw["claims"] if c["id"] == "fig2_best_delta0_at_120"))
+    (tmp_path / "claims.yaml").write_text(yaml.safe_dump(raw))
+    assert _run(capsys, "claims", str(csv))[0] == 0  # the table of config/claims.yaml
+    code, _, err = _run(capsys, "claims", str(csv), "--claims", str(tmp_path / "claims.yaml"))
+    line = _one_error_line(err)
+    assert code == 2 and f"(claim 'fig2_best_delta0_at_120') has {field} " in line
+    assert "stale" in line
+
+
 def test_identify_refuses_a_model_section_that_is_a_list(tmp_path, capsys, monkeypatch):
     monkeypatch.chdir(ROOT)
     config = (ROOT / "config" / "config.yaml").read_text().replace("\nmodel: {}", "\nmodel: [1, 2]")
@@ -228,3 +258,68 @@ def test_identify_refuses_a_model_section_that_is_a_list(tmp_path, capsys, monke
     (tmp_path / "config.yaml").write_text(config)
     code, _, err = _run(capsys, "identify", "--config", str(tmp_path / "config.yaml"))
     assert code == 2 and "'model' must be a mapping" in _one_error_line(err)
+
+
+# stdout that cannot take the output (issue 66, cases 6 and 7): one line, exit 1.
+
+
+@pytest.mark.parametrize("argv", [["params"], ["config", "explain", "model.M2"]])
+def test_a_full_stdout_is_one_line_and_exit_1(argv, capsys, monkeypatch):
+    """Was: an OSError traceback (the output is flushed inside the guard now)."""
+    full = open("/dev/full", "w")  # noqa: SIM115 (closed below, whatever it holds)
+    monkeypatch.setattr(sys, "stdout", full)
+    try:
+        code = main(argv)
+    finally:
+        monkeypatch.undo()
+        with contextlib.suppress(OSError):
+            full.close()
+    err = capsys.readouterr().err
+    assert code == 1 and "stdout" in _one_error_line(err) and "No space left" in err
+
+
+@pytest.mark.parametrize("argv", [["params"], ["config", "explain", "model.M2"]])
+def test_a_closed_stdout_is_one_line_and_exit_1(argv, capsys, monkeypatch):
+    """Was: exit 0 with the output lost (Python gives a closed stdout as None, and
+    print writes nothing there), or a traceback from ``isatty``."""
+    monkeypatch.setattr(sys, "stdout", None)
+    code = main(argv)
+    assert code == 1 and "stdout is closed" in _one_error_line(capsys.readouterr().err)
+
+
+def test_a_reader_that_went_away_is_exit_1_without_a_line(capsys, monkeypatch):
+    """``tennis-stroke params | head -1``: the reader chose to stop, nothing to tell."""
+
+    class Gone(io.StringIO):
+        def write(self, text):
+            raise BrokenPipeError(32, "Broken pipe")
+
+    monkeypatch.setattr(sys, "stdout", Gone())
+    assert main(["params"]) == 1
+    assert capsys.readouterr().err == ""
+
+
+def test_a_closed_stderr_still_gives_the_exit_status(monkeypatch):
+    """The error line has nowhere to go; writing it must not raise in its place."""
+    monkeypatch.setattr(sys, "stderr", None)
+    with pytest.raises(SystemExit) as stop:
+        main(["params", "--no-such-option"])
+    assert stop.value.code == 2
+    monkeypatch.setattr(sys, "stdout", None)
+    assert main(["params"]) == 1
+
+
+def test_a_full_or_closed_stdout_in_a_process_exits_with_one_line():
+    """What only a process shows: Python's own flush at exit adds no second message
+    (nor exit status 120), and a shell's ``>&-`` closes the descriptor itself."""
+    cli = f"{sys.executable} -m tennis_stroke.cli"
+    script = (
+        f"{cli} params > /dev/full; echo rc=$?; "
+        f"{cli} config explain model.M2 >&-; echo rc=$?; "
+        f"{cli} params >&- 2>&-; echo rc=$? >&2"
+    )
+    done = subprocess.run(["sh", "-c", script], capture_output=True, text=True, timeout=120)
+    assert done.stdout.split() == ["rc=1", "rc=1"], done
+    lines = done.stderr.splitlines()
+    assert len(lines) == 3 and lines[2] == "rc=1", done.stderr
+    assert "No space left" in lines[0] and "stdout is closed" in lines[1], done.stderr

@@ -162,6 +162,15 @@ MUTANTS = (
         marker="",
     ),
     Mutant(
+        "scenario_reuses_nothing",
+        "resolved_results: a scenario computes its own copy of every paper file, also "
+        "those its overrides do not reach",
+        "pipeline/scenarios.py",
+        "key: scenario_path(path, name) if key in changed else path",
+        "key: scenario_path(path, name)",
+        CONFIG_TESTS,
+    ),
+    Mutant(
         "gather_in_file_order",
         "gather_chunks: the chunks concatenated in the order given, not their chunk order",
         "pipeline/chunks.py",

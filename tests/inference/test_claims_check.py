@@ -162,6 +162,44 @@ BAD = {
         _set("fig4_t_a", expectation="known_deviation"),
         "claim 'fig4_t_a': a known deviation needs a reason",
     ),
+    # issue 66, case 10: each was accepted
+    "unknown key": (
+        _set("fig4_t_a", weight=3),
+        "claim 'fig4_t_a': unknown key 'weight' (a claim takes id, source,",
+    ),
+    "misspelt key": (
+        _set("fig4_t_a", reasn="r"),
+        "claim 'fig4_t_a': unknown key 'reasn' (did you mean reason?)",
+    ),
+    "a unit the measurement does not give": (
+        _set("fig2_best_delta0_at_120", unit="rad"),
+        "claim 'fig2_best_delta0_at_120': unit 'rad' is not the unit its measure gives, 'degree'",
+    ),
+    "a unit nobody knows": (
+        _set("fig2_best_delta0_at_120", unit="furlong"),
+        "unit 'furlong' is not the unit its measure gives, 'degree'",
+    ),
+    "a unit the file's variable does not have": (
+        _set("fig4_t_a", unit="ms"),
+        "claim 'fig4_t_a': unit 'ms' is not the unit its measure gives, 's'",
+    ),
+    "a unit that depends on the measurement's argument": (
+        _set("fig8_tau_opt", unit="degree"),
+        "claim 'fig8_tau_opt': unit 'degree' is not the unit its measure gives, 's'",
+    ),
+    "a qualitative claim with a value between true and false": (
+        _set("fig2_best_delta0_decreases", paper_value=0.5),
+        "claim 'fig2_best_delta0_decreases': a qualitative claim (its measure gives 1, "
+        "true, or 0, false) has paper_value 1 or 0, got 0.5",
+    ),
+    "a qualitative claim with a tolerance": (
+        _set("fig2_best_delta0_decreases", tolerance=1),
+        "a qualitative claim (its measure gives 1 or 0) has tolerance 0, got 1",
+    ),
+    "a measurement's argument not finite": (
+        _measure("fig2_best_delta0_at_120", theta0=float("nan")),
+        "claim 'fig2_best_delta0_at_120': measure.theta0 must be a finite number, got nan",
+    ),
 }
 
 
@@ -231,6 +269,7 @@ def test_every_measurement_says_what_it_takes(name):
         assert literal or on_axis or p.annotation in KNOWN_ANNOTATIONS, (name, p.name)
         kinds.append(p.annotation is Stack)
     assert kinds[0] and kinds == sorted(kinds, reverse=True), name
+    assert callable(getattr(MEASUREMENTS[name], "unit", None)), f"{name} says no unit (gives)"
 
 
 def test_sel_takes_a_position_or_a_coordinate_value():

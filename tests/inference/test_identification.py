@@ -1,6 +1,7 @@
 """Identification as a fit: targets come from the declared fit sets, a fit recovers a
 known reading from its own numbers, the default rule and the reading-space checks."""
 
+import math
 from pathlib import Path
 
 import numpy as np
@@ -202,6 +203,19 @@ def _write(tmp_path, change):
         (
             lambda r: r["fits"]["elbow_force"].update(given="modle"),
             "'fits.elbow_force.given': 'modle' is not one of ['model', 'elbow_force']",
+        ),
+        # a NaN passes the schema's minimum; accepted, 23 jobs planned (issue 66, case 9)
+        (
+            lambda r: r["default_rule"].update(tie_margin=math.nan),
+            "'default_rule.tie_margin': nan is not a finite number (rule: finite)",
+        ),
+        (
+            lambda r: r["consistent"].update(fallback_margin=math.inf),
+            "'consistent.fallback_margin': inf is not a finite number",
+        ),
+        (
+            lambda r: r["consistent"].update(max_abs_residual=math.nan),
+            "'consistent.max_abs_residual': nan is not a finite number",
         ),
     ],
 )

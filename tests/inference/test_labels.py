@@ -3,19 +3,26 @@ workflow leaves the table out of the inference jobs' code inputs, so a new long 
 reruns none of them (workflow/rules/common.smk, UNITS).  Checked on the source: no
 inference module takes a label from the table, directly or through a writer that does."""
 
+import re
 from pathlib import Path
 
 import pytest
 
 INFERENCE = Path(__file__).resolve().parents[2] / "src" / "tennis_stroke" / "inference"
 #: What writes the table's labels into a dataset.
-LABEL_WRITERS = ("cf_attrs", "result_dataset", "relabelled", "VARIABLES", "io.units")
+LABEL_WRITERS = ("cf_attrs", "result_dataset", "relabelled", "VARIABLES")
+#: What an inference module may take from the table: a unit, never a label (the claims'
+#: check compares a claim's unit with its measure's).
+UNIT_READERS = {"unit_of"}
 
 
 @pytest.mark.parametrize("path", sorted(INFERENCE.glob("*.py")), ids=lambda p: p.name)
 def test_no_inference_module_writes_a_label_of_the_units_table(path):
     text = path.read_text()
     assert not [w for w in LABEL_WRITERS if w in text], path.name
+    imported = re.findall(r"from \.\.io\.units import \(?([\w, ]+)", text)
+    assert {n.strip() for names in imported for n in names.split(",")} <= UNIT_READERS
+    assert not re.search(r"from \.\.io import [^\n]*\bunits\b|import [\w.]*io\.units", text)
 
 
 @pytest.mark.parametrize(
@@ -28,8 +35,6 @@ def test_the_inference_labels_come_from_its_one_table(path):
 
 
 def test_every_label_of_the_table_is_used_and_fills_its_fields():
-    import re
-
     from tennis_stroke.inference.labels import LABELS, attrs
 
     text = "".join(p.read_text() for p in INFERENCE.glob("*.py") if p.name != "labels.py")

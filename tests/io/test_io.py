@@ -2,12 +2,14 @@
 
 import os
 import stat
+import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 import xarray as xr
 
+from tennis_stroke.io import netcdf
 from tennis_stroke.io.errors import ResultError
 from tennis_stroke.io.netcdf import (
     OutputError,
@@ -34,6 +36,46 @@ def test_write_is_atomic_and_leaves_no_temporary(tmp_path):
     with xr.open_dataset(path) as ds:
         assert ds["v_out"].shape == (2, 2)
         assert ds.attrs["git_commit"]
+
+
+def _gone_pid() -> int:
+    """The id of a process that ran and ended (reaped: no process has it now)."""
+    import subprocess
+
+    done = subprocess.Popen(["true"])
+    done.wait()
+    return done.pid
+
+
+def test_a_temporary_whose_writer_is_gone_is_removed_by_the_next_write(tmp_path):
+    """Was: a ``kill -9`` of a sweep while it wrote left a hidden 38 MB ``.out.nc.XXXX.tmp``
+    for ever (issue 66, case 15).  Only the target's temporaries whose writer is gone go:
+    a live writer's (a concurrent sweep into the same file), another machine's (a shared
+    folder) and another file's stay."""
+    host, gone, live = netcdf._host(), _gone_pid(), os.getppid()
+    names = {
+        "stale": f".out.nc.{host}.{gone}.abcd_123.tmp",
+        "live writer": f".out.nc.{host}.{live}.efgh_456.tmp",
+        "another machine": f".out.nc.elsewhere.{gone}.ijkl_789.tmp",
+        "another file": f".other.nc.{host}.{gone}.mnop_012.tmp",
+        "unnamed, old": ".out.nc.qrst_345.tmp",  # the earlier writer's, a day old
+        "unnamed, new": ".out.nc.uvwx_678.tmp",
+    }
+    for name in names.values():
+        (tmp_path / name).write_bytes(b"partial")
+    old = time.time() - netcdf.STALE_UNNAMED_SECONDS - 60
+    os.utime(tmp_path / names["unnamed, old"], (old, old))
+    write_netcdf(_dataset(), tmp_path / "out.nc")
+    left = {p.name for p in tmp_path.iterdir()}
+    assert left == {"out.nc", *names.values()} - {names["stale"], names["unnamed, old"]}
+
+
+def test_a_temporary_names_its_writer(tmp_path):
+    """What the removal reads: this machine and this process, in the target's pattern."""
+    tmp = netcdf.temporary_beside(tmp_path / "out.nc")
+    match = netcdf._temporary_name(tmp_path / "out.nc").fullmatch(tmp.name)
+    assert match and (match["host"], int(match["pid"])) == (netcdf._host(), os.getpid())
+    assert netcdf.remove_stale_temporaries(tmp_path / "out.nc") == []  # its writer runs
 
 
 def test_failed_write_keeps_the_old_file(tmp_path, monkeypatch):

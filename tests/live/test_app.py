@@ -538,3 +538,37 @@ def test_a_tap_reads_the_grid_the_server_drew_not_the_page_s_data(shared):
     session._tap(Event)
     assert session.picked == (111.0, 12.0) and session.error.text == ""
     settle(session)
+
+
+@pytest.mark.parametrize(
+    "what, refusal",
+    [
+        ("temporary_beside", PermissionError(1, "Operation not permitted")),  # immutable
+        ("replace", OSError(28, "No space left on device")),  # the rename of a full disk
+    ],
+)
+def test_a_save_the_system_will_not_write_is_one_line_on_the_page_and_in_the_log(
+    shared, monkeypatch, capsys, what, refusal
+):
+    """Was: a PermissionError inside the handler (config/ immutable, append-only), nothing
+    on the page, nothing in the log, nothing saved (issue 66, case 5).  As root, a mode
+    does not stop a write: the system's refusal is made here."""
+    from tennis_stroke.pipeline import scenarios
+
+    def refuse(*args, **kwargs):
+        raise refusal
+
+    session = app.Session(shared, Document())
+    settle(session)
+    before = shared.scenarios.read_text()
+    session.widgets["model.M2"].value = "0.35"
+    session.scenario_name.value = "kept_out"
+    target = scenarios if what == "temporary_beside" else scenarios.os
+    monkeypatch.setattr(target, what, refuse)
+    session._save()
+    monkeypatch.undo()
+    line = f"not saved: {shared.scenarios}: cannot be written ({refusal.strerror}): not saved"
+    assert session.saved.text == line
+    assert capsys.readouterr().err == f"tennis-stroke explore: {line}\n"
+    assert shared.scenarios.read_text() == before
+    assert [p.name for p in shared.scenarios.parent.iterdir() if p.suffix == ".tmp"] == []

@@ -18,7 +18,7 @@ from PIL import Image
 
 from tennis_stroke.inference.claims import load_claims
 from tennis_stroke.replication.article import build_article
-from tennis_stroke.replication.claims import COLUMNS, ClaimsTableError, check
+from tennis_stroke.replication.claims import COLUMNS, ClaimsTableError, check, measure_text
 from tennis_stroke.replication.formats import ReportInputError
 from tennis_stroke.replication.registry import FIGURES
 
@@ -51,6 +51,7 @@ def _claims_table(path, value_of=None):
                 "reproduced_value": value,
                 "status": status,
                 "reason": c.get("reason", ""),
+                "measure": measure_text(c["measure"]),
                 "fit_set": "",
                 "map_value": value,
                 "map_difference": 0.0,

@@ -10,7 +10,7 @@ from conftest import record_configuration
 from junitparser import Failure, JUnitXml, Skipped
 
 from tennis_stroke.cli import main
-from tennis_stroke.replication.claims import COLUMNS
+from tennis_stroke.replication.claims import COLUMNS, measure_text
 from tennis_stroke.replication.junit import write_junit
 
 ROWS = [
@@ -53,6 +53,10 @@ def test_each_status_maps_to_a_junit_result(tmp_path):
     assert cases["d"].classname == "claims.Sec. V"
 
 
+#: The measure of every claim of :func:`claims_files` (a speed, as their unit).
+SPEED = {"file": "fig9", "var": "best_v_out"}
+
+
 def claims_files(folder):
     """A claims table of :data:`ROWS` in ``folder`` whose statuses follow from its values,
     with the claims it grades: ``(csv, declared claims, the table)``."""
@@ -63,19 +67,20 @@ def claims_files(folder):
         {
             "id": cid,
             "source": s,
-            "quantity": "q",
+            "quantity": f"quantity {cid}",
             "unit": "km/h",
             "paper_value": 1.0,
             "tolerance": 0.1,
-            "measure": {"file": "fig9", "var": "best_tau"},
+            "measure": SPEED,
             "expectation": "known_deviation" if status == "known_deviation" else "reproduce",
-            **({"reason": "r"} if status == "known_deviation" else {}),
+            "reason": f"reason {cid}",
         }
         for cid, s, status, _, _ in ROWS
     ]
     declared.write_text(__import__("json").dumps({"claims": claims}))
     # the table's statuses follow from its values: a, b pass only if within tolerance
     frame = table()
+    frame["measure"] = measure_text(SPEED)
     frame.loc[frame["id"].isin(["a", "b"]), "reproduced_value"] = "1.05"
     frame.to_csv(csv, index=False)
     return csv, declared, frame

@@ -42,3 +42,21 @@ def test_a_scenario_whose_grid_leaves_a_claim_off_its_axis_is_refused(monkeypatc
         "lies off the theta0 axis of file 'fig2', 60 to 100"
     )
     assert capsys.readouterr().err.count("scenario 'short'") == 1
+
+
+def test_an_unknown_figure_is_told_with_the_nearest_names():
+    """Was: ``snakemake -n results/figures/fig9.png`` a 46-line traceback, ``fig09_v_tua``
+    a 10-line KeyError (issue 66, case 20): rule unknown_figure takes every name of
+    ``results/figures/`` the registry lacks, and no name it has."""
+    import re
+
+    from tennis_stroke.pipeline.runs import UNKNOWN_FIGURE, nearest_figures
+    from tennis_stroke.replication.registry import FIGURES
+
+    output = re.compile(rf"results/figures/(?P<name>{UNKNOWN_FIGURE})\.png$")  # the rule's
+    assert not [f for f in FIGURES if output.match(f"results/figures/{f}.png")]
+    for guess in ("fig9", "fig99", "fig09_v_tua", "fig09_v_tau.old"):
+        assert output.match(f"results/figures/{guess}.png"), guess
+    assert nearest_figures("fig9") == ["fig09_v_tau"]
+    assert nearest_figures("fig09_v_tua")[0] == "fig09_v_tau"
+    assert len(nearest_figures("fig99")) == 3

@@ -6,6 +6,7 @@ built from."""
 import re
 from pathlib import Path
 
+import pytest
 import yaml
 from conftest import ROOT
 
@@ -118,3 +119,48 @@ def test_every_job_asks_for_memory_and_time_from_its_points(report_plan):
     figure = asks["results/figures/fig02_angle_map.png"]
     assert int(fig2["mem_mb"]) == asked(241 * 401)["mem_mb"] > int(fig9["mem_mb"])
     assert int(fig9["mem_mb"]) > int(figure["mem_mb"]) == asked(0)["mem_mb"]
+
+
+def _result(path, variables, key):
+    """A small netCDF file at ``path`` holding ``variables``, its provenance naming
+    experiment ``key`` (None: no provenance, as ``tennis-stroke sweep`` writes)."""
+    import json
+
+    import numpy as np
+    import xarray as xr
+
+    ds = xr.Dataset({v: ("x", np.zeros(2)) for v in variables})
+    if key is not None:
+        ds.attrs["config"] = json.dumps({"experiment": {"key": key}})
+    path.parent.mkdir(parents=True, exist_ok=True)
+    ds.to_netcdf(path, engine="netcdf4")
+
+
+def test_a_row_s_file_its_job_did_not_write_is_named_at_planning(tmp_path, monkeypatch):
+    """Was: ``sweep --out results/angle_maps/fig2.nc``, then the claims and figure jobs
+    failed with ``KeyError: 'best_delta0'`` (issue 66, case 16)."""
+    from tennis_stroke.experiments.specs import EXPERIMENTS
+    from tennis_stroke.pipeline.runs import PlanningError, guard_checkout
+    from tennis_stroke.pipeline.targets import foreign_results
+
+    results = tmp_path / "results"
+    fig2, fig4 = EXPERIMENTS["fig2"], EXPERIMENTS["fig4"]
+    stroke_variables = [v for v in fig2.variables if v not in ("best_delta0", "best_v_out")]
+    _result(tmp_path / fig2.path, stroke_variables, None)  # a sweep's
+    _result(tmp_path / fig4.path, fig4.variables, "fig3")  # all its variables, another's
+    _result(tmp_path / EXPERIMENTS["fig3"].path, EXPERIMENTS["fig3"].variables, "fig3")
+    found = dict(foreign_results(results))
+    assert sorted(found) == [str(tmp_path / fig2.path), str(tmp_path / fig4.path)]
+    assert (
+        "lacks the variables best_delta0, best_v_out of experiment 'fig2'"
+        in found[str(tmp_path / fig2.path)]
+    )
+    assert "names experiment 'fig3', not 'fig4'" in found[str(tmp_path / fig4.path)]
+    monkeypatch.chdir(tmp_path)
+    with pytest.raises(PlanningError) as refused:
+        guard_checkout(tmp_path, ["-n"])
+    line = refused.value.line()
+    assert line.startswith(
+        "tennis-stroke results error: results/angle_maps/fig2.nc is not this workflow's file"
+    )
+    assert "\n" not in line

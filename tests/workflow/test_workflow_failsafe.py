@@ -266,6 +266,22 @@ def test_the_angle_maps_follow_their_L1(moved):
     ]
 
 
+def test_a_figure_no_rule_makes_is_one_line_naming_the_nearest(tmp_path):
+    """issue 66, case 20, as Snakemake shows it: one dry-run process, four targets."""
+    work = workdir(tmp_path, TINY, TINY_READINGS)
+    names = ["fig9", "fig99", "fig09_v_tua", "fig09_v_tau"]
+    runs = [{"target": f"results/figures/{name}.png"} for name in names]
+    *refused, known = dry_runs(ROOT / "Snakefile", work, runs=runs)
+    for name, run in zip(names, refused, strict=False):
+        lines = [x for x in run["output"].splitlines() if "error" in x or "Traceback" in x]
+        assert run["exit"] == 1 and len(lines) == 1, run["output"][-2000:]
+        assert lines[0].startswith(
+            f"tennis-stroke figure error: no rule makes results/figures/{name}.png (nearest: "
+            "results/figures/fig09_v_tau.png"
+        ), lines
+    assert known["exit"] == 0 and "rule figure:" in known["output"], known["output"][-2000:]
+
+
 def test_a_bad_claim_is_refused_before_any_job(tmp_path):
     work = workdir(tmp_path, TINY, TINY_READINGS)
     path = work / "config" / "claims.yaml"

@@ -28,10 +28,12 @@ from tennis_stroke.pipeline.runs import (
     PAPER_FIGURES,
     ROWS,
     UNKNOWN_SCENARIO_PATH,
+    UNKNOWN_FIGURE,
     PlanningError,
     Runs,
     checked_config,
     guard_checkout,
+    refuse_unknown_figure,
     stems,
 )
 from tennis_stroke.pipeline.resources import asked

@@ -117,6 +117,7 @@ rule unknown_scenario:
 # scenario (a solver study, the robustness analysis) is refused in one line.
 ruleorder: unknown_scenario_file > gather_map
 ruleorder: unknown_scenario_file > figure
+ruleorder: unknown_figure > figure
 
 
 # A path no rule makes under a declared scenario (a study figure, a misspelt name): one
@@ -130,6 +131,19 @@ rule unknown_scenario_file:
         top="results|report",
         declared=RUNS.declared_names,
         path=UNKNOWN_SCENARIO_PATH,
+    resources:
+        **LIGHT,
+
+
+# A figure the registry does not have (fig9.png for fig09_v_tau.png): one line naming the
+# nearest figures.
+rule unknown_figure:
+    input:
+        refuse_unknown_figure,
+    output:
+        "results/figures/{name}.png",
+    wildcard_constraints:
+        name=UNKNOWN_FIGURE,
     resources:
         **LIGHT,
 

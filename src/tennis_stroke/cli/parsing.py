@@ -5,6 +5,7 @@ the angles' help from the one table of units, ``--set`` and the solver's options
 from __future__ import annotations
 
 import argparse
+import contextlib
 import math
 import re
 import sys
@@ -73,10 +74,19 @@ class Parser(argparse.ArgumentParser):
         fail(message)
 
 
+def say(line: str) -> None:
+    """``line`` on stderr, or nowhere if stderr is closed or full: the exit status still
+    tells, and a message that cannot be written must not raise in its place."""
+    stream = sys.stderr  # None when the descriptor was closed before Python started
+    if stream is not None:
+        with contextlib.suppress(OSError, ValueError):
+            stream.write(f"{line}\n")
+            stream.flush()
+
+
 def fail(message: str) -> None:
     """One line on stderr (whatever ``message`` holds), then exit status 2."""
-    line = " ".join(message.split())
-    sys.stderr.write(f"tennis-stroke: error: {line}\n")
+    say("tennis-stroke: error: " + " ".join(message.split()))
     raise SystemExit(EXIT_USAGE)
 
 

@@ -5,8 +5,10 @@
 (``reproduce`` or ``known_deviation`` with a ``reason``) and ``measure``: how to compute
 the reproduced value from the results, either a variable of a file
 (``{file, var, sel, abs}``) or a named measurement of :data:`MEASUREMENTS`
-(``{function, file, ...}``).  Qualitative claims are measurements returning 1 (true) or
-0 (false), with ``paper_value: 1`` and ``tolerance: 0``.
+(``{function, file, ...}``); no other key.  The ``unit`` is the one the measure gives
+(:func:`measure_unit`: the file's variable's, or the measurement's).  Qualitative claims
+are measurements returning 1 (true) or 0 (false), unit ``"1"``, with ``paper_value`` 1
+or 0 and ``tolerance: 0``.
 
 :func:`measure` computes a claim's value from the files (:func:`measure_stacks`: under
 many readings at once), :func:`within` compares it with
@@ -30,8 +32,25 @@ import numpy as np
 import xarray as xr
 
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS
-from ..io.config_files import ConfigFileError, load_yaml
-from .measures import AXIS_TOLERANCE, MEASUREMENTS, OnAxis, Stack, off_axis, per_reading, pick
+from ..io.config_files import (
+    ConfigFileError,
+    did_you_mean,
+    dotted_key,
+    load_yaml,
+    non_finite_numbers,
+)
+from ..io.units import unit_of
+from .measures import (
+    AXIS_TOLERANCE,
+    MEASUREMENTS,
+    QUALITATIVE_UNIT,
+    OnAxis,
+    Stack,
+    measurement_unit,
+    off_axis,
+    per_reading,
+    pick,
+)
 
 EXPECTATIONS = ("reproduce", "known_deviation")
 #: The fields every claim has.
@@ -45,10 +64,10 @@ REQUIRED = (
     "expectation",
     "measure",
 )
+#: The fields a claim may have besides :data:`REQUIRED` (a known deviation's reason).
+OPTIONAL = ("reason",)
 #: The keys of a measure that reads one variable of a file (no ``function``).
 VARIABLE_MEASURE = ("file", "var", "sel", "abs")
-#: The unit of a qualitative claim (1 true, 0 false), the only kind with tolerance 0.
-QUALITATIVE_UNIT = "1"
 
 
 class ClaimError(ValueError):
@@ -295,11 +314,32 @@ def _measure_errors(spec, files: Collection[str]) -> Iterator[str]:
         yield f"abs must be true or false, got {spec['abs']!r}"
 
 
+def measure_unit(spec: Mapping) -> str | None:
+    """The unit of the value a claim's ``measure`` gives (checked by the claims' check):
+    its variable's in the one table of units, or its measurement's
+    (:func:`~tennis_stroke.inference.measures.measurement_unit`); None if unknown."""
+    if "function" in spec:
+        args = {k: v for k, v in spec.items() if k not in ("function", "file")}
+        return measurement_unit(spec["function"], args)
+    try:
+        return unit_of(spec.get("var"))
+    except (KeyError, TypeError):  # TypeError: a var that is not a name
+        return None
+
+
 def _claim_errors(claim, files: Collection[str]) -> Iterator[str]:
     """Problems of one claim (without its id)."""
     for key in REQUIRED:
         if key not in claim:
             yield f"lacks {key!r}"
+    for key in sorted(set(claim) - {*REQUIRED, *OPTIONAL}, key=str):
+        known = (*REQUIRED, *OPTIONAL)
+        yield (
+            f"unknown key {key!r}{did_you_mean(str(key), known)} (a claim takes {', '.join(known)})"
+        )
+    numbers = {k: v for k, v in claim.items() if k not in ("paper_value", "tolerance")}
+    for parts, value in non_finite_numbers(numbers):  # paper_value's, tolerance's below
+        yield f"{dotted_key(parts)} must be a finite number, got {value}"
     if claim.get("expectation", EXPECTATIONS[0]) not in EXPECTATIONS:
         yield f"expectation must be one of {EXPECTATIONS}, got {claim['expectation']!r}"
     if claim.get("expectation") == "known_deviation" and not claim.get("reason"):
@@ -316,16 +356,36 @@ def _claim_errors(claim, files: Collection[str]) -> Iterator[str]:
             f"{QUALITATIVE_UNIT!r}; unit here {claim.get('unit')!r})"
         )
     if "measure" in claim:
-        yield from _measure_errors(claim["measure"], files)
+        measure_errors = list(_measure_errors(claim["measure"], files))
+        yield from measure_errors
+        unit = None if measure_errors else measure_unit(claim["measure"])
+        if unit is not None and "unit" in claim and str(claim["unit"]) != unit:
+            yield (
+                f"unit {claim['unit']!r} is not the unit its measure gives, {unit!r} (a "
+                "claim's value is compared in its measure's unit)"
+            )
+        if unit == QUALITATIVE_UNIT:
+            if claim.get("paper_value") not in (0, 1) or isinstance(claim.get("paper_value"), bool):
+                yield (
+                    "a qualitative claim (its measure gives 1, true, or 0, false) has "
+                    f"paper_value 1 or 0, got {claim.get('paper_value')!r}"
+                )
+            if claim.get("tolerance") != 0:
+                yield (
+                    "a qualitative claim (its measure gives 1 or 0) has tolerance 0, got "
+                    f"{claim.get('tolerance')!r}"
+                )
 
 
 def claim_errors(path: str | Path, files: Collection[str] = tuple(PAPER_RESULTS)) -> list[str]:
     """Every problem of the claims file ``path`` as one-line messages naming the file and
     the claim (empty: the claims are good).
 
-    Checked without any result file: the required fields, unique ids, the expectation
-    (a known deviation with its reason), finite values, tolerances (> 0; 0 only for a
-    qualitative claim, unit ``"1"``), the result files (``files``: the keys a measure may
+    Checked without any result file: the required fields and no other (:data:`OPTIONAL`
+    aside), unique ids, the expectation (a known deviation with its reason), finite
+    numbers, tolerances (> 0; 0 only for a qualitative claim, unit ``"1"``), the unit
+    (the one the measure gives, :func:`measure_unit`), a qualitative claim's paper value
+    (1 or 0) and tolerance (0), the result files (``files``: the keys a measure may
     name, by default those of :data:`~tennis_stroke.experiments.specs.PAPER_RESULTS`),
     and the measurement: a function of :data:`MEASUREMENTS` called with its files and
     arguments as its signature says (names, count, annotated types and choices), or one

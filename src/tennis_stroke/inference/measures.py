@@ -3,7 +3,10 @@ each reading.
 
 A claim of ``config/claims.yaml`` names one of :data:`MEASUREMENTS` (without the
 ``measure_`` prefix) and its arguments.  Qualitative claims are measurements returning 1
-(true) or 0 (false).  The figures use some of them to mark what the claims read.
+(true) or 0 (false).  The figures use some of them to mark what the claims read.  Each
+measurement says the unit of its value (:func:`gives`), from the one table of units
+(:mod:`tennis_stroke.io.units`) where it is a file's variable or coordinate, so a claim
+states the unit its measure gives (:func:`measurement_unit`).
 
 Each measurement reads one or more :class:`Stack` s: a result file under ``n`` readings,
 each variable an array with a leading reading axis, and returns ``n`` values, one per
@@ -24,7 +27,11 @@ from typing import Annotated, Literal
 import numpy as np
 import xarray as xr
 
+from ..io.units import unit_of
 from ..solver.results import OK
+
+#: The unit of a qualitative measurement's value: 1 (true) or 0 (false).
+QUALITATIVE_UNIT = "1"
 
 
 class Stack:
@@ -116,6 +123,28 @@ def per_reading(values: np.ndarray) -> np.ndarray:
     return np.asarray(values).reshape(values.shape[0])
 
 
+def gives(unit: str | Callable[..., str]) -> Callable:
+    """Declare the unit of a measurement's value: a unit (:data:`QUALITATIVE_UNIT` for
+    1 or 0), or a function of the measurement's arguments that returns one (the unit of
+    the coordinate an argument names, say); read by :func:`measurement_unit`."""
+
+    def mark(fn: Callable) -> Callable:
+        fn.unit = unit if callable(unit) else lambda **_: unit
+        return fn
+
+    return mark
+
+
+def measurement_unit(name: str, args: Mapping) -> str | None:
+    """The unit of measurement ``name``'s value under the claim's ``args`` (checked
+    against its signature by the claims' check); None if the arguments name no variable
+    of the table (the measurement then refuses them itself)."""
+    try:
+        return MEASUREMENTS[name].unit(**args)
+    except (KeyError, TypeError):
+        return None
+
+
 def one_or_many(fn: Callable[..., np.ndarray]) -> Callable:
     """A measurement of stacks (one value per reading) that also takes datasets: called
     with ``xr.Dataset`` s it reads them as one reading and returns that reading's float."""
@@ -152,6 +181,7 @@ def _half_tau_step(ds: Stack) -> np.ndarray:
     return 0.5 * (tau[:, 1] - tau[:, 0])[:, None]
 
 
+@gives(unit_of("C2"))
 @one_or_many
 def measure_delay_threshold(ds: Stack) -> np.ndarray:
     """Fig. 7: the torque C2 above which the best delay is no longer 0 (N m).
@@ -173,6 +203,7 @@ def measure_delay_threshold(ds: Stack) -> np.ndarray:
     return np.where(found, value, np.nan)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_below_threshold_tau_zero(ds: Stack) -> np.ndarray:
     """Fig. 7: 1 if the best tau is 0 for every C2 in (0, threshold)."""
@@ -192,18 +223,25 @@ def _extreme(ds: Stack, coord: str, sign: float) -> np.ndarray:
     return pick(ds[coord], 1, index)
 
 
+@gives(lambda coord: unit_of(coord))
 @one_or_many
 def measure_optimum(ds: Stack, coord: str) -> np.ndarray:
     """The coordinate ``coord`` of the largest v_out of a map (grid point)."""
     return _extreme(ds, coord, 1.0)
 
 
+@gives(lambda coord: unit_of(coord))
 @one_or_many
 def measure_minimum(ds: Stack, coord: str) -> np.ndarray:
     """The coordinate ``coord`` of the smallest v_out of a map (grid point)."""
     return _extreme(ds, coord, -1.0)
 
 
+def _fig9_unit(what: str) -> str:
+    return {"tau_H": unit_of("best_tau"), "gain_percent": "%"}.get(what, unit_of("best_v_out"))
+
+
+@gives(_fig9_unit)
 @one_or_many
 def measure_fig9(ds: Stack, what: Literal["v_L", "v_H", "tau_H", "gain_percent"]) -> np.ndarray:
     """Fig. 9: ``v_L`` (tau = 0), ``v_H`` (max), ``tau_H`` or the ``gain_percent``."""
@@ -265,6 +303,7 @@ def nearest(axis: np.ndarray, value: float, coord: str) -> np.ndarray:
     return axis.shape[1] - 1 - np.argmin(gap[:, ::-1], axis=1)
 
 
+@gives(unit_of("best_delta0"))
 @one_or_many
 def measure_best_delta0(ds: Stack, theta0: Annotated[float, OnAxis("theta0")]) -> np.ndarray:
     """Figs. 2-3: the best delta0 at ``theta0`` (the red line)."""
@@ -272,6 +311,7 @@ def measure_best_delta0(ds: Stack, theta0: Annotated[float, OnAxis("theta0")]) -
     return pick(ds["best_delta0"], ds.axis("best_delta0", "theta0"), at)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_best_delta0_decreases(ds: Stack) -> np.ndarray:
     """Figs. 2-3: 1 if the best delta0 falls from theta0 = 60 to 90 to 120 degrees."""
@@ -279,6 +319,7 @@ def measure_best_delta0_decreases(ds: Stack) -> np.ndarray:
     return ((b[0] > b[1]) & (b[1] > b[2])).astype(float)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_delta0_smaller_for_longer_arm(short: Stack, long: Stack) -> np.ndarray:
     """Fig. 3 vs 2: 1 if the best delta0 is smaller for L1 = 0.4 m at 90 % of theta0."""
@@ -286,6 +327,7 @@ def measure_delta0_smaller_for_longer_arm(short: Stack, long: Stack) -> np.ndarr
     return (np.mean((diff < 0).reshape(diff.shape[0], -1), axis=1) >= 0.9).astype(float)
 
 
+@gives(lambda var, **_: unit_of(var))
 @one_or_many
 def measure_stroke(ds: Stack, var: str, stroke: int, absolute: bool = False) -> np.ndarray:
     """``var`` of stroke ``stroke`` (its size if ``absolute``)."""
@@ -293,12 +335,14 @@ def measure_stroke(ds: Stack, var: str, stroke: int, absolute: bool = False) -> 
     return np.abs(value) if absolute else value
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_greater(ds: Stack, var: str, first: int, second: int) -> np.ndarray:
     """1 if ``var`` of stroke ``first`` exceeds that of stroke ``second``."""
     return (measure_stroke(ds, var, first) > measure_stroke(ds, var, second)).astype(float)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_omega2_peak_greater(ds: Stack, first: int, second: int) -> np.ndarray:
     """Fig. 4: 1 if the whole-stroke maximum of omega2 of ``first`` exceeds ``second``'s."""
@@ -332,6 +376,7 @@ def _linear(t: np.ndarray, values: np.ndarray, at: float) -> float:
     return float(curve(at))
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_omega2_rises_after_contact(ds: Stack, stroke: int) -> np.ndarray:
     """Fig. 4: 1 if omega2 is larger 10 ms after separation than at the contact start."""
@@ -351,6 +396,7 @@ def _at_omega2_peak(ds: Stack, var: str, stroke: int) -> np.ndarray:
     return pick(values, 1, peak)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_peak_after_contact(ds: Stack, stroke: int) -> np.ndarray:
     """Fig. 10: 1 if omega2 peaks after the contact start (the ball is hit before)."""
@@ -358,12 +404,14 @@ def measure_peak_after_contact(ds: Stack, stroke: int) -> np.ndarray:
     return (_at_omega2_peak(ds, "t", stroke) > start).astype(float)
 
 
+@gives(unit_of("omega1"))
 @one_or_many
 def measure_omega1_at_omega2_peak(ds: Stack, stroke: int) -> np.ndarray:
     """Fig. 10: |omega1| (rad/s) when omega2 has its maximum."""
     return np.abs(_at_omega2_peak(ds, "omega1", stroke))
 
 
+@gives(unit_of("t_contact_start"))
 @one_or_many
 def measure_contact_time_difference(ds: Stack) -> np.ndarray:
     """Fig. 10: |t_c(tau_H) - t_c(tau_L)| (s)."""
@@ -372,6 +420,7 @@ def measure_contact_time_difference(ds: Stack) -> np.ndarray:
     )
 
 
+@gives("%")
 @one_or_many
 def measure_k_spread(ds: Stack) -> np.ndarray:
     """Sec. II: the largest change of v_out over the spring constants of a
@@ -383,6 +432,7 @@ def measure_k_spread(ds: Stack) -> np.ndarray:
     return np.fmax.reduce(spread.reshape(ds.n, -1), axis=1)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_mass_trend(
     ds: Stack, m2: Annotated[float, OnAxis("M2")], sign: Literal[-1, 1]
@@ -400,6 +450,7 @@ def _theta_c_ends(ds: Stack) -> tuple[np.ndarray, np.ndarray]:
     return pick(tc, at, 0).reshape(ds.n, -1), pick(tc, at, -1).reshape(ds.n, -1)
 
 
+@gives(unit_of("theta_c"))
 @one_or_many
 def measure_theta_c(ds: Stack, end: Literal["small", "large"]) -> np.ndarray:
     """Fig. 6: mean over M2 of theta_c at the smallest or largest L1 (degree)."""
@@ -409,6 +460,7 @@ def measure_theta_c(ds: Stack, end: Literal["small", "large"]) -> np.ndarray:
         return np.nanmean(np.ascontiguousarray(values), axis=1)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_theta_c_decreases(ds: Stack) -> np.ndarray:
     """Fig. 6: 1 if theta_c at the largest L1 is below that at the smallest, for every M2."""
@@ -416,6 +468,7 @@ def measure_theta_c_decreases(ds: Stack) -> np.ndarray:
     return np.all(large < small, axis=1).astype(float)
 
 
+@gives(QUALITATIVE_UNIT)
 @one_or_many
 def measure_table1_minimum(ds: Stack) -> np.ndarray:
     """Table I: 1 if psi_F = 275 deg gives the slowest rebound of the four cases."""

@@ -22,7 +22,13 @@ import numpy as np
 import yaml
 
 from ..experiments.specs import merged
-from ..io.config_files import ConfigFileError, load_yaml, schema_errors
+from ..io.config_files import (
+    ConfigFileError,
+    dotted_key,
+    load_yaml,
+    non_finite_numbers,
+    schema_errors,
+)
 from ..model.params import PARAMETERS, READINGS, ParameterError, resolve_params
 
 #: The schema of the file, beside the workflow's config schema.
@@ -159,6 +165,10 @@ def load_reading_space(
     errors = schema_errors(raw, yaml.safe_load(Path(schema).read_text()), "readings")
     if errors:
         raise ReadingSpaceError(errors[0])
+    for parts, value in non_finite_numbers(raw):
+        raise ReadingSpaceError(
+            f"readings key {dotted_key(parts)!r}: {value} is not a finite number (rule: finite)"
+        )
 
     discrete = _discrete(raw)
     continuous = _continuous(raw)

@@ -5,12 +5,16 @@ Two departures from PyYAML's YAML 1.1 reading, both to refuse or avoid a silentl
 value: a key given twice in one mapping is an error (YAML 1.1 keeps the last), and a
 number in exponent form without a dot (``2e-3``, ``1e6``) is a number, as in YAML 1.2
 (YAML 1.1 reads it as a string).
+
+One rule of every file: each number is finite (:func:`non_finite_numbers`); YAML's
+``.nan`` and ``.inf`` are numbers to a schema, and a NaN passes every bound.
 """
 
 from __future__ import annotations
 
+import math
 import re
-from collections.abc import Mapping
+from collections.abc import Iterator, Mapping
 from pathlib import Path
 
 import yaml
@@ -175,6 +179,21 @@ def config_keys(node, parts: tuple = ()):
             path = (*parts, str(key))
             yield ".".join(path)
             yield from config_keys(value, path)
+
+
+def non_finite_numbers(node, parts: tuple = ()) -> Iterator[tuple[tuple, float]]:
+    """Every number of a config file's data that is not finite (``.nan``, ``.inf``), with
+    its key's path (``dotted_key``), in the file's order: the rule that every number of
+    the config, claims and readings files is finite (a NaN compares false with every
+    bound, so a schema's ``minimum`` lets it through)."""
+    if isinstance(node, float) and not math.isfinite(node):
+        yield parts, node
+    elif isinstance(node, Mapping):
+        for key, value in node.items():
+            yield from non_finite_numbers(value, (*parts, key))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from non_finite_numbers(value, (*parts, i))
 
 
 def dotted_key(parts) -> str:

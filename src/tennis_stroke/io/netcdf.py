@@ -5,7 +5,9 @@ Every variable and coordinate gets ``units`` and ``long_name`` from one table
 (:data:`tennis_stroke.io.units.VARIABLES`).  Global attributes record the resolved
 parameters, the readings, the solver settings, the package version and the git commit.
 Files are written under a temporary name and renamed, so a final name never holds a
-truncated file.
+truncated file.  A temporary's name says which process writes it (host and process id),
+so that the next write of the same file removes the temporaries whose writer is gone (a
+``kill -9`` mid-write), never a live writer's (:func:`remove_stale_temporaries`).
 """
 
 from __future__ import annotations
@@ -14,8 +16,11 @@ import errno
 import json
 import os
 import platform
+import re
+import socket
 import subprocess
 import tempfile
+import time
 from collections.abc import Mapping
 from datetime import UTC, datetime
 from functools import cache
@@ -256,13 +261,76 @@ def read_only(path: Path) -> bool:
     return not (os.access(path, os.W_OK) and path.stat().st_mode & 0o200)
 
 
+def _host() -> str:
+    """This machine's name as a temporary's name holds it (at most 32 characters)."""
+    return re.sub(r"[^A-Za-z0-9.-]", "-", socket.gethostname())[:32] or "host"
+
+
+def _temporary_name(path: Path) -> re.Pattern:
+    """The names of ``path``'s temporaries (:func:`temporary_beside`): ``.NAME.HOST.PID.``
+    then ``mkstemp``'s eight characters and ``.tmp``; ``HOST.PID.`` absent in those of
+    the earlier writer (before 2026-12-08)."""
+    start = re.escape(f".{path.name[:64]}.")
+    return re.compile(start + r"(?:(?P<host>[A-Za-z0-9.-]+)\.(?P<pid>\d+)\.)?[a-z0-9_]{8}\.tmp")
+
+
+def _running(pid: int) -> bool:
+    """Whether process ``pid`` of this machine exists (another user's too)."""
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except OSError:  # PermissionError: it exists, another user's
+        return True
+    return True
+
+
+#: How old a temporary without its writer's name (the earlier writer's) must be to be
+#: taken as stale: no write of a result lasts a day.
+STALE_UNNAMED_SECONDS = 24 * 3600
+
+
+def remove_stale_temporaries(path: Path) -> list[Path]:
+    """Remove the temporaries of ``path`` (beside it) whose writer is gone: written on this
+    machine by a process that no longer runs, or, without a writer's name, older than
+    :data:`STALE_UNNAMED_SECONDS`.  A live writer's temporary (a concurrent write of the
+    same file) and another machine's (a shared folder) are kept.  Returns those
+    removed; a temporary that cannot be removed is left."""
+    pattern, host, removed = _temporary_name(path), _host(), []
+    try:
+        names = os.listdir(path.parent)
+    except OSError:
+        return removed
+    for name in names:
+        match = pattern.fullmatch(name)
+        if match is None:
+            continue
+        tmp = path.parent / name
+        try:
+            if match["pid"] is None:
+                stale = time.time() - tmp.lstat().st_mtime > STALE_UNNAMED_SECONDS
+            else:
+                pid = int(match["pid"])
+                stale = match["host"] == host and pid != os.getpid() and not _running(pid)
+            if stale:
+                tmp.unlink()
+                removed.append(tmp)
+        except OSError:  # gone meanwhile (another writer removed it), or not ours to remove
+            continue
+    return removed
+
+
 def temporary_beside(path: Path) -> Path:
     """An empty new file in ``path``'s folder, to be renamed to ``path``: with the mode of
     ``path`` where it is a file (a replaced file keeps its mode), else the permissions any
-    new file gets under the umask (``mkstemp`` would give 0600)."""
+    new file gets under the umask (``mkstemp`` would give 0600).  Its name holds this
+    machine's name and this process's id; ``path``'s stale temporaries are removed first
+    (:func:`remove_stale_temporaries`)."""
     # a short prefix: the temporary name is never longer than a name the folder takes
     mode = path.stat().st_mode & 0o7777 if path.is_file() else 0o666 & ~_umask()
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name[:64]}.", suffix=".tmp", dir=path.parent)
+    remove_stale_temporaries(path)
+    prefix = f".{path.name[:64]}.{_host()}.{os.getpid()}."
+    fd, tmp = tempfile.mkstemp(prefix=prefix, suffix=".tmp", dir=path.parent)
     try:
         os.fchmod(fd, mode)
     finally:

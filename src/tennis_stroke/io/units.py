@@ -124,6 +124,14 @@ OTHER_VARIABLES: dict[str, tuple[str, str]] = {
 VARIABLES: dict[str, tuple[str, str]] = {**RESULT_VARIABLES, **OTHER_VARIABLES}
 
 
+def unit_of(name: str) -> str:
+    """The unit of the file variable or coordinate ``name`` (:data:`VARIABLES`), without
+    its long name: what the claims' check compares a claim's unit with (the inference
+    reads no label of the table: ``tests/inference/test_labels.py``); KeyError if the
+    table has no such name."""
+    return VARIABLES[name][0]
+
+
 def cf_attrs(name: str, **extra) -> dict[str, object]:
     """``units`` and ``long_name`` of the file variable ``name`` (:data:`VARIABLES`), with
     ``extra`` attributes."""

@@ -22,6 +22,7 @@ saying so, and no session.
 from __future__ import annotations
 
 import html
+import sys
 import threading
 import time
 from collections.abc import Callable, Mapping
@@ -479,6 +480,7 @@ class Session:
             )
         except ScenarioError as exc:
             self.saved.text = html.escape(f"not saved: {exc}", quote=False)
+            sys.stderr.write(f"tennis-stroke explore: not saved: {exc}\n")  # the log
             return
         name, path = html.escape(name, quote=False), html.escape(str(path), quote=False)
         self.saved.text = (

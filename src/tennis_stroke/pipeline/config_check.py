@@ -17,7 +17,6 @@ from __future__ import annotations
 
 import copy
 import functools
-import math
 from collections.abc import Iterator, Mapping
 from decimal import Decimal
 from pathlib import Path
@@ -28,7 +27,14 @@ from ..experiments.grids import bracket_size, chunk_count, grid_size, lands_on_s
 from ..experiments.specs import ANGLE_KEYS, BOUND_KEYS, EXPERIMENTS, Experiment
 from ..inference.ladder_plan import LadderError, check_ladder, rung_model, rung_settings
 from ..inference.search_plan import BRACKET_KEYS, SEARCHED, search_strokes
-from ..io.config_files import ConfigKeyError, dotted_key, load_yaml, schema_errors, value_at
+from ..io.config_files import (
+    ConfigKeyError,
+    dotted_key,
+    load_yaml,
+    non_finite_numbers,
+    schema_errors,
+    value_at,
+)
 from ..model.params import (
     CHOICES,
     PARAMETERS,
@@ -53,9 +59,9 @@ def _walk(node, parts=()) -> Iterator[tuple[tuple, object]]:
 
 
 def _semantic_errors(config: Mapping) -> Iterator[str]:
+    for parts, node in non_finite_numbers(config):
+        yield f"config key {dotted_key(parts)!r}: {node} is not a finite number (rule: finite)"
     for parts, node in _walk(config):
-        if isinstance(node, float) and not math.isfinite(node):
-            yield f"config key {dotted_key(parts)!r}: {node} is not a finite number (rule: finite)"
         if isinstance(node, Mapping) and {"start", "stop"} <= set(node):
             start, stop = node["start"], node["stop"]
             if isinstance(start, int | float) and isinstance(stop, int | float) and stop < start:

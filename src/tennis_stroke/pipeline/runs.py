@@ -53,7 +53,7 @@ from .scenarios import (
     resolved_results,
     unreached,
 )
-from .targets import damaged_results
+from .targets import damaged_results, foreign_results
 
 #: The robustness analysis' map, gathered from chunks like the table's maps.
 ROBUSTNESS_MAP = "robustness/claims"
@@ -128,7 +128,8 @@ def checked_config(config: dict, schema: Path) -> tuple[object, ReadingSpace]:
 
 
 def guard_checkout(basedir: Path, argv: list[str]) -> None:
-    """The files a run would build on: a damaged result file (truncated, garbage) is
+    """The files a run would build on: a damaged result file (truncated, garbage), or
+    one at a row's path that its job did not write (:func:`foreign_results`), is
     named before any job (Snakemake would take it for up to date, and every job reading
     it would fail; a scenario's never stops the paper's run: a warning), and the jobs
     must run the checkout's code (an installed copy that differs would run stale code
@@ -149,6 +150,12 @@ def guard_checkout(basedir: Path, argv: list[str]) -> None:
         raise PlanningError(
             "results",
             f"{path} is damaged ({problem}): remove it and make it with: snakemake -j2 {path}",
+        )
+    for path, why in foreign_results():
+        raise PlanningError(
+            "results",
+            f"{path} is not this workflow's file ({why}: written by tennis-stroke sweep "
+            f"--out, say): move it elsewhere and make it with: snakemake -j2 {path}",
         )
     differs = installed_difference(INSTALLED, basedir / "src" / "tennis_stroke")
     if differs is not None:
@@ -538,3 +545,33 @@ SCENARIO_PATHS = "|".join(
     ]
 )
 UNKNOWN_SCENARIO_PATH = rf"(?!(?:{SCENARIO_PATHS})$).+"
+#: A figure of ``results/figures/`` that the registry does not have (``fig9.png``,
+#: ``fig09_v_tua.png``): rule unknown_figure's name, so that a guess is one line
+#: (:func:`refuse_unknown_figure`), not Snakemake's traceback.  The look-ahead reads
+#: past the wildcard to the rule's ``.png`` (the pattern's end).
+UNKNOWN_FIGURE = rf"(?!(?:{_regex(FIGURES)})\.png$)[^/]+"
+
+
+def nearest_figures(name: str, n: int = 3) -> list[str]:
+    """The figures of the registry nearest to ``name``: those of its number (``fig9``:
+    ``fig09_v_tau``), else the closest spellings (difflib), always some."""
+    import difflib
+
+    number = re.fullmatch(r"([a-z]+)0*(\d+)", name)
+    if number:
+        prefix = f"{number[1]}{int(number[2]):02d}_"
+        same = [f for f in sorted(FIGURES) if f.startswith(prefix)]
+        if same:
+            return same[:n]
+    return difflib.get_close_matches(name, sorted(FIGURES), n=n, cutoff=0.0)
+
+
+def refuse_unknown_figure(wildcards) -> None:
+    """The input function of rule unknown_figure: one line naming the file and the
+    nearest figures, then exit 1."""
+    near = ", ".join(f"results/figures/{f}.png" for f in nearest_figures(wildcards.name))
+    sys.stderr.write(
+        f"tennis-stroke figure error: no rule makes results/figures/{wildcards.name}.png "
+        f"(nearest: {near}; python -m tennis_stroke.pipeline.targets lists every file)\n"
+    )
+    sys.exit(1)

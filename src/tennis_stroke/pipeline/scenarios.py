@@ -353,7 +353,9 @@ def save_scenario(
     old (a layout that an appended block would break, a flow-style mapping or a document
     end ``...``, is refused and the file kept), a read-only file or one that is not a
     regular file is refused, a symbolic link stays a link to the file it names, and the
-    file keeps its mode.  Every refusal is one line (:class:`ScenarioError`)."""
+    file keeps its mode; a file or folder the system will not write (immutable,
+    append-only, a full disk) is refused.  Every refusal is one line
+    (:class:`ScenarioError`)."""
     path = Path(path)
     changing_config(base, name, overrides, schema)
     target = path.resolve() if path.is_symlink() else path
@@ -364,29 +366,34 @@ def save_scenario(
     block = yaml.safe_dump(
         {name: sorted_data(dict(overrides))}, default_flow_style=None, sort_keys=True
     )
-    with _locked(target):  # one saver at a time; the next reads its result
-        declared = load_scenarios(target)
-        if name in declared:
-            raise ScenarioError(
-                f"scenario {name!r} is already declared in {path}: pick another name"
-            )
-        text = target.read_text() if target.is_file() else ""
-        separator = "" if not text or text.endswith("\n") else "\n"
-        temporary = temporary_beside(target)  # its mode (_locked made it if new)
-        try:
-            temporary.write_text(f"{text}{separator}{block}")
-            try:
-                again = load_scenarios(temporary)
-            except ScenarioError:
-                again = None
-            if again != {**declared, name: sorted_data(dict(overrides))}:
+    try:
+        with _locked(target):  # one saver at a time; the next reads its result
+            declared = load_scenarios(target)
+            if name in declared:
                 raise ScenarioError(
-                    f"{path}: a scenario appended to it would not read back (a flow-style "
-                    "mapping, a document end '...'?): not saved; add it by hand"
+                    f"scenario {name!r} is already declared in {path}: pick another name"
                 )
-            os.replace(temporary, target)  # whole or not at all
-        finally:
-            temporary.unlink(missing_ok=True)
+            text = target.read_text() if target.is_file() else ""
+            separator = "" if not text or text.endswith("\n") else "\n"
+            temporary = temporary_beside(target)  # its mode (_locked made it if new)
+            try:
+                temporary.write_text(f"{text}{separator}{block}")
+                try:
+                    again = load_scenarios(temporary)
+                except ScenarioError:
+                    again = None
+                if again != {**declared, name: sorted_data(dict(overrides))}:
+                    raise ScenarioError(
+                        f"{path}: a scenario appended to it would not read back (a flow-style "
+                        "mapping, a document end '...'?): not saved; add it by hand"
+                    )
+                os.replace(temporary, target)  # whole or not at all
+            finally:
+                temporary.unlink(missing_ok=True)
+    except OSError as exc:  # a folder or file the system keeps: immutable, append-only, full
+        raise ScenarioError(
+            f"{path}: cannot be written ({exc.strerror or exc}): not saved"
+        ) from None
     return path
 
 

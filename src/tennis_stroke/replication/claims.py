@@ -4,6 +4,7 @@ with its status (``results/claims.csv``), and the check of a finished table.
 
 from __future__ import annotations
 
+import json
 from collections.abc import Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -27,11 +28,28 @@ COLUMNS = [
     "status",
     "expectation",
     "reason",
+    "measure",
     "fit_set",
     "map_value",
     "map_difference",
     "map_cause",
 ]
+
+
+#: The declared fields of a claim (``config/claims.yaml``) that its row records as they
+#: are: a table whose row differs in one of them was computed from other claims (stale).
+RECORDED = ("source", "quantity", "unit", "expectation", "reason", "measure")
+
+
+def measure_text(spec: Mapping) -> str:
+    """A claim's ``measure`` as its row records it: JSON, keys sorted, so that the same
+    measure is the same text."""
+    return json.dumps(spec, sort_keys=True, separators=(", ", ": "))
+
+
+def _recorded(claim: Mapping, key: str) -> str:
+    """The declared ``key`` of a claim as the table's text holds it."""
+    return measure_text(claim["measure"]) if key == "measure" else str(claim.get(key, ""))
 
 
 def _datasets(files: Mapping[str, str | Path | xr.Dataset]) -> dict[str, xr.Dataset]:
@@ -81,6 +99,7 @@ def evaluate(
                 "status": status,
                 "expectation": c["expectation"],
                 "reason": c.get("reason", ""),
+                "measure": measure_text(c["measure"]),
                 "fit_set": fit_set,
                 "map_value": map_value,
                 "map_difference": float(difference(value, map_value, c["tolerance"])),
@@ -232,11 +251,17 @@ def read_table(csv_path: str | Path, expected_ids: Sequence[str] | None = None) 
 
 def consistency_errors(table: pd.DataFrame, claims: Sequence[Mapping], name: str) -> list[str]:
     """Rows of a claims ``table`` (named ``name``) that the claims job cannot have written
-    from the declared ``claims``: a paper value, tolerance or expectation other than the
-    declared one, or a status other than the one its reproduced value gives (the rule of
-    :func:`evaluate`; a table edited by hand).  One line each."""
+    from the declared ``claims``: a paper value or tolerance other than the declared one,
+    or any other declared field it records (:data:`RECORDED`, the measure among them: a
+    stale table, computed before a claim was edited), or a status other than the one its
+    reproduced value gives (the rule of :func:`evaluate`; a table edited by hand).  One
+    line each."""
     declared = {c["id"]: c for c in claims}
     out = []
+    other = (
+        ": a table of other claims (config/claims.yaml changed since the claims job wrote "
+        "it: stale, rerun snakemake -j2 report; or edited by hand)"
+    )
     for i, row in enumerate(table.to_dict("records")):
         c = declared.get(row["id"])
         if c is None:
@@ -244,12 +269,13 @@ def consistency_errors(table: pd.DataFrame, claims: Sequence[Mapping], name: str
         where = f"{name}: row {i + 2} (claim {row['id']!r})"
         for key in ("paper_value", "tolerance"):
             if not np.isclose(float(row[key]), float(c[key]), rtol=1e-12, atol=0.0):
-                out.append(f"{where} has {key} {row[key]}, config/claims.yaml {c[key]}")
-        if row["expectation"] != c["expectation"]:
-            out.append(
-                f"{where} has expectation {row['expectation']!r}, "
-                f"config/claims.yaml {c['expectation']!r}"
-            )
+                out.append(f"{where} has {key} {row[key]}, config/claims.yaml {c[key]}{other}")
+        for key in RECORDED:
+            if str(row[key]) != _recorded(c, key):
+                out.append(
+                    f"{where} has {key} {row[key]!r}, config/claims.yaml "
+                    f"{_recorded(c, key)!r}{other}"
+                )
         ok = bool(within(float(row["reproduced_value"]), c["paper_value"], c["tolerance"]))
         if ok:
             status = "used_for_fit" if row["fit_set"] else "pass"
