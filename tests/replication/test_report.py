@@ -126,6 +126,7 @@ def test_text_from_files_is_escaped(tiny_run, tmp_path):
     claims.loc[0, "quantity"] = HOSTILE
     statements = yaml.safe_load((ROOT / "config/claims.yaml").read_text())
     statements["statements"]["fig04"] = HOSTILE
+    statements["claims"][0]["quantity"] = HOSTILE  # the table follows its claims file
     # claim 1 declared a known deviation with a hostile reason, and deviating (a table
     # that does not follow from the declared claims is refused)
     declared = statements["claims"][1]
