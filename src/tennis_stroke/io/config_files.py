@@ -181,19 +181,26 @@ def config_keys(node, parts: tuple = ()):
             yield from config_keys(value, path)
 
 
+def walk(node, parts: tuple = ()) -> Iterator[tuple[tuple, object]]:
+    """Every value of a file's data with its key's path (``dotted_key``), in the file's
+    order, each mapping and list before what it holds."""
+    yield parts, node
+    if isinstance(node, Mapping):
+        for key, value in node.items():
+            yield from walk(value, (*parts, key))
+    elif isinstance(node, list):
+        for i, value in enumerate(node):
+            yield from walk(value, (*parts, i))
+
+
 def non_finite_numbers(node, parts: tuple = ()) -> Iterator[tuple[tuple, float]]:
     """Every number of a config file's data that is not finite (``.nan``, ``.inf``), with
     its key's path (``dotted_key``), in the file's order: the rule that every number of
     the config, claims and readings files is finite (a NaN compares false with every
     bound, so a schema's ``minimum`` lets it through)."""
-    if isinstance(node, float) and not math.isfinite(node):
-        yield parts, node
-    elif isinstance(node, Mapping):
-        for key, value in node.items():
-            yield from non_finite_numbers(value, (*parts, key))
-    elif isinstance(node, list):
-        for i, value in enumerate(node):
-            yield from non_finite_numbers(value, (*parts, i))
+    for path, value in walk(node, parts):
+        if isinstance(value, float) and not math.isfinite(value):
+            yield path, value
 
 
 def dotted_key(parts) -> str:

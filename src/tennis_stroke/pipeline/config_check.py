@@ -34,6 +34,7 @@ from ..io.config_files import (
     non_finite_numbers,
     schema_errors,
     value_at,
+    walk,
 )
 from ..model.params import (
     CHOICES,
@@ -48,20 +49,10 @@ from ..studies.methods import OPTIMUM_DELTA0_RANGE, OPTIMUM_THETA0_RANGE, check_
 from .resources import DEFAULT_MAX_POINTS
 
 
-def _walk(node, parts=()) -> Iterator[tuple[tuple, object]]:
-    yield parts, node
-    if isinstance(node, Mapping):
-        for key, value in node.items():
-            yield from _walk(value, (*parts, key))
-    elif isinstance(node, list):
-        for i, value in enumerate(node):
-            yield from _walk(value, (*parts, i))
-
-
 def _semantic_errors(config: Mapping) -> Iterator[str]:
     for parts, node in non_finite_numbers(config):
         yield f"config key {dotted_key(parts)!r}: {node} is not a finite number (rule: finite)"
-    for parts, node in _walk(config):
+    for parts, node in walk(config):
         if isinstance(node, Mapping) and {"start", "stop"} <= set(node):
             start, stop = node["start"], node["stop"]
             if isinstance(start, int | float) and isinstance(stop, int | float) and stop < start:
