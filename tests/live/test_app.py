@@ -3,7 +3,6 @@ the server would run on its next tick): what a change, a reset, a bad value, a f
 stage and a burst of changes do to its views and its work."""
 
 import threading
-import time
 
 import numpy as np
 import pytest
@@ -198,10 +197,11 @@ def test_ten_rapid_changes_compute_the_last_and_pile_up_nothing(shared, monkeypa
     settle(session)
     computed = []
     real = compute.map_level
+    burst = threading.Event()
 
     def counted(config, figure, level, stale=lambda: False, threads=None):
         computed.append((config["model"]["M2"], level))
-        time.sleep(0.05)  # slower than the changes arrive
+        burst.wait(10)  # slower than the changes arrive, however loaded the machine
         return real(config, figure, level, stale, threads)
 
     monkeypatch.setattr(compute, "map_level", counted)
@@ -209,6 +209,7 @@ def test_ten_rapid_changes_compute_the_last_and_pile_up_nothing(shared, monkeypa
     for n in range(10):
         session.widgets["model.M2"].value = f"{0.31 + 0.01 * n:.2f}"
     assert sum(session._queued.values()) <= 1  # one request waits, whatever the burst
+    burst.set()
     settle(session)
     assert threading.active_count() <= threads + 1
     assert session.map_source.data["generation"] == [session.generation["all"]]
