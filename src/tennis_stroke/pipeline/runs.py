@@ -93,24 +93,21 @@ def checked_config(config: dict, schema: Path) -> tuple[object, ReadingSpace]:
     errors = claim_errors("config/claims.yaml")
     if errors:
         raise PlanningError("claims", errors[0])
+    claims = load_claims("config/claims.yaml")  # checked just above: read once here
     try:
-        space = load_reading_space(
-            "config/readings.yaml", [c["id"] for c in load_claims("config/claims.yaml")]
-        )
+        space = load_reading_space("config/readings.yaml", [c["id"] for c in claims])
     except ReadingSpaceError as exc:
         raise PlanningError("readings", str(exc)) from None
     multiverse = space.raw["multiverse"]
     loaded = load_schema(schema)
-    if isinstance(config, Mapping):
-        filled = with_defaults(config, loaded)
-        config.clear()
-        config.update(filled)
+    filled = with_defaults(config, loaded)
+    config.clear()
+    config.update(filled)
     errors = config_errors(
         config, schema, rows_per_job(multiverse["readings"], multiverse["chunks"])
     )
     if errors:
         raise PlanningError("config", errors[0])
-    claims = load_claims("config/claims.yaml")
     errors = claim_axis_errors(claims, config, "config/claims.yaml") or claim_axis_errors(
         claims,
         space.at_resolution(config),
@@ -197,6 +194,8 @@ class Runs:
         self.claims = {c["id"]: c for c in load_claims("config/claims.yaml")}
         self._said: set[tuple[str, str, str]] = set()
         self._files: dict[str, dict[str, str]] = {}
+        #: The largest search's points, for one reading and for a chunk's in lockstep.
+        self._search_points: dict[bool, int] = {}
 
     @classmethod
     def declared(cls, config: Mapping, space: ReadingSpace, adhoc, schema: Path) -> Runs:
@@ -327,11 +326,14 @@ class Runs:
         """A resources function: what a job running the claims' searches asks, from the
         largest search's first batch in the paper's configuration, for one reading or
         (``lockstep``) for a robustness chunk's readings at once."""
-        readings = 1
-        if lockstep:
-            multiverse = self.space.raw["multiverse"]
-            readings = rows_per_job(multiverse["readings"], multiverse["chunks"])
-        points = max((p for _, _, p in search_jobs(self.config, readings)), default=0)
+        if lockstep not in self._search_points:  # once per kind, for every rule asking
+            readings = 1
+            if lockstep:
+                multiverse = self.space.raw["multiverse"]
+                readings = rows_per_job(multiverse["readings"], multiverse["chunks"])
+            found = (p for _, _, p in search_jobs(self.config, readings))
+            self._search_points[lockstep] = max(found, default=0)
+        points = self._search_points[lockstep]
         return lambda wildcards: asked(points)[name]
 
     # -- claims -----------------------------------------------------------------------
