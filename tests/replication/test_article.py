@@ -9,11 +9,13 @@ import pypdf
 import pytest
 import yaml
 from conftest import ROOT
+from rescience_shape import departures
 
 from tennis_stroke.replication.article import build_article
 from tennis_stroke.replication.formats import _number
 from tennis_stroke.replication.registry import FIGURES
 from tennis_stroke.replication.report import ReportInputError
+from tennis_stroke.replication.rescience import authors, read_citation
 
 STATEMENTS = str(ROOT / "config" / "claims.yaml")
 
@@ -33,7 +35,8 @@ def _text(pdf) -> str:
 @pytest.mark.workflow
 def test_the_article_holds_the_counts_and_every_claim_s_value(tiny_run):
     """`make report` writes it; its text states the claims table's counts and each
-    claim's id and value, and its metadata is ReScience C's with the lock's software."""
+    claim's id and value, and its metadata is ReScience C's template's (the title's mark
+    by the claims, the authors CITATION.cff's) with the lock's software."""
     pdf = tiny_run / "report" / "article.pdf"
     text = " ".join(_text(pdf).split())
     table = pd.read_csv(tiny_run / "results" / "claims.csv")
@@ -46,8 +49,17 @@ def test_the_article_holds_the_counts_and_every_claim_s_value(tiny_run):
         assert claim["id"].replace("_", "") in text.replace("_", "").replace(" ", ""), claim["id"]
         assert _number(float(claim["reproduced_value"])) in text, claim["id"]
     meta = yaml.safe_load((tiny_run / "report" / "metadata.yaml").read_text())
-    assert meta["title"].startswith("[Re] Double pendulum model")
-    assert meta["replication"]["url"] == "https://arxiv.org/abs/1505.01916"
+    assert departures(meta) == []  # ReScience C's template, key by key
+    # the title's mark by the claims table's held-out claims, the authors CITATION.cff's
+    held = table[table["fit_set"].fillna("") == ""]
+    mark = "[Re]" if (held["status"] == "pass").sum() > len(held) / 2 else "[\u00acRe]"
+    assert (
+        meta["title"]
+        == f"{mark} Double pendulum model for tennis stroke including a collision process"
+    )
+    assert f"The title carries {mark}" in text
+    assert meta["authors"] == authors(read_citation(ROOT / "CITATION.cff"))[0]
+    assert {"url": "https://arxiv.org/abs/1505.01916"} in meta["replication"]
     assert any(s.startswith("typst==") for s in meta["software"])
 
 

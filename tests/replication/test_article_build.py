@@ -187,37 +187,63 @@ def test_every_value_carries_its_unit_and_no_text_is_below_8_pt(inputs):
     assert f"±{float(seconds['tolerance']):.4g} s" in text
 
 
-def test_the_metadata_holds_rescience_c_s_fields(inputs):
+def _citation(path):
+    """A citation file naming the code's repository (its ``repository-code``)."""
+    cff = yaml.safe_load((ROOT / "CITATION.cff").read_text())
+    cff["repository-code"] = "https://github.com/example/tennis-stroke"
+    path.write_text(yaml.safe_dump(cff))
+    return str(path)
+
+
+def _entries(meta, key):
+    """A key of the metadata as one map (the template's list of one-key maps)."""
+    return {k: v for entry in meta[key] for k, v in entry.items()}
+
+
+def test_the_metadata_holds_rescience_c_s_fields(inputs, tmp_path):
     build_article(
         **inputs,
         lock=ROOT / "requirements.lock",
         pyproject=ROOT / "pyproject.toml",
-        repository="https://github.com/example/tennis-stroke",
+        citation=_citation(tmp_path / "CITATION.cff"),
     )
     meta = yaml.safe_load(Path(inputs["output_metadata"]).read_text())
-    assert re.fullmatch(r"[A-Za-z][\w:-]*", meta["replication"]["bib"])  # a key, no DOI
-    assert meta["replication"]["doi"] == "10.48550/arXiv.1505.01916"
-    urls = [meta["code"]["url"], meta["data"]["url"], meta["replication"]["url"]]
-    assert all(u == "" or re.match(r"https://\S+$", u) for u in urls), urls
-    assert meta["code"]["url"] == f"https://github.com/example/tennis-stroke/tree/{COMMIT_A}"
+    replication, code = _entries(meta, "replication"), _entries(meta, "code")
+    assert re.fullmatch(r"[A-Za-z][\w:-]*", replication["bib"])  # a key, no DOI
+    assert replication["doi"] == "10.48550/arXiv.1505.01916"
+    urls = [code["url"], _entries(meta, "data")["url"], replication["url"]]
+    assert all(u is None or re.match(r"https://\S+$", u) for u in urls), urls
+    assert code["url"] == f"https://github.com/example/tennis-stroke/tree/{COMMIT_A}"
     names = {s.split("==")[0].lower() for s in meta["software"]}
     assert {"numpy", "scipy", "numba", "xarray", "snakemake", "typst"} <= names
     assert not names & {"black", "ruff", "selenium", "trio", "pytest", "sympy", "uv"}
     assert all(re.fullmatch(r"[\w.\-]+==[\w.\-+]+", s) for s in meta["software"])
+    # one author, from CITATION.cff, in the article's byline as in the metadata
+    (author,) = meta["authors"]
+    assert author["name"] == "The tennis-stroke developers" and author["affiliations"] == "1,*"
+    text = _text(inputs["output_pdf"]).replace("\u2019", "'")
+    assert "Authors: to fill" not in text and "Contact: The tennis-stroke developers" in text
+    # the mark, and why: every held-out claim of the made-up table but one reproduces
+    held = len(DECLARED)
+    assert meta["title"].startswith("[Re] Double pendulum model")
+    assert (
+        f"The title carries [Re], ReScience C's mark of a successful replication: {held - 1} "
+        f"of the {held} held-out claims ({100 * (held - 1) / held:.0f} %) reproduce" in text
+    )
+    assert " ".join(meta["abstract"].split()) in text  # the article's abstract
 
 
 def test_a_mix_of_commits_is_stated_as_a_mix(inputs, tmp_path, capsys):
     """One result file of another commit: the article names both, with the files of
     each, and says the files do not share one; the metadata claims no commit."""
     inputs["results"].append(_result(tmp_path / "results" / "odd.nc", COMMIT_B))
-    build_article(**inputs, repository="https://github.com/example/tennis-stroke")
+    build_article(**inputs, citation=_citation(tmp_path / "CITATION.cff"))
     text = _text(inputs["output_pdf"])
     assert f"commit: a mix of 2: {COMMIT_A} (2 files); {COMMIT_B} (1 file: odd.nc)" in text
     assert "The result files do not share one commit" in text
     assert "lock (SHA-256 of requirements.lock, first 16 digits): 0123456789abcdef (all 3" in text
     meta = yaml.safe_load(Path(inputs["output_metadata"]).read_text())
-    assert meta["code"]["url"] == "https://github.com/example/tennis-stroke"
-    assert "commit" not in meta["code"]
+    assert _entries(meta, "code")["url"] == "https://github.com/example/tennis-stroke"
     assert "more than one commit" in capsys.readouterr().err
 
 

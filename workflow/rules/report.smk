@@ -163,6 +163,8 @@ rule article:
         ),
         lock=CODE.checkout_file("requirements.lock"),
         pyproject=CODE.checkout_file("pyproject.toml"),
+        # the authors, keywords and code URL (the article's byline and its metadata)
+        citation=CODE.checkout_file("CITATION.cff"),
         # the equations it prints are read from this module's source, never imported
         equations=CODE.checkout_file("src/tennis_stroke/model/dynamics.py"),
     output:

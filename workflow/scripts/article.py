@@ -21,4 +21,5 @@ with logged(snakemake.log[0]):
         lock=snakemake.input.lock,
         pyproject=snakemake.input.pyproject,
         work_precision=snakemake.input.work_precision,
+        citation=snakemake.input.citation,
     )

@@ -1,5 +1,7 @@
-"""The replication as an article: ``report/article.pdf``, a ReScience-style [Re] paper
-written from the result files, and ``report/metadata.yaml`` in ReScience C's format.
+"""The replication as an article: ``report/article.pdf``, a ReScience C paper (``[Re]`` or
+``[¬Re]`` by its claims) written from the result files, and ``report/metadata.yaml`` in
+ReScience C's format (:mod:`.rescience`: the title's mark from the claims table, the authors
+from ``CITATION.cff``).
 
 Every number in the article is read from the results: the claims table
 (``results/claims.csv``: each claim's paper value, ours, tolerance, verdict, robustness
@@ -35,7 +37,6 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-import yaml
 
 from ..inference.claims import load_claims
 from ..io.config_files import load_yaml
@@ -49,20 +50,11 @@ from .claims import ClaimsTableError, checked_table, tally
 from .formats import ReportInputError, _timings
 from .registry import FIGURES
 from .report import check_image, claim_row, paper_sections
+from .rescience import ORIGINAL, byline, metadata, metadata_text, read_citation, title, verdict
 from .robustness import CONFIDENCE, EVIDENCE_MEANING, across_short
 
 #: The article's template (Typst), beside the report's templates, and a scenario's.
 TEMPLATE = Path(__file__).parent / "templates" / "article.typ"
-#: The replicated article; ``key``: its BibTeX key (ReScience C's ``bib`` field).
-ORIGINAL = {
-    "key": "Youn2015",
-    "authors": "Sun-Hyun Youn",
-    "title": "Double pendulum model for tennis stroke including a collision process",
-    "reference": "arXiv:1505.01916 [physics.pop-ph] (2015)",
-    "url": "https://arxiv.org/abs/1505.01916",
-    "doi": "10.48550/arXiv.1505.01916",
-}
-TITLE = f"[Re] {ORIGINAL['title']}"
 #: The provenance the article states: global attributes every result file records.
 PROVENANCE = {
     "git_commit": "commit",
@@ -168,6 +160,34 @@ def _counts(table: pd.DataFrame) -> dict:
         "evidence": parts("known_deviation"),
         "robustness": parts("robustness"),
     }
+
+
+def _listed(parts: Sequence[Mapping]) -> str:
+    """``3 irreducible, 1 ill conditioned``: a tally's parts (:func:`_counts`)."""
+    return ", ".join(f"{p['n']} {p['class']}" for p in parts)
+
+
+def abstract(counts: Mapping) -> str:
+    """The article's abstract (and ReScience C's ``abstract``): the paper's model in one
+    sentence, then the claims table's counts (:func:`_counts`)."""
+    evidence = f" ({_listed(counts['evidence'])})" if counts["evidence"] else ""
+    robustness = (
+        " Across the readings of the paper's unstated assumptions consistent with it, the "
+        f"held-out claims are {_listed(counts['robustness'])}."
+        if counts["robustness"]
+        else ""
+    )
+    return (
+        f"{ORIGINAL['authors']} modelled a forehand tennis stroke as a double pendulum (arm "
+        "and forearm, hand and racket) driven by joint torques from a moving elbow, with a "
+        "one-dimensional spring contact for the ball, and mapped the rebound speed over the "
+        "initial angles, the racket's mass and the arm's length, a delay of the wrist torque "
+        "and an extra elbow force. We reimplemented the model and checked each of the "
+        f"paper's {counts['claims']} quantitative and qualitative claims against a tolerance "
+        f"declared before the results were computed. {counts['reproduced']} claims "
+        f"reproduce, {counts['deviating']} deviate{evidence}, {counts['failing']} fail, and "
+        f"{counts['fit']} were used to fit what the paper leaves unstated.{robustness}"
+    )
 
 
 def _first_unknown(deciding: str) -> str:
@@ -315,9 +335,12 @@ def article_data(
     results: Sequence[str],
     job_seconds: float | None = None,
     work_precision: str | None = None,
+    citation: Mapping | None = None,
 ) -> dict:
     """Everything the article states, from the result files (the template's data);
-    ``work_precision``: the study's file, whose rule table it shows (None: no table)."""
+    ``work_precision``: the study's file, whose rule table it shows (None: no table);
+    ``citation``: ``CITATION.cff`` as data, whose authors it names
+    (:func:`~.rescience.byline`)."""
     try:
         table = checked_table(claims_csv, load_claims(claims_yaml))
     except ClaimsTableError as exc:
@@ -330,10 +353,15 @@ def article_data(
         shown_equations = equations()
     except EquationError as exc:
         raise ReportInputError(f"the article's equations: {exc}") from None
+    counts = _counts(table)
+    mark = verdict(table)
     return {
-        "title": TITLE,
+        "title": title(mark["mark"]),
+        "verdict": mark,
+        "byline": byline(citation or {}),
+        "abstract": abstract(counts),
         "original": ORIGINAL,
-        "counts": _counts(table),
+        "counts": counts,
         "equations": shown_equations,
         "sections": _sections(rows, figures, attrs, paper),
         "discussion": discussion(table, rows),
@@ -396,31 +424,6 @@ def _code_url(repository: str, facts: Sequence[Mapping]) -> str:
     return repository
 
 
-def metadata(data: Mapping, repository: str = "", software: Sequence[str] = ()) -> dict:
-    """``report/metadata.yaml``: the fields of ReScience C's template as it defines them
-    (``bib`` a BibTeX key, ``url`` fields URLs or empty, ``software`` what the
-    replication runs on: :func:`runtime_software`), the authors left to fill."""
-    return {
-        "title": data["title"],
-        "authors": [{"name": "(to fill)", "orcid": "", "affiliations": "1"}],
-        "affiliations": [{"code": "1", "name": "(to fill)"}],
-        "contact": {"name": "(to fill)", "email": ""},
-        "code": {"url": _code_url(repository, data["provenance"]), "doi": ""},
-        "data": {"url": "", "doi": ""},
-        "replication": {
-            "cite": f"{ORIGINAL['authors']}, {ORIGINAL['title']}, {ORIGINAL['reference']}",
-            "bib": ORIGINAL["key"],
-            "url": ORIGINAL["url"],
-            "doi": ORIGINAL["doi"],
-        },
-        "type": "Replication",
-        "language": "Python",
-        "domain": "Sports physics, biomechanics",
-        "keywords": ["double pendulum", "tennis", "collision", "replication"],
-        "software": list(software),
-    }
-
-
 def _require(*paths) -> None:
     """One line naming the first input of an article that does not exist."""
     missing = [p for p in paths if not Path(p).is_file()]
@@ -466,30 +469,32 @@ def build_article(
     output_pdf: str,
     output_metadata: str,
     job_seconds: float | None = None,
-    repository: str = "",
     lock: str | Path | None = None,
     pyproject: str | Path | None = None,
     work_precision: str | None = None,
+    citation: str | Path | None = None,
 ) -> None:
     """Write the article (``output_pdf``) and its ``metadata.yaml`` from the results
     (``lock``, ``pyproject``: ``requirements.lock`` and ``pyproject.toml``, whose
     runtime dependencies it lists; ``work_precision``: the study's file, for the rule
-    table of the integrator's settings).  A provenance fact the result files do not
-    share is stated as a mix in the article and said on stderr."""
+    table of the integrator's settings; ``citation``: ``CITATION.cff``, whose authors,
+    keywords and ``repository-code`` both name, None: none).  A provenance fact the
+    result files do not share is stated as a mix in the article and said on stderr."""
     _require(
         claims_csv, claims_yaml, *figures, *results, *([work_precision] if work_precision else [])
     )
+    cff = read_citation(citation)
     shown = {
         Path(p).stem: p
         for p in figures
         if Path(p).stem in FIGURES and FIGURES[Path(p).stem].of_paper
     }
-    data = article_data(claims_csv, claims_yaml, shown, results, job_seconds, work_precision)
+    data = article_data(claims_csv, claims_yaml, shown, results, job_seconds, work_precision, cff)
     for label in data["provenance_mixed"]:
         print(f"warning: the result files record more than one {label}", file=sys.stderr)
     _typeset(TEMPLATE, data, list(shown.values()), output_pdf)
-    meta = metadata(data, repository, runtime_software(pyproject, lock))
-    write_atomically(
-        output_metadata,
-        yaml.safe_dump(meta, sort_keys=False, allow_unicode=True).encode("utf-8"),
+    code_url = _code_url(str(cff.get("repository-code", "")), data["provenance"])
+    meta = metadata(
+        data["title"], data["abstract"], cff, code_url, runtime_software(pyproject, lock)
     )
+    write_atomically(output_metadata, metadata_text(meta).encode("utf-8"))

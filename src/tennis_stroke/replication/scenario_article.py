@@ -10,10 +10,11 @@ from collections.abc import Mapping, Sequence
 from pathlib import Path
 
 from ..inference.claims import load_claims
-from .article import ORIGINAL, _require, _typeset
+from .article import _require, _typeset
 from .claims import ClaimsTableError, read_table
 from .formats import ReportInputError
 from .registry import FIGURES
+from .rescience import ORIGINAL
 from .scenario_report import _paper_table, claim_rows, movement
 
 SCENARIO_TEMPLATE = Path(__file__).parent / "templates" / "scenario_article.typ"
