@@ -223,3 +223,63 @@ def test_every_workflow_script_makes_signals_quiet_before_its_imports():
             "from tennis_stroke.io.interrupts import quiet_job_stops",
             "quiet_job_stops()",
         ], path.name
+
+
+def test_snakemake_s_sigterm_handler_takes_the_lock_its_main_thread_may_hold():
+    """Why `tennis-stroke whatif` never passes SIGTERM on (``FORWARDED``): Snakemake's
+    handler waits for the scheduler's lock, a ``threading.Lock``, which the main thread,
+    where the handler runs, holds while it handles a stopped job: there it waits for
+    ever.  (Should Snakemake stop taking the lock, this fails and SIGTERM may be passed
+    on again.)"""
+    import threading
+    import types
+
+    from snakemake.scheduling.job_scheduler import JobScheduler
+
+    scheduler = types.SimpleNamespace(
+        _lock=threading.Lock(), _open_jobs=threading.Semaphore(0), _user_kill=None
+    )
+    with scheduler._lock:  # the main thread in the scheduling loop's `with self._lock`
+        handler = threading.Thread(target=JobScheduler.exit_gracefully, args=(scheduler,))
+        handler.start()
+        handler.join(0.5)
+        assert handler.is_alive() and scheduler._user_kill is None
+    handler.join(5)
+    assert scheduler._user_kill == "graceful"
+
+
+#: A command in place of Snakemake: it records the first signal it gets in ``argv[1]``.
+RECORDING = """
+import pathlib, signal, sys, time
+out = pathlib.Path(sys.argv[1])
+def record(signum, frame):
+    out.write_text(signal.Signals(signum).name)
+    sys.exit(0)
+for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+    signal.signal(s, record)
+out.with_suffix(".ready").touch()
+while True:
+    time.sleep(0.01)
+"""
+
+
+@pytest.mark.signals
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGHUP])
+def test_a_stop_reaches_the_snakemake_of_a_command_as_ctrl_c(tmp_path, signum):
+    """SIGTERM or SIGHUP to a command that runs Snakemake (``run_forwarding``, as
+    `tennis-stroke whatif` does) reaches Snakemake's process group as SIGINT, and the
+    command still ends as terminated."""
+    out = tmp_path / "got"
+    parent = (
+        "import sys\nfrom tennis_stroke.io.interrupts import Terminated, run_forwarding\n"
+        f"try:\n    run_forwarding([sys.executable, '-c', {RECORDING!r}, {str(out)!r}])\n"
+        "except Terminated:\n    sys.exit(143)\n"
+    )
+    with subprocess.Popen([sys.executable, "-c", parent]) as command:
+        deadline = time.monotonic() + 60
+        while not out.with_suffix(".ready").exists():
+            assert command.poll() is None and time.monotonic() < deadline
+            time.sleep(0.01)
+        command.send_signal(signum)
+        assert command.wait(timeout=30) == 143
+    assert out.read_text() == "SIGINT"

@@ -176,15 +176,19 @@ def quiet_job_stops() -> None:
 
 
 #: What a command that runs Snakemake for the user passes on of the signals it receives:
-#: Ctrl-C as Ctrl-C, a termination or a closed terminal as SIGTERM.  Each goes to
-#: Snakemake's whole process group, its jobs included, as a terminal's Ctrl-C does: the
-#: jobs stop at once (Snakemake alone would wait for them: on SIGTERM it finishes the
-#: running jobs, on SIGINT it waits for them), Snakemake then stops and removes its locks
-#: (``.snakemake/locks``).
+#: each as Ctrl-C, to Snakemake's whole process group, its jobs included, as a terminal's
+#: Ctrl-C does: the jobs stop at once (Snakemake alone would wait for them), Snakemake
+#: then stops and removes its locks (``.snakemake/locks``).  Never SIGTERM: Snakemake's
+#: SIGTERM handler (``JobScheduler.exit_gracefully``, 9.15) takes the scheduler's
+#: non-reentrant lock from the main thread, which may hold it already (it does while it
+#: handles the job the same signal just stopped): Snakemake then hangs for ever (a
+#: `tennis-stroke whatif` stopped by SIGHUP hung 300 s, 2026-12-07).  Ctrl-C raises
+#: KeyboardInterrupt there instead, which leaves the lock as it unwinds.  This process
+#: still ends with the status of the signal it received.
 FORWARDED = {
     signal.SIGINT: signal.SIGINT,
-    signal.SIGTERM: signal.SIGTERM,
-    signal.SIGHUP: signal.SIGTERM,
+    signal.SIGTERM: signal.SIGINT,
+    signal.SIGHUP: signal.SIGINT,
 }
 #: ``prctl`` option: the signal a process gets when its parent ends (Linux).
 PR_SET_PDEATHSIG = 1
