@@ -57,16 +57,19 @@ report: install
 	$(BIN)/python tools/readme_results.py --check
 
 ## The test suite on every core (pytest-xdist; the tiny workflow run and the SLURM runs
-## are built once for all workers), the 25 slowest named at the end: every test,
+## are built once for all workers; tests sent to a worker one at a time, --maxschedchunk
+## 1: xdist's default sends the first quarter of the tests, all the long ones, to one
+## worker, and the other sat idle for the last 70 % of the run), the 25 slowest named at
+## the end: every test,
 ## including a tiny end-to-end workflow run, the browser, compile and SLURM tests
 ## (docs/testing.md).
 test: install
-	$(BIN)/python -m pytest -n $(JOBS) --durations=25
+	$(BIN)/python -m pytest -n $(JOBS) --maxschedchunk 1 --durations=25
 
 ## The fast tier while editing: every test that needs no workflow run, no browser, no
 ## SLURM and no cold compile (pytest -m "not slow"), on every core.
 check: install
-	$(BIN)/python -m pytest -n $(JOBS) --durations=10 -m "not slow"
+	$(BIN)/python -m pytest -n $(JOBS) --maxschedchunk 1 --durations=10 -m "not slow"
 
 lint: install
 	$(BIN)/check-jsonschema --builtin-schema vendor.github-workflows .github/workflows/replication.yml
