@@ -194,6 +194,31 @@ def test_the_shipped_pages_are_generated_from_a_run(tiny_run, tmp_path):
         assert old == new, name
 
 
+#: A count that planning decides: so many jobs or rules (also across a line break), or
+#: a table's column of them.
+_PLANNED_COUNT = re.compile(r"\b\d[\d,]*\s+(?:jobs?|rules?)\b|\|\s*jobs\s*\|")
+
+
+def test_no_page_gives_a_count_of_jobs_or_rules_by_hand():
+    """Issue 66, case 26: docs/scenarios.md said a change of a paper input plans 30 jobs;
+    it planned 34. A count of jobs or rules follows every rule added, so the pages say
+    how to get it (``snakemake -n``, ``tennis-stroke config explain KEY``), not a number
+    written by hand; the dated log (docs/changes.md) keeps the history, and a generated
+    block is written from a run."""
+    tool = _tool()
+    found = []
+    for page in [ROOT / "README.md", *sorted(ROOT.glob("docs/*.md"))]:
+        if page.name == "changes.md":
+            continue
+        text = page.read_text()
+        for name in tool.BLOCKS:
+            begin, end = tool.markers(name)
+            if begin in text:
+                text = text.split(begin)[0] + text.split(end)[1]
+        found += [f"{page.name}: {m.group(0)!r}" for m in _PLANNED_COUNT.finditer(text)]
+    assert not found, found
+
+
 def _what_if_section() -> str:
     text = (ROOT / "README.md").read_text()
     return text.split("## What if: scenarios beside the paper")[1].split("\n## ")[0]
