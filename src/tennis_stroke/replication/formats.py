@@ -40,7 +40,7 @@ def _table(frame: pd.DataFrame, **kwargs) -> Markup:
 
 def _timings(directory: Path) -> pd.DataFrame:
     """Per-job timings, with the time each was measured: jobs of an earlier run (e.g.
-    with other chunk counts) keep their files until ``benchmarks/workflow`` is removed.
+    with other chunk counts) keep their files until ``logs/benchmarks`` is removed.
     Every job writes one (a gather's below ``gather_map/``); the scenarios' (below
     ``scenarios/``, the workflow's scenario folder) are not the paper's run."""
     rows = []
