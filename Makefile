@@ -92,4 +92,4 @@ kernels: install
 	$(BIN)/python tools/generate_kernels.py
 
 clean:
-	rm -rf results report logs benchmarks/workflow .snakemake docs/api
+	rm -rf results report logs .snakemake docs/api benchmarks/workflow

@@ -2,17 +2,17 @@
 
 Usage (after a run, from the project's folder)::
 
-    python benchmarks/job_split.py [--logs logs] [--benchmarks benchmarks/workflow]
+    python benchmarks/job_split.py [--logs logs] [--benchmarks logs/benchmarks]
 
 Each job's log ends with the line :func:`tennis_stroke.pipeline.jobs.time_split` writes,
 ``job time (s): start-up S, imports I, compiled code C, compute X, writing W``: start-up
 is the interpreter and Snakemake's preamble until the package's first import, imports
 run until the job's block, compiled code is making sure of and loading the compiled
-solver.  Each job's benchmark file (``benchmarks/workflow``, Snakemake's ``benchmark:``)
+solver.  Each job's benchmark file (``logs/benchmarks``, Snakemake's ``benchmark:``)
 gives its wall time ``s`` and CPU time ``cpu_time``.  The table sums both per job kind:
 simulation, study, gather, inference, claims, figure, report.  Scenario jobs (below
 ``scenarios/``) are left out.  Run it on a run from empty results
-(``rm -rf results report logs benchmarks/workflow && snakemake -j2 report``): a job that
+(``rm -rf results report logs && snakemake -j2 report``): a job that
 did not run this time keeps an older log.
 """
 
@@ -103,7 +103,7 @@ def split_table(logs: Path, benchmarks: Path) -> pd.DataFrame:
 def main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--logs", type=Path, default=Path("logs"))
-    parser.add_argument("--benchmarks", type=Path, default=Path("benchmarks/workflow"))
+    parser.add_argument("--benchmarks", type=Path, default=Path("logs/benchmarks"))
     args = parser.parse_args(argv)
     for folder in (args.logs, args.benchmarks):
         if not folder.is_dir():

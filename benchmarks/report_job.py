@@ -22,7 +22,7 @@ with tempfile.TemporaryDirectory() as tmp:
         inference=INFERENCE_RESULTS,
         results=list(PAPER_RESULTS.values()),
         config=yaml.safe_load(Path("config/config.yaml").read_text()),
-        benchmarks_dir="benchmarks/workflow",
+        benchmarks_dir="logs/benchmarks",
         output=str(Path(tmp) / "index.html"),
         assumptions_md="docs/assumptions.md",
         studies=[RESULT_FILES[k] for k in ("ladder", "optimum_cost", "stability")],

@@ -4,10 +4,12 @@ so a dry run costs its parse and DAG only (about 0.4 s here, against about 3 s f
 ``snakemake -n`` process).
 
 Usage: ``python dry_runs.py SNAKEFILE WORKDIR TARGET < runs.json``; reads a JSON list of
-runs, each ``{"config": overrides, "target": path, "files": {path: text}}`` (all
-optional: the config overrides are nested mappings merged over the config file as
-``--config`` would; the target defaults to TARGET; each file, relative to WORKDIR, is
-written before the run) and prints a JSON list of ``{"exit": status, "output": log,
+runs, each ``{"config": overrides, "target": path, "files": {path: text}, "execute":
+true}`` (all optional: the config overrides are nested mappings merged over the config
+file as ``--config`` would; the target defaults to TARGET; each file, relative to WORKDIR,
+is written before the run, its folders made; ``execute``: a run on one core instead of a
+dry run, for what only a run does before its first job, the Snakefile's ``onstart``) and
+prints a JSON list of ``{"exit": status, "output": log,
 "stderr": its stderr}``: status 0 for a dry run that planned (its "Job stats" are in the
 log), else the workflow's exit status (1 when it refused, with its one line on stderr).
 """
@@ -21,8 +23,10 @@ import sys
 from pathlib import Path
 
 
-def dry_run(snakefile: Path, workdir: Path, target: str, override: dict) -> dict:
-    """One dry run of ``target`` with the config ``override``."""
+def dry_run(
+    snakefile: Path, workdir: Path, target: str, override: dict, execute: bool = False
+) -> dict:
+    """One dry run of ``target`` with the config ``override`` (a run with ``execute``)."""
     from snakemake.api import SnakemakeApi
     from snakemake.settings.types import (
         ConfigSettings,
@@ -42,7 +46,8 @@ def dry_run(snakefile: Path, workdir: Path, target: str, override: dict) -> dict
                     snakefile=snakefile,
                     workdir=workdir,
                 )
-                workflow.dag(DAGSettings(targets={target})).execute_workflow(executor="dryrun")
+                dag = workflow.dag(DAGSettings(targets={target}))
+                dag.execute_workflow(executor="local" if execute else "dryrun")
         except SystemExit as exc:
             status = exc.code if isinstance(exc.code, int) else 1
     return {"exit": status, "output": log.getvalue(), "stderr": err.getvalue()}
@@ -65,8 +70,11 @@ def main() -> None:
     out = []
     for run in json.loads(sys.stdin.read()):
         for name, text in run.get("files", {}).items():
+            (workdir / name).parent.mkdir(parents=True, exist_ok=True)
             (workdir / name).write_text(text)
-        out.append(dry_run(snakefile, workdir, run.get("target", target), run.get("config", {})))
+        target_of = run.get("target", target)
+        execute = run.get("execute", False)
+        out.append(dry_run(snakefile, workdir, target_of, run.get("config", {}), execute))
     print(json.dumps(out))
 
 

@@ -643,6 +643,27 @@ def test_strike_prints_counts_as_integers(capsys):
     assert "." in lines["v_out_kmh"]
 
 
+def test_strike_labels_say_which_stroke_each_value_comes_from(capsys):
+    """Issue 66, case 24: for M2 = 0.34, L2 = 0.69 ``omega2_phi0`` (the swing without the
+    ball, run on to phi = 0) is above ``omega2_max``, "the maximum over the stroke" (the
+    stroke with the ball, which leaves that swing at the contact start): each line says
+    which stroke its value comes from, and the values at phi = 0 are never those of the
+    stroke with the ball."""
+    argv = ["--theta0", "90", "--delta0", "52.5", "--set", "M2=0.34", "--set", "L2=0.69"]
+    assert main(["strike", *argv]) == 0
+    out = capsys.readouterr().out.splitlines()
+    lines = {line.split()[0]: line for line in out if line.startswith("  ")}
+    value = {name: float(line.split()[1]) for name, line in lines.items()}
+    assert value["omega2_phi0"] > value["omega2_max"]
+    strokes = ("[the swing without the ball]", "[the stroke with the ball]", "[both strokes")
+    for line in lines.values():
+        assert sum(stroke in line for stroke in strokes) == 1, line
+    for name in ("t_phi0", "theta_deg_at_phi0", "omega1_phi0", "omega2_phi0"):
+        assert strokes[0] in lines[name]
+    for name in ("v_out_kmh", "t_separation", "omega2_max"):
+        assert strokes[1] in lines[name]
+
+
 # --- ranges: a count of points or a step ------------------------------------------------
 
 

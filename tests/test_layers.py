@@ -96,12 +96,14 @@ def test_the_reference_path_shares_the_model_but_not_the_compiled_driver():
 
 
 def test_the_registry_is_pure_data():
-    """The Snakefile imports it: no package module but the table of result files, no
-    plotting library."""
+    """The Snakefile imports it: no package module but the table of result files and the
+    parameter table (the units of the inputs a title names), no plotting library."""
     source = (PACKAGE / "replication" / "registry.py").read_text()
     assert imports_of_file(PACKAGE / "replication" / "registry.py") == {
         "experiments",
         "experiments.specs",
+        "model",
+        "model.params",
     }
     assert "matplotlib" not in source and "xarray" not in source
 

@@ -194,6 +194,53 @@ def test_the_shipped_pages_are_generated_from_a_run(tiny_run, tmp_path):
         assert old == new, name
 
 
+#: A count that planning decides: so many jobs or rules (also across a line break), or
+#: a table's column of them.
+_PLANNED_COUNT = re.compile(r"\b\d[\d,]*\s+(?:jobs?|rules?)\b|\|\s*jobs\s*\|")
+
+
+def test_no_page_gives_a_count_of_jobs_or_rules_by_hand():
+    """Issue 66, case 26: docs/scenarios.md said a change of a paper input plans 30 jobs;
+    it planned 34. A count of jobs or rules follows every rule added, so the pages say
+    how to get it (``snakemake -n``, ``tennis-stroke config explain KEY``), not a number
+    written by hand; the dated log (docs/changes.md) keeps the history, and a generated
+    block is written from a run."""
+    tool = _tool()
+    found = []
+    for page in [ROOT / "README.md", *sorted(ROOT.glob("docs/*.md"))]:
+        if page.name == "changes.md":
+            continue
+        text = page.read_text()
+        for name in tool.BLOCKS:
+            begin, end = tool.markers(name)
+            if begin in text:
+                text = text.split(begin)[0] + text.split(end)[1]
+        found += [f"{page.name}: {m.group(0)!r}" for m in _PLANNED_COUNT.finditer(text)]
+    assert not found, found
+
+
+@pytest.mark.parametrize("xdg", [False, True])
+def test_the_readme_says_where_the_compile_cache_lives_and_how_to_remove_it(xdg, monkeypatch):
+    """Issue 66, case 25: the compiled solver's cache (35 MB under ~/.cache/tennis-stroke)
+    is outside the checkout, and the README did not name it: it names the folder the
+    package picks (``HOME``'s ``.cache``, or ``XDG_CACHE_HOME``) and its removal."""
+    from tennis_stroke._cache import configure_numba_cache
+
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    monkeypatch.setenv("HOME", "/home/someone")
+    base, shown = Path("/home/someone/.cache"), "~/.cache"
+    if xdg:
+        base, shown = Path("/elsewhere/cache"), "$XDG_CACHE_HOME"
+        monkeypatch.setenv("XDG_CACHE_HOME", str(base))
+    else:
+        monkeypatch.delenv("XDG_CACHE_HOME", raising=False)
+    configure_numba_cache()
+    top = Path(os.environ["NUMBA_CACHE_DIR"]).relative_to(base).parts[0]
+    readme = " ".join((ROOT / "README.md").read_text().split())
+    assert f"`{shown}/{top}/`" in readme
+    assert f"rm -rf ~/.cache/{top}" in readme
+
+
 def _what_if_section() -> str:
     text = (ROOT / "README.md").read_text()
     return text.split("## What if: scenarios beside the paper")[1].split("\n## ")[0]

@@ -192,6 +192,20 @@ MUTANTS = (
         marker="",
     ),
     Mutant(
+        "unwritable_folder_passed",
+        "unwritable_folders: a folder the planned jobs cannot write passed (a job's "
+        "traceback instead of one line before any job)",
+        "pipeline/checkout.py",
+        "        if why:\n            problems.setdefault(why, []).extend(files)\n",
+        "        if False:\n            problems.setdefault(why, []).extend(files)\n",
+        (
+            "tests/workflow/test_one_run.py",
+            "tests/workflow/test_workflow_failsafe.py::"
+            "test_a_figure_no_rule_makes_or_no_folder_takes_is_one_line_naming_it",
+        ),
+        marker="",
+    ),
+    Mutant(
         "locate_event_step_end",
         "locate_event: the step's end, not the root",
         "solver/integrate.py",

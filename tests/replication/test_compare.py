@@ -1,6 +1,8 @@
 """A scenario's figure read against the paper's (tennis_stroke.replication.compare): one
 scale for both, and a difference that is scenario minus paper, centred on 0."""
 
+import json
+
 import matplotlib
 
 matplotlib.use("Agg")
@@ -86,7 +88,8 @@ def test_grids_that_differ_are_said_not_interpolated():
 
 
 def _angle_map(values):
-    ds = _map(values).assign_attrs(param_L1=0.3)
+    job = {"args": {"L1": 0.3}}  # what the job records of its arguments (Fig. 2's title)
+    ds = _map(values).assign_attrs(param_L1=0.3, config=json.dumps(job))
     ds["status"] = xr.zeros_like(ds["v_out"], dtype=np.int64)
     ds["best_delta0"] = ds["theta0"] * 0.0 + 20.0
     return ds

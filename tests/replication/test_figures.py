@@ -3,6 +3,7 @@ files' data, its axes labelled from the files' ``long_name`` and ``units`` (the 
 the registry declares along x and y exactly), and the paper's value of each claim it marks
 drawn and named at the paper's coordinates (the figures job's params)."""
 
+import json
 import re
 
 import matplotlib.pyplot as plt
@@ -11,10 +12,12 @@ import pytest
 from conftest import ROOT
 from matplotlib.collections import PathCollection, QuadMesh
 
-from tennis_stroke.experiments.specs import RESULT_FILES
+from tennis_stroke.experiments.specs import EXPERIMENTS, RESULT_FILES
 from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.io.config_files import load_yaml
 from tennis_stroke.io.netcdf import load_result
 from tennis_stroke.model.listing import ORIGINS
+from tennis_stroke.pipeline.params import simulation_params
 from tennis_stroke.replication.figures import drawn, wrapped
 from tennis_stroke.replication.marks import mark_values
 from tennis_stroke.replication.registry import FIGURES
@@ -256,6 +259,8 @@ def test_fig13_s_legend_clears_the_star_of_its_maximum(monkeypatch):
     )
     for name, (long_name, unit) in units.items():
         ds[name].attrs.update(long_name=long_name, units=unit)
+    job = simulation_params(EXPERIMENTS["elbow_map"], load_yaml(ROOT / "config/config.yaml"))
+    ds.attrs["config"] = json.dumps(job)  # what the job records (the title names its inputs)
     monkeypatch.setattr(figures, "load_result", lambda path: ds)
     figure = FIGURES["fig13_elbow_force"]
     fig = drawn(figure, ["elbow_map.nc"], marks=mark_values(figure, CLAIMS))

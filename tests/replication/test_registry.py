@@ -2,6 +2,7 @@
 that exist, its marks lie along its axes and resolve to the paper's values, it survives
 the trip through a job's params, and its title is filled from a file's attributes."""
 
+import json
 import re
 from dataclasses import asdict
 
@@ -9,14 +10,17 @@ import pytest
 import yaml
 from conftest import ROOT
 
-from tennis_stroke.experiments.specs import RESULT_FILES, sorted_data
+from tennis_stroke.experiments.specs import EXPERIMENTS, RESULT_FILES, sorted_data
 from tennis_stroke.inference.claims import load_claims
+from tennis_stroke.io.config_files import load_yaml
+from tennis_stroke.pipeline.params import simulation_params
 from tennis_stroke.replication.figures import drawer, drawing_names
 from tennis_stroke.replication.marks import mark_values
 from tennis_stroke.replication.registry import FIGURES, OUR_SECTIONS, Figure, Mark
 
 CLAIMS = {c["id"]: c for c in load_claims(ROOT / "config/claims.yaml")}
 PAPER_SECTIONS = yaml.safe_load((ROOT / "config/claims.yaml").read_text())["sections"]
+PAPER = load_yaml(ROOT / "config" / "config.yaml")
 
 
 @pytest.mark.parametrize("name", sorted(FIGURES))
@@ -81,6 +85,53 @@ def test_a_title_is_filled_from_a_file_s_attributes():
     assert figure.filled_title(attrs) == "L1 = 0.35 m at 120 deg"
     with pytest.raises(KeyError, match="theta0_deg"):
         figure.filled_title({"param_L1": 0.35})
+
+
+def _job_attrs(key: str) -> dict:
+    """What a row's job records of its params in its file (``config``, pipeline.jobs.save),
+    under the paper's configuration."""
+    return {"config": json.dumps(simulation_params(EXPERIMENTS[key], PAPER), sort_keys=True)}
+
+
+@pytest.mark.parametrize("name", sorted(n for n, f in FIGURES.items() if f.of_paper))
+def test_a_paper_figure_s_title_names_the_inputs_its_strokes_share(name):
+    """Issue 66, case 21: Fig. 9's title named neither theta0 = 90 deg nor delta0 = 52.5
+    deg, the inputs its gain over no delay was computed at (16.1 % there, 12.4 % with
+    delta0 optimised at tau = 0). A paper figure's title names each input every stroke of
+    its first file shares, as the file's job recorded it: the row's initial angles and
+    the model parameters it sets that are one number."""
+    figure = FIGURES[name]
+    attrs = _job_attrs(figure.files[0])
+    title = figure.filled_title(attrs).replace("\u00a0", " ")
+    shared = figure.fixed_text(attrs).replace("\u00a0", " ")
+    for text in shared.split(", ") if shared else []:
+        assert text in title, (text, title)
+
+
+def test_the_inputs_a_figure_s_strokes_share_are_the_job_s_single_values():
+    """Fig. 9's curve: theta0 and delta0 of the base stroke, L1 and C2 (the delay tau is
+    its axis); the Figs. 10-12 strokes share no tau (tau_L and tau_H, each a stroke's);
+    the Fig. 2 map shares only L1 (the angles are its axes); Fig. 4's two strokes have
+    angles of their own."""
+    stroke = PAPER["torque_delay"]
+    shared = FIGURES["fig09_v_tau"].fixed_inputs(_job_attrs("fig9"))
+    assert shared == {
+        "theta0": (stroke["theta0"], "degree"),
+        "delta0": (stroke["base_stroke"]["delta0"], "degree"),
+        "L1": (stroke["L1"], "m"),
+        "C2": (stroke["base_stroke"]["C2"], "N m"),
+    }
+    assert FIGURES["fig09_v_tau"].fixed_text(_job_attrs("fig9")).replace("\u00a0", " ") == (
+        "theta0 = 90 deg, delta0 = 52.5 deg, L1 = 0.4 m, C2 = 5 N m"
+    )
+    assert set(FIGURES["fig10_omegas_delay"].fixed_inputs(_job_attrs("delay"))) == {
+        "theta0",
+        "delta0",
+        "L1",
+        "C2",
+    }
+    assert FIGURES["fig02_angle_map"].fixed_inputs(_job_attrs("fig2")) == {"L1": (0.3, "m")}
+    assert FIGURES["fig04_omegas"].fixed_inputs(_job_attrs("fig4")) == {}
 
 
 def test_every_drawing_module_is_one_function_of_its_name_and_a_bad_name_is_refused():

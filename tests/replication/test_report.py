@@ -41,7 +41,7 @@ def _build(work: Path, output: Path, claims_csv: Path, statements: Path) -> str:
             yaml.safe_load((ROOT / "config/config.yaml").read_text()),
             yaml.safe_load((work / "config/config.yaml").read_text()),
         ),
-        benchmarks_dir=str(work / "benchmarks/workflow"),
+        benchmarks_dir=str(work / "logs/benchmarks"),
         output=str(output),
         assumptions_md=str(ROOT / "docs/assumptions.md"),
         studies={k: str(work / v) for k, v in STUDY_RESULTS.items()},

@@ -51,3 +51,38 @@ def test_a_dead_run_s_locks_are_removed_in_one_line(folder, capsys):
     assert capsys.readouterr().err.startswith("tennis-stroke: removed the locks of an earlier run")
     for fd in checkout._HELD:
         os.close(fd)
+
+
+# --- a folder the planned jobs cannot write -------------------------------------------
+
+
+def test_a_folder_the_planned_jobs_cannot_write_is_one_line_naming_it(tmp_path, monkeypatch):
+    """Issue 66, case 8: with results/figures not writable, `snakemake --forcerun` of a
+    figure ended in a 60-line traceback. The files the planned jobs write (outputs, logs,
+    benchmark files) are checked once, before any job: a folder that is not writable, or
+    a name in the way that is a file, is named in one line with the files it would hold;
+    a folder yet to be made below a writable one is no problem. (The tests run as root,
+    for whom no mode bit makes a folder read-only: ``os.access`` stands in.)"""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "results" / "figures").mkdir(parents=True)
+    planned = [
+        "results/figures/fig09_v_tau.png",
+        "results/figures/fig02_angle_map.png",
+        "logs/benchmarks/figure_fig09_v_tau.tsv",
+        "logs/figure/fig09_v_tau.log",
+    ]
+    assert checkout.unwritable_folders(planned) is None
+    real = os.access
+    blocked = os.path.abspath("results/figures")
+    monkeypatch.setattr(
+        os, "access", lambda p, mode: os.path.abspath(p) != blocked and real(p, mode)
+    )
+    line = checkout.unwritable_folders(planned)
+    assert line is not None and "\n" not in line
+    assert "'results/figures' is not writable" in line, line
+    assert "results/figures/fig02_angle_map.png" in line and "logs" not in line, line
+    monkeypatch.setattr(os, "access", real)
+    (tmp_path / "logs").write_text("a file where the logs' folder goes\n")
+    line = checkout.unwritable_folders(planned)
+    assert "'logs' is not a folder" in line and "logs/figure/fig09_v_tau.log" in line, line
+    assert "results/figures" not in line, line

@@ -81,7 +81,7 @@ def test_a_job_log_ends_with_where_its_time_went(tmp_path):
     assert values["compute"] >= 0.3 and values["writing"] > 0 and values["imports"] > 0
     assert values["start-up"] >= 0
 
-    bench = tmp_path / "benchmarks" / "workflow" / "angle_maps" / "fig2_0-of-1.tsv"
+    bench = tmp_path / "logs" / "benchmarks" / "angle_maps" / "fig2_0-of-1.tsv"
     bench.parent.mkdir(parents=True)
     bench.write_text("s\th:m:s\tmax_rss\tcpu_time\n1.5\t0:00:01\t100\t1.2\n")
     sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
@@ -89,6 +89,6 @@ def test_a_job_log_ends_with_where_its_time_went(tmp_path):
         from job_split import split_table
     finally:
         sys.path.pop(0)
-    table = split_table(tmp_path / "logs", tmp_path / "benchmarks" / "workflow")
+    table = split_table(tmp_path / "logs", tmp_path / "logs" / "benchmarks")
     assert table.loc["simulation", "jobs"] == 1 and table.loc["simulation", "wall"] == 1.5
     assert table.loc["simulation", "compute"] == pytest.approx(values["compute"], abs=1e-3)

@@ -510,6 +510,56 @@ def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
             assert info.value.code == 2 and message in err and err.count("\n") == 1, err
 
 
+@pytest.mark.parametrize("figure, key", [("fig9", "fig9"), ("fig04_omegas", "fig4")])
+def test_whatif_prints_a_figure_s_claims_and_the_inputs_they_were_computed_at(
+    figure, key, tmp_path, monkeypatch, capsys
+):
+    """Issue 66, case 21: `whatif myracket --set M2=0.34 --set L2=0.69 --figure fig9`
+    printed only the PNG's path: the answer (tau_H, v_H, the gain) was in the legend only,
+    and nothing named the theta0 = 90 deg and delta0 = 52.5 deg it was computed at. It
+    prints each claim of the figure, measured from the file the run wrote as the claims
+    are, and the inputs every stroke of it shares (Fig. 4's strokes share none). The run
+    is in-process: Snakemake's part, the figure's file, written as its job writes it."""
+    from tennis_stroke.experiments.specs import EXPERIMENTS, compute
+    from tennis_stroke.inference.claims import claim_files, measure
+    from tennis_stroke.io import interrupts
+    from tennis_stroke.io.netcdf import load_result
+    from tennis_stroke.pipeline.jobs import save, settings
+    from tennis_stroke.pipeline.params import simulation_params
+
+    for name in ("config", "workflow"):
+        (tmp_path / name).symlink_to(ROOT / name)
+    (tmp_path / "Snakefile").touch()
+    monkeypatch.chdir(tmp_path)
+    row = EXPERIMENTS[key]
+    path = tmp_path / "results/scenarios/myracket" / row.path.removeprefix("results/")
+
+    def snakemake(command):
+        params = simulation_params(row, merged(PAPER, {"model": {"M2": 0.34, "L2": 0.69}}))
+        common = params["common"]
+        ds = compute(row, params["args"], common["model"], settings(common), (0, 1), 1)
+        path.parent.mkdir(parents=True)
+        save(ds, path, params, 0.0)
+        return 0
+
+    monkeypatch.setattr(interrupts, "run_forwarding", snakemake)
+    argv = ["whatif", "myracket", "--set", "M2=0.34", "--set", "L2=0.69", "--figure", figure]
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    lines = {line.split()[0]: line for line in out.splitlines() if line.startswith("  ")}
+    with load_result(path) as ds:
+        ours = {
+            c["id"]: measure(c["measure"], {key: ds})
+            for c in CLAIMS
+            if c["id"].startswith(f"{key}_") and claim_files(c) == [key]
+        }
+    assert ours and set(ours) <= set(lines), out
+    for claim_id, value in ours.items():
+        assert f"{value:.4g}" in lines[claim_id], lines[claim_id]
+    assert ("theta0 = 90 deg, delta0 = 52.5 deg, L1 = 0.4 m, C2 = 5 N m" in out) == (key == "fig9")
+    assert out.rstrip().endswith(f"results/scenarios/myracket/figures/{paper_figure(figure)}.png")
+
+
 def test_whatif_reads_the_config_as_the_workflow_does_with_its_defaults(tmp_path):
     """A config that leaves keys to the schema's defaults (the solver section here):
     whatif's own check stopped with "tennis-stroke: error: solver"."""

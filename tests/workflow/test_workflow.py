@@ -201,7 +201,7 @@ def test_every_row_of_the_table_is_wired_end_to_end(tiny_run, key):
         (tiny_run / "logs" / e.stem).glob("*.log")
     )
     assert logs, f"no log of row {key}"
-    assert list((tiny_run / "benchmarks" / "workflow").glob(f"{e.stem}*.tsv")), key
+    assert list((tiny_run / "logs" / "benchmarks").glob(f"{e.stem}*.tsv")), key
 
 
 def override(section, value) -> str:
@@ -288,10 +288,24 @@ def test_a_departing_configuration_is_said_so_and_refused_by_the_gate(tiny_run, 
     assert "departs from the paper's" in gate.stderr and "base_stroke.C2 = 8" in gate.stderr
 
 
+def test_every_folder_a_run_writes_is_named_in_the_readme_and_removed_by_make_clean(tiny_run):
+    """Issue 66, case 25: a run wrote benchmarks/workflow/, which the README did not name.
+    Each entry a run leaves in its working folder (the tiny run's, less the config the
+    test wrote) is named in the README as a folder, and ``make clean`` removes it."""
+    written = sorted(p.name for p in tiny_run.iterdir() if p.name != "config")
+    assert {"results", "report", "logs"} <= set(written), written
+    readme = (ROOT / "README.md").read_text()
+    assert [name for name in written if f"`{name}/`" not in readme] == [], written
+    clean = subprocess.run(
+        ["make", "-n", "clean"], cwd=ROOT, capture_output=True, text=True, check=True
+    ).stdout.split()
+    assert [name for name in written if name not in clean] == [], clean
+
+
 def test_every_job_of_a_run_writes_its_benchmark_file(tiny_run):
     """Each job that ran (Snakemake's log: "Finished jobid: N (Rule: R)") left a
     benchmark file, figures and gathers too: the job CPU summed from
-    benchmarks/workflow covers the whole run (issue 35)."""
+    logs/benchmarks covers the whole run (issue 35)."""
     import re
 
     logs = sorted((tiny_run / ".snakemake" / "log").glob("*.snakemake.log"))
@@ -302,7 +316,7 @@ def test_every_job_of_a_run_writes_its_benchmark_file(tiny_run):
         for rule in re.findall(r"Finished jobid: \d+ \(Rule: (\w+)\)", log.read_text())
         if rule not in ("all", "report")  # targets only: no job runs
     ]
-    benchmarks = list((tiny_run / "benchmarks" / "workflow").rglob("*.tsv"))
-    kinds = {path.relative_to(tiny_run / "benchmarks" / "workflow").parts[0] for path in benchmarks}
+    benchmarks = list((tiny_run / "logs" / "benchmarks").rglob("*.tsv"))
+    kinds = {path.relative_to(tiny_run / "logs" / "benchmarks").parts[0] for path in benchmarks}
     assert "gather_map" in kinds and any(k.startswith("figure_") for k in kinds)
     assert len(benchmarks) == len(finished) > 0, (len(benchmarks), len(finished))

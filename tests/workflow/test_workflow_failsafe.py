@@ -266,12 +266,23 @@ def test_the_angle_maps_follow_their_L1(moved):
     ]
 
 
-def test_a_figure_no_rule_makes_is_one_line_naming_the_nearest(tmp_path):
-    """issue 66, case 20, as Snakemake shows it: one dry-run process, four targets."""
+def test_a_figure_no_rule_makes_or_no_folder_takes_is_one_line_naming_it(tmp_path):
+    """Issue 66, case 20, as Snakemake shows it: one dry-run process, four targets. Then
+    case 8 (results/figures not writable: a 60-line traceback): a run of the figure with
+    a file where results/figures goes stops before any job, in one line naming it (the
+    check runs in the Snakefile's onstart, which a dry run skips; the tests run as root,
+    for whom no mode bit makes a folder read-only; in-process: test_one_run.py)."""
     work = workdir(tmp_path, TINY, TINY_READINGS)
     names = ["fig9", "fig99", "fig09_v_tua", "fig09_v_tau"]
     runs = [{"target": f"results/figures/{name}.png"} for name in names]
-    *refused, known = dry_runs(ROOT / "Snakefile", work, runs=runs)
+    blocked = {"files": {"results/figures": "not a folder\n"}, "execute": True}
+    runs.append({"target": "results/figures/fig09_v_tau.png", **blocked})
+    *refused, known, stopped = dry_runs(ROOT / "Snakefile", work, runs=runs)
+    lines = [x for x in stopped["stderr"].splitlines() if "error" in x or "Traceback" in x]
+    assert stopped["exit"] == 1 and len(lines) == 1, stopped["output"][-3000:]
+    assert lines[0].startswith("tennis-stroke error: 'results/figures' is not a folder: "), lines
+    assert "results/figures/fig09_v_tau.png" in lines[0], lines
+    assert not (work / "logs").exists() and not (work / "results" / "chunks").exists()
     for name, run in zip(names, refused, strict=False):
         lines = [x for x in run["output"].splitlines() if "error" in x or "Traceback" in x]
         assert run["exit"] == 1 and len(lines) == 1, run["output"][-2000:]

@@ -19,7 +19,11 @@ from tennis_stroke.experiments.specs import (
 )
 from tennis_stroke.io.interrupts import PARENT_ENV, process_identity
 from tennis_stroke.pipeline import params as job_params
-from tennis_stroke.pipeline.checkout import shell_safe
+from tennis_stroke.pipeline.checkout import (
+    planned_files,
+    shell_safe,
+    unwritable_folders,
+)
 from tennis_stroke.pipeline.code_inputs import CodeInputs
 from tennis_stroke.pipeline import earlier
 from tennis_stroke.pipeline.runs import (
@@ -72,6 +76,12 @@ LIGHT = asked(0)
 onstart:
     if workflow.is_main_process:
         earlier.settle(workflow.persistence)  # a killed run's
+        # every folder the planned jobs write, once, before the first job: a folder
+        # not writable (or a file in its place) is one line, not a job's traceback
+        _blocked = unwritable_folders(planned_files(workflow.persistence))
+        if _blocked:
+            sys.stderr.write(f"tennis-stroke error: {_blocked}\n")
+            sys.exit(1)
         earlier.keep(workflow.persistence.all_outputfiles())
 
 

@@ -26,7 +26,7 @@ rule simulate:
     log:
         "logs/{run}{stem}.log",
     benchmark:
-        "benchmarks/workflow/{run}{stem}.tsv"
+        "logs/benchmarks/{run}{stem}.tsv"
     wildcard_constraints:
         stem=stems(chunked=False, family="paper"),
     threads: 1
@@ -51,7 +51,7 @@ rule study:
     log:
         "logs/{stem}.log",
     benchmark:
-        "benchmarks/workflow/{stem}.tsv"
+        "logs/benchmarks/{stem}.tsv"
     wildcard_constraints:
         stem=stems(chunked=False, family="study"),
     threads: 1
@@ -74,7 +74,7 @@ rule simulate_chunk:
     log:
         "logs/{run}{stem}/{chunk}-of-{chunks}.log",
     benchmark:
-        "benchmarks/workflow/{run}{stem}_{chunk}-of-{chunks}.tsv"
+        "logs/benchmarks/{run}{stem}_{chunk}-of-{chunks}.tsv"
     wildcard_constraints:
         stem=stems(chunked=True),
     threads: 1
@@ -98,7 +98,7 @@ rule gather_map:
     log:
         "logs/{run}gather_map/{map}.log",
     benchmark:
-        "benchmarks/workflow/{run}gather_map/{map}.tsv"
+        "logs/benchmarks/{run}gather_map/{map}.tsv"
     wildcard_constraints:
         map=CHUNKED_MAPS,
     resources:
@@ -121,7 +121,7 @@ rule identification:
     log:
         "logs/identification.log",
     benchmark:
-        "benchmarks/workflow/identification.tsv"
+        "logs/benchmarks/identification.tsv"
     priority: CHAIN_PRIORITY
     threads: 1
     resources:
@@ -147,7 +147,7 @@ rule robustness_screen:
     log:
         "logs/robustness_screen.log",
     benchmark:
-        "benchmarks/workflow/robustness_screen.tsv"
+        "logs/benchmarks/robustness_screen.tsv"
     priority: CHAIN_PRIORITY
     threads: 2
     resources:
@@ -171,7 +171,7 @@ rule robustness_chunk:
     log:
         "logs/robustness_chunk/{chunk}-of-{chunks}.log",
     benchmark:
-        "benchmarks/workflow/robustness_chunk_{chunk}-of-{chunks}.tsv"
+        "logs/benchmarks/robustness_chunk_{chunk}-of-{chunks}.tsv"
     priority: CHAIN_PRIORITY
     threads: 1
     resources:
@@ -195,7 +195,7 @@ rule claims_validation:
     log:
         "logs/claims_validation/{group}.log",
     benchmark:
-        "benchmarks/workflow/claims_validation_{group}.tsv"
+        "logs/benchmarks/claims_validation_{group}.tsv"
     wildcard_constraints:
         group="|".join(VALIDATION_GROUPS),
     priority: CHAIN_PRIORITY // 2
@@ -220,7 +220,7 @@ rule model_ladder:
     log:
         "logs/model_ladder.log",
     benchmark:
-        "benchmarks/workflow/model_ladder.tsv"
+        "logs/benchmarks/model_ladder.tsv"
     threads: 1
     resources:
         mem_mb=RUNS.search_resources("mem_mb"),

@@ -19,7 +19,7 @@ rule figure:
     log:
         "logs/{run}figure_{name}.log",
     benchmark:
-        "benchmarks/workflow/{run}figure_{name}.tsv"
+        "logs/benchmarks/{run}figure_{name}.tsv"
     wildcard_constraints:
         name="(fig|study|inference|ladder)[0-9][0-9]_[A-Za-z0-9_.]+",
     resources:
@@ -45,7 +45,7 @@ rule scenario_comparison:
     log:
         "logs/scenarios/{scenario}/compare_{name}.log",
     benchmark:
-        "benchmarks/workflow/scenarios/{scenario}/compare_{name}.tsv"
+        "logs/benchmarks/scenarios/{scenario}/compare_{name}.tsv"
     wildcard_constraints:
         name="|".join(PAPER_FIGURES),
     resources:

@@ -21,7 +21,7 @@ rule claims:
     log:
         "logs/{run}claims.log",
     benchmark:
-        "benchmarks/workflow/{run}claims.tsv"
+        "logs/benchmarks/{run}claims.tsv"
     threads: 1
     resources:
         **LIGHT,
@@ -60,12 +60,12 @@ rule report_page:
     log:
         "logs/report.log",
     benchmark:
-        "benchmarks/workflow/report_page.tsv"
+        "logs/benchmarks/report_page.tsv"
     resources:
         **LIGHT,
     params:
         config=config,
-        benchmarks="benchmarks/workflow",
+        benchmarks="logs/benchmarks",
     script:
         "../scripts/report.py"
 
@@ -87,7 +87,7 @@ rule scenario_report:
     log:
         "logs/scenarios/{scenario}/report.log",
     benchmark:
-        "benchmarks/workflow/scenarios/{scenario}/report_page.tsv"
+        "logs/benchmarks/scenarios/{scenario}/report_page.tsv"
     resources:
         **LIGHT,
     params:
@@ -173,11 +173,11 @@ rule article:
     log:
         "logs/article.log",
     benchmark:
-        "benchmarks/workflow/article.tsv"
+        "logs/benchmarks/article.tsv"
     resources:
         **LIGHT,
     params:
-        benchmarks="benchmarks/workflow",
+        benchmarks="logs/benchmarks",
     script:
         "../scripts/article.py"
 
@@ -198,7 +198,7 @@ rule scenario_article:
     log:
         "logs/scenarios/{scenario}/article.log",
     benchmark:
-        "benchmarks/workflow/scenarios/{scenario}/article.tsv"
+        "logs/benchmarks/scenarios/{scenario}/article.tsv"
     resources:
         **LIGHT,
     params:

@@ -1,6 +1,8 @@
 """simulate one stroke
 
-Simulate one stroke: every result field with its unit and meaning.
+Simulate one stroke: every result field with its unit, its meaning and the stroke it
+comes from (the swing without the ball, run on to phi = 0, or the stroke with the ball,
+which leaves that swing at the contact start).
 """
 
 from __future__ import annotations
@@ -51,7 +53,8 @@ def run(args: argparse.Namespace) -> int:
         }
         print(json.dumps(payload, indent=2))
         return 0
-    from ..io.units import VARIABLES
+    from ..io.result_strokes import result_label
+    from ..io.units import unit_of
     from ..solver.results import COUNT_FIELDS, FILE_NAMES, RESULT_FIELDS
 
     print(
@@ -59,9 +62,10 @@ def run(args: argparse.Namespace) -> int:
         f"{result['status_name']}"
     )
     for name in RESULT_FIELDS:
-        units, long_name = VARIABLES[FILE_NAMES.get(name, name)]
+        file_name = FILE_NAMES.get(name, name)
+        units, label = unit_of(file_name), result_label(file_name)
         if name in COUNT_FIELDS and name != "status":
-            print(f"  {name:18s} {int(result[name]):14d} {units:7s} {long_name}")
+            print(f"  {name:18s} {int(result[name]):14d} {units:7s} {label}")
         elif name != "status":
-            print(f"  {name:18s} {result[name]:14.6f} {units:7s} {long_name}")
+            print(f"  {name:18s} {result[name]:14.6f} {units:7s} {label}")
     return 0

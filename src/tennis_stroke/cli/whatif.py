@@ -1,4 +1,8 @@
-"""run a what-if scenario beside the paper (snakemake): its page or figures"""
+"""run a what-if scenario beside the paper (snakemake): its page or figures
+
+With --figure, each figure's claims are printed after the run, measured from the files
+it is drawn from as the claims are, with the inputs every stroke of it shares.
+"""
 
 # What the run asks of the workflow (the checks, the targets, Snakemake's command line)
 # is planned by tennis_stroke.pipeline.whatif; this command prints and runs the plan.
@@ -56,5 +60,25 @@ def run(args: argparse.Namespace) -> int:
     # a signal goes on to Snakemake and its jobs, which stop; then we stop
     code = run_forwarding([sys.executable, "-m", "snakemake", *snakemake])
     if code == 0 and not args.dry_run:
+        _print_numbers(plan)
         print("\n".join(plan.targets))
     return code
+
+
+def _print_numbers(plan) -> None:
+    """Each figure of ``plan``: the inputs its strokes share, then its claims (ours as its
+    files give them, the paper's beside)."""
+    from ..inference.claims import load_claims
+    from ..replication.figure_claims import figure_numbers
+    from ..replication.registry import FIGURES, UNIT_SHORT
+
+    claims = load_claims("config/claims.yaml") if plan.figures else []
+    for name in plan.figures:
+        shared, rows = figure_numbers(FIGURES[name], claims, plan.files)
+        print(f"{name} of scenario {plan.name}" + (f", at {shared}" if shared else "") + ":")
+        for row in rows:
+            unit = UNIT_SHORT.get(row["unit"], row["unit"])
+            value = f"{row['value']:.4g} {unit}".strip()
+            print(f"  {row['id']:26s} {value:14s} {row['quantity']} (paper: {row['paper']:g})")
+        if not rows:
+            print("  (no claim of the paper reads only its files)")

@@ -12,6 +12,10 @@ site-packages, not the checkout's ``src/tennis_stroke``: an edit of the checkout
 rerun jobs (their code inputs are the checkout's files) that then run the unedited copy.
 :func:`installed_difference` names the first module in which the two differ.
 
+The planned jobs must be able to write where their files go: a folder that is not
+writable, or a file where a folder goes, is one line before any job
+(:func:`unwritable_folders`, from the Snakefile's ``onstart``), not a job's traceback.
+
 One run at a time in a working folder (:func:`hold_folder`), by an ``flock`` the kernel
 lets go when the run ends: Snakemake's lock files name the files a run uses, not the run,
 so it cannot tell a live run from a dead one and tells both to ``--unlock``
@@ -25,6 +29,41 @@ import os
 import shlex
 import sys
 from pathlib import Path
+
+# The caches' rule for a folder that can be written, used as it is: _cache is a code
+# input of every job, so a public name there would rerun them all.
+from .._cache import _unusable
+
+
+def planned_files(persistence) -> list[str]:
+    """Every file the jobs Snakemake is about to run write (``persistence``: the
+    workflow's): their outputs, benchmark files and logs."""
+    return [str(f) for job in persistence.dag.needrun_jobs() for f in job.products()]
+
+
+def unwritable_folders(paths) -> str | None:
+    """The one line naming every folder of ``paths`` (files to be written, relative to
+    the working folder) that cannot take them, or None: the nearest existing of the
+    folder and its parents must be a writable folder (the rule of the caches' folders,
+    ``tennis_stroke._cache``), and each folder is checked once however many files go
+    there."""
+    by_folder: dict[str, list[str]] = {}
+    for path in map(str, paths):
+        by_folder.setdefault(os.path.dirname(path) or ".", []).append(path)
+    problems: dict[str, list[str]] = {}
+    for folder, files in sorted(by_folder.items()):
+        why = _unusable(Path(folder))
+        if why:
+            problems.setdefault(why, []).extend(files)
+    if not problems:
+        return None
+    said = "; ".join(
+        f"{why}: the planned jobs write {len(files)} file(s) there ({', '.join(files[:3])}"
+        + (", ..." if len(files) > 3 else "")
+        + ")"
+        for why, files in problems.items()
+    )
+    return f"{said}: make it a writable folder, then run again (no job has run)"
 
 
 def shell_safe(path: str) -> str:

@@ -17,7 +17,7 @@ import math
 
 #: Memory (MB) every job asks besides its points: the interpreter with numpy, xarray,
 #: matplotlib, numba and the compiled solver.  The report's largest job peaked at 869 MB
-#: (max_rss of benchmarks/workflow/robustness_screen.tsv after ``make report``,
+#: (max_rss of logs/benchmarks/robustness_screen.tsv after ``make report``,
 #: 2026-12-07); the rest asks for room.
 BASE_MB = 1500
 #: Memory (bytes) asked per point: a stroke of a batch holds 456 bytes of the solver's

@@ -286,14 +286,7 @@ def scenario_reach(
     at planning (:func:`unreached`; of ``figures``' files where given)."""
     from ..replication.registry import FIGURES
 
-    root = Path(root)
-    schema = root / SCHEMA_FILE
-    try:
-        loaded = load_schema(schema)  # the config as the workflow reads it: with defaults
-        base = canonical(with_defaults(load_yaml(root / CONFIG_FILE), loaded), loaded)
-    except ConfigFileError as exc:
-        raise ScenarioError(str(exc)) from None
-    config = changing_config(base, name, overrides, schema)
+    base, config = _configurations(name, overrides, Path(root))
     moved = set(changed_results(base, config))
     for figure in figures:
         if not moved & set(FIGURES[figure].files):
@@ -303,6 +296,27 @@ def scenario_reach(
     if figures:  # what matters to the figures asked for
         return unreached(base, config, {k for f in figures for k in FIGURES[f].files})
     return unreached(base, config)
+
+
+def scenario_results(
+    name: str, overrides: Mapping | None, root: str | Path = "."
+) -> dict[str, str]:
+    """The result files scenario ``name`` (``overrides`` of the project at ``root``) reads,
+    by key, as its jobs read them (:func:`resolved_results`); raises
+    :class:`ScenarioError` (one line) where the workflow would refuse it."""
+    return resolved_results(*_configurations(name, overrides, Path(root)), name)
+
+
+def _configurations(name: str, overrides: Mapping | None, root: Path) -> tuple[dict, dict]:
+    """The paper's configuration of the project at ``root`` as the workflow reads it (with
+    the schema's defaults) and scenario ``name``'s (:func:`changing_config`)."""
+    schema = root / SCHEMA_FILE
+    try:
+        loaded = load_schema(schema)
+        base = canonical(with_defaults(load_yaml(root / CONFIG_FILE), loaded), loaded)
+    except ConfigFileError as exc:
+        raise ScenarioError(str(exc)) from None
+    return base, changing_config(base, name, overrides, schema)
 
 
 def describe(key: str, old, new, fitted: Collection[str], stated: Collection[str]) -> str:

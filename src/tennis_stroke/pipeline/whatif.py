@@ -11,8 +11,8 @@ Snakemake as ``--config scenarios={NAME: {...}}``.  Every refusal is one line
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass, field
 from pathlib import Path
 
 import yaml
@@ -28,6 +28,7 @@ from .scenarios import (
     load_scenarios,
     override_from,
     scenario_reach,
+    scenario_results,
 )
 
 
@@ -35,11 +36,16 @@ from .scenarios import (
 class WhatIf:
     """A planned what-if: scenario ``name``, its ``overrides`` as the command line gave
     them (None for a declared scenario, which the workflow reads from its declaration),
-    and the ``targets`` Snakemake is asked for (its figures, or its page and article)."""
+    the ``targets`` Snakemake is asked for (its figures, or its page and article), and
+    what a figure asked for is drawn from."""
 
     name: str
     overrides: dict | None
     targets: tuple[str, ...]
+    #: The figures asked for (registry names; none: the page and article) and the
+    #: result files of the scenario by key, its own and the paper's it reads.
+    figures: tuple[str, ...] = ()
+    files: Mapping[str, str] = field(default_factory=dict)
 
     def snakemake_args(self, cores: int, dry_run: bool = False) -> list[str]:
         """Snakemake's arguments for the run (what follows ``snakemake``): the targets on
@@ -95,7 +101,9 @@ def plan_whatif(
         # checked as the workflow will check it: a bad value is one line here, not
         # Snakemake's log; an override that reaches nothing asked for is refused (what
         # it does not reach of the rest, the workflow says at planning)
-        scenario_reach(name, declared.get(name) if overrides is None else overrides, figures, root)
+        given = declared.get(name) if overrides is None else overrides
+        scenario_reach(name, given, figures, root)
+        files = scenario_results(name, given, root)
     except KeyError as exc:  # str() of a KeyError quotes its message
         raise ScenarioError(str(exc.args[0])) from None
     where, pages = folder(name), folder(name, "report")
@@ -103,4 +111,4 @@ def plan_whatif(
         f"{pages}/index.html",
         f"{pages}/article.pdf",
     ]
-    return WhatIf(name, overrides, tuple(targets))
+    return WhatIf(name, overrides, tuple(targets), tuple(figures), files)

@@ -78,10 +78,34 @@ def drawn(
             ax = fig.axes[0]
             ax.set_title(ax.get_title() + "\n" + wrapped(note, 48))
     fig.tight_layout()
-    if note:
-        _room_for_titles(fig)
+    _titles_broken_to_fit(fig)
+    _room_for_titles(fig)
     _legends_clear_of_points(fig)
     return fig
+
+
+def _titles(fig: plt.Figure) -> list:
+    """The figure's title texts: its suptitle and each panel's title, where set."""
+    return [t for t in (*fig.texts, *(ax.title for ax in fig.axes)) if t.get_text()]
+
+
+def _titles_broken_to_fit(fig: plt.Figure) -> None:
+    """Break each line of a title wider than the canvas (the inputs Fig. 13's strokes
+    share) between words, at as many characters as the canvas holds; a no-break space
+    (inside ``theta0 = 90 deg``, inside a note's change) is no place to break."""
+    fig.canvas.draw()
+    broken = False
+    for title in _titles(fig):
+        box = title.get_window_extent()
+        if box.width <= fig.bbox.width:
+            continue
+        lines = title.get_text().split("\n")
+        fit = int(max(map(len, lines)) * fig.bbox.width / box.width * 0.95)
+        parts = [textwrap.wrap(line, fit, break_long_words=False) or [""] for line in lines]
+        title.set_text("\n".join(p for part in parts for p in part))
+        broken = True
+    if broken:
+        fig.tight_layout()
 
 
 #: Where a legend that covers a marked point moves inside its axes, in the order tried.
@@ -136,7 +160,7 @@ def _room_for_titles(fig: plt.Figure) -> None:
     note's unbreakable change over a narrow figure) gets a smaller font, down to 6 pt;
     then the figure grows by what the titles reach above it (over axes whose aspect
     tight_layout cannot shrink), and is laid out again."""
-    titles = [t for t in (*fig.texts, *(ax.title for ax in fig.axes)) if t.get_text()]
+    titles = _titles(fig)
     for _ in range(16):  # the suptitle is one of the figure's texts
         fig.canvas.draw()
         wide = [

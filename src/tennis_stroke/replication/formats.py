@@ -1,6 +1,6 @@
 """What the report, the article and a scenario's page write alike: a number as text, a
-unit's short form, a table as HTML, the per-job timings of a run, and the one-line error
-of an input the workflow did not write."""
+table as HTML, the per-job timings of a run, and the one-line error of an input the
+workflow did not write (a unit's short form is the registry's, ``UNIT_SHORT``)."""
 
 from __future__ import annotations
 
@@ -9,9 +9,6 @@ from pathlib import Path
 
 import pandas as pd
 from markupsafe import Markup
-
-#: Units as the page prints them beside a number.
-UNIT_SHORT = {"degree": "deg", "1": ""}
 
 
 class ReportInputError(ValueError):
@@ -40,7 +37,7 @@ def _table(frame: pd.DataFrame, **kwargs) -> Markup:
 
 def _timings(directory: Path) -> pd.DataFrame:
     """Per-job timings, with the time each was measured: jobs of an earlier run (e.g.
-    with other chunk counts) keep their files until ``benchmarks/workflow`` is removed.
+    with other chunk counts) keep their files until ``logs/benchmarks`` is removed.
     Every job writes one (a gather's below ``gather_map/``); the scenarios' (below
     ``scenarios/``, the workflow's scenario folder) are not the paper's run."""
     rows = []

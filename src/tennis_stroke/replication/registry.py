@@ -13,12 +13,15 @@ Pure data: the Snakefile imports it without loading the plotting libraries.
 
 from __future__ import annotations
 
+import json
+import re
 from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
 
-from ..experiments.specs import RESULT_FILES
+from ..experiments.specs import EXPERIMENTS, RESULT_FILES
+from ..model.params import INITIAL_ANGLES, PARAMETERS
 
 
 @dataclass(frozen=True)
@@ -34,6 +37,9 @@ class Mark:
     other: str | None = None
 
 
+#: A unit as a title, a line of the command line or the report writes it.
+UNIT_SHORT = {"degree": "deg", "1": ""}
+
 #: The report's sections of our own, beside the paper's: the fits and the robustness
 #: analysis, the model ladder, the speed-against-accuracy studies.
 OUR_SECTIONS = ("inference", "ladder", "study")
@@ -45,8 +51,9 @@ class Figure:
     of the paper's, ``III`` ... ``VI``, or of ours, :data:`OUR_SECTIONS`), result files
     (keys of :data:`RESULT_FILES`), drawing function (a module of
     :mod:`tennis_stroke.replication.drawing`) and its extra arguments, and its title: a
-    template filled from the first file's attributes (``{L1}`` is ``param_L1``), so a
-    title never states a value the file does not hold.  ``marks``: the claims drawn on it;
+    template filled from the first file's attributes (``{L1}`` is ``param_L1``; ``{fixed}``
+    the inputs its strokes share, :meth:`fixed_text`), so a title never states a value
+    the file does not hold.  ``marks``: the claims drawn on it;
     ``axes``: the coordinates along its x and y axes (a map's or a curve's, where marks
     and the page's view place values); ``dpi`` of the PNG; ``compare``: the variables of
     its first file a scenario's difference panel shows (scenario minus paper,
@@ -74,11 +81,57 @@ class Figure:
 
     def filled_title(self, attrs: Mapping) -> str:
         """The title filled from a result file's attributes: the resolved parameters
-        (``{L1}`` for ``param_L1``) and the other scalar global attributes
-        (``{theta0_deg}``)."""
+        (``{L1}`` for ``param_L1``), the other scalar global attributes
+        (``{theta0_deg}``) and, from the job's record of its arguments, the inputs its
+        strokes share (``{fixed}``: :meth:`fixed_text`)."""
         context = {k: v for k, v in attrs.items() if np.ndim(v) == 0}
         context.update({k.removeprefix("param_"): v for k, v in context.items()})
+        if "config" in attrs:
+            context["fixed"] = self.fixed_text(attrs)
         return self.title.format(**context)
+
+    def fixed_inputs(self, attrs: Mapping) -> dict[str, tuple[float, str]]:
+        """The inputs every stroke of its first file shares, by name with value and unit
+        (``{"theta0": (90.0, "degree"), "C2": (5.0, "N m")}``), from the attributes of
+        that file (``config``: its job's params, with the arguments it ran on): each
+        initial angle of the row (``Experiment.angles``) and each model parameter the row
+        sets under its own name (``Experiment.sets``) that is one number and not a
+        variable of the file.  An axis, a list, a search range, a value of each stroke
+        (Table I's F0) and a parameter the row derives from an argument of another name
+        (each stroke's tau from tau_L and tau_H) are not shared.  None for a file of no
+        row of the table of experiments."""
+        row = EXPERIMENTS.get(self.files[0])
+        if row is None:
+            return {}
+        arguments = json.loads(attrs["config"])["args"]
+        named = [(a.rpartition(".")[2], a) for a in row.angles]
+        named += [(p, a) for p, a in row.sets.items() if a.rpartition(".")[2] == p]
+        specs = {**INITIAL_ANGLES, **PARAMETERS}
+        out = {}
+        for name, argument in named:
+            head, _, inner = argument.partition(".")
+            value = arguments.get(head)
+            if inner:
+                value = value.get(inner) if isinstance(value, Mapping) else None
+            one = isinstance(value, int | float) and not isinstance(value, bool)
+            if one and name in specs and name not in row.variables:
+                out[name] = (float(value), specs[name].unit)
+        return out
+
+    def fixed_text(self, attrs: Mapping) -> str:
+        """:meth:`fixed_inputs` as a title and the command line write them, ``theta0 = 90
+        deg, delta0 = 52.5 deg``: a no-break space inside each, so that a title wraps
+        between them only."""
+        return ", ".join(
+            f"{name} = {value:g} {UNIT_SHORT.get(unit, unit)}".strip().replace(" ", "\u00a0")
+            for name, (value, unit) in self.fixed_inputs(attrs).items()
+        )
+
+    @property
+    def key(self) -> str:
+        """The paper's figure it is, ``fig09`` (where the report puts its statement and
+        claims, :func:`claim_figure`); empty for a figure of ours."""
+        return self.name[:5] if self.of_paper else ""
 
     @property
     def of_paper(self) -> bool:
@@ -99,7 +152,7 @@ FIGURES: dict[str, Figure] = {
             "III",
             ("fig2",),
             "angle_map",
-            "Fig. 2: v_out over the initial angles: L1 = {L1:g} m",
+            "Fig. 2: v_out over the initial angles: {fixed}",
             axes=("theta0", "delta0"),
             marks=(Mark("fig2_best_delta0_at_120", "delta0", at="theta0"),),
         ),
@@ -108,7 +161,7 @@ FIGURES: dict[str, Figure] = {
             "III",
             ("fig3",),
             "angle_map",
-            "Fig. 3: v_out over the initial angles: L1 = {L1:g} m",
+            "Fig. 3: v_out over the initial angles: {fixed}",
             axes=("theta0", "delta0"),
             marks=(
                 Mark("fig3_best_delta0_at_120", "delta0", at="theta0"),
@@ -155,7 +208,7 @@ FIGURES: dict[str, Figure] = {
             "V",
             ("fig7",),
             "delay_map",
-            "Fig. 7: v_out over (C2, tau), theta0 = {theta0_deg:g}, delta0 = {delta0_deg:g}",
+            "Fig. 7: v_out over (C2, tau): {fixed}",
             axes=("C2", "tau"),
             marks=(Mark("fig7_threshold", "C2"),),
         ),
@@ -164,7 +217,7 @@ FIGURES: dict[str, Figure] = {
             "V",
             ("fig8",),
             "delay_map",
-            "Fig. 8: v_out over (delta0, tau), C2 = {C2:g} N m",
+            "Fig. 8: v_out over (delta0, tau): {fixed}",
             axes=("delta0", "tau"),
             marks=(Mark("fig8_tau_opt", "tau", other="fig8_delta0_opt"),),
         ),
@@ -173,7 +226,7 @@ FIGURES: dict[str, Figure] = {
             "V",
             ("fig9",),
             "v_tau",
-            "Fig. 9: v_out over the delay tau: C2 = {C2:g} N m, L1 = {L1:g} m",
+            "Fig. 9: v_out over the delay tau: {fixed}",
             axes=("tau", "v_out"),
             marks=(Mark("fig9_v_H", "v_out", other="fig9_tau_H"), Mark("fig9_v_L", "v_out")),
         ),
@@ -182,7 +235,7 @@ FIGURES: dict[str, Figure] = {
             "V",
             ("delay",),
             "omegas",
-            "Fig. 10: angular velocities for tau_L and tau_H",
+            "Fig. 10: angular velocities for tau_L and tau_H: {fixed}",
             axes=("t", "omega"),
             compare=("omega1", "omega2"),
         ),
@@ -191,7 +244,7 @@ FIGURES: dict[str, Figure] = {
             "V",
             ("delay",),
             "strobe",
-            "Fig. 11: stroke with tau_H",
+            "Fig. 11: stroke with tau_H: {fixed}",
             ("tau_H",),
             compare=("theta", "phi"),
         ),
@@ -200,7 +253,7 @@ FIGURES: dict[str, Figure] = {
             "V",
             ("delay",),
             "strobe",
-            "Fig. 12: stroke with tau_L",
+            "Fig. 12: stroke with tau_L: {fixed}",
             ("tau_L",),
             compare=("theta", "phi"),
         ),
@@ -209,7 +262,7 @@ FIGURES: dict[str, Figure] = {
             "VI",
             ("elbow_map",),
             "elbow_force",
-            "Fig. 13: v_out over the elbow force direction and delay",
+            "Fig. 13: v_out over the elbow force direction and delay: {fixed}",
             axes=("psi_F", "tau_F"),
             marks=(Mark("fig13_best_direction", "psi_F"), Mark("fig14_worst_direction", "psi_F")),
         ),
@@ -218,7 +271,7 @@ FIGURES: dict[str, Figure] = {
             "VI",
             ("elbow",),
             "elbow_paths",
-            "Fig. 14: elbow paths until the contact",
+            "Fig. 14: elbow paths until the contact: {fixed}",
             compare=("x_elbow", "y_elbow"),
         ),
         Figure(
@@ -286,6 +339,15 @@ FIGURES: dict[str, Figure] = {
 #: The figures the live explorer recomputes (``tennis-stroke explore --figure``, by the
 #: name it takes): the report says how to open each live.
 LIVE = {"fig02_angle_map": "fig2", "fig03_angle_map": "fig3", "fig09_v_tau": "fig9"}
+
+
+def claim_figure(claim: Mapping) -> str:
+    """The paper's figure a claim is about, ``fig09``: the figure its ``source`` names
+    (``"Sec. V, Fig. 9"``; the first of ``"Figs. 11-12"``), else the one its id starts with
+    (``fig4_...``); empty for none (a table's claim).  The report shows it under that
+    figure, and ``tennis-stroke whatif --figure`` prints it with the figure."""
+    found = re.search(r"Figs?\.\s*(\d+)", claim["source"]) or re.match(r"fig(\d+)_", claim["id"])
+    return f"fig{int(found.group(1)):02d}" if found else ""
 
 
 def paper_figure(name: str) -> str:

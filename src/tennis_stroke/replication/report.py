@@ -57,9 +57,9 @@ from .claims import (
     read_table,
     tally,
 )
-from .formats import UNIT_SHORT, ReportInputError, _number, _safe, _table, _timings
+from .formats import ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
-from .registry import FIGURES, LIVE
+from .registry import FIGURES, LIVE, UNIT_SHORT, claim_figure
 from .robustness import EVIDENCE_MEANING, across_text
 
 #: The page template, rendered with autoescape.
@@ -118,17 +118,17 @@ def _paper_place(
 ) -> tuple[str | None, str]:
     """Where a claim goes: the section its ``source`` names (``"Sec. V, Fig. 9"``; a
     table's section for ``"Table I"``; None if the page has no section for it) and the
-    block: the figure the source names, else the figure its id starts with
-    (``fig4_...``), else a table's name, else ``""`` (the section's other claims)."""
+    block: its figure (:func:`~.registry.claim_figure`), else a table's name, else ``""``
+    (the section's other claims)."""
     section = re.search(r"Sec\.\s*([IVX]+)\b", source)
-    figure = re.search(r"Figs?\.\s*(\d+)", source) or re.match(r"fig(\d+)_", claim_id)
+    figure = claim_figure({"source": source, "id": claim_id})
     table = next(
         ((sid, t) for sid, s in sections.items() for t in s.get("tables", ()) if t in source),
         None,
     )
     sid = section.group(1) if section else (table[0] if table else None)
     if figure:
-        return sid, f"fig{int(figure.group(1)):02d}"
+        return sid, figure
     return sid, table[1] if table else ""
 
 
@@ -159,7 +159,7 @@ def _figure_blocks(
     order of their names: the paper's statement, the figure and its claims."""
     blocks = []
     for name in sorted(n for n in figures if FIGURES[n].section == sid):
-        key = name[:5]
+        key = FIGURES[name].key
         blocks.append(
             _block(
                 _anchor(name),

@@ -24,9 +24,9 @@ from ..inference.claims import load_claims
 from ..inference.paper_config import PaperConfigError, describe_departures, read_record
 from ..io.netcdf import git_commit, load_result
 from .claims import ClaimsTableError, read_table
-from .formats import UNIT_SHORT, ReportInputError, _number
+from .formats import ReportInputError, _number
 from .marks import mark_values
-from .registry import FIGURES
+from .registry import FIGURES, UNIT_SHORT
 from .report import ENVIRONMENT, _figure_entry
 
 
