@@ -98,6 +98,9 @@ TINY = {
 #: tiny run's own grids.
 TINY_READINGS = {
     "consistent": {"max_abs_residual": 1000.0},
+    # the fits' plumbing: one start each and short profiles (the fits' numerics are
+    # tests/inference/test_identification.py's)
+    "fits": {"model": {"starts": 1}, "elbow_force": {"starts": 1}, "profile_points": 5},
     "multiverse": {
         "candidates": 4,
         "readings": 3,

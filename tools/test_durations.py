@@ -4,7 +4,7 @@ workflow, browser, compile, slurm, signals, unit).
 
 Usage::
 
-    .venv/bin/python -m pytest -n 2 --dist loadgroup --junitxml=run.xml   # or make test
+    .venv/bin/python -m pytest -n 2 --maxschedchunk 1 --junitxml=run.xml   # or make test
     .venv/bin/python tools/test_durations.py run.xml [--top 3] [--kinds other.xml]
 
 Prints a Markdown table (docs/testing.md, "Where the time goes"): per kind the tests,
