@@ -78,13 +78,15 @@ def _event_fraction(event, cf, ends) -> float:
     return brentq(lambda x: event(hermite(*ends, x), cf), 0.0, 1.0, xtol=1e-15)
 
 
-def fixed_phase(cf, t, y, t_stop, h, contact, event=None, max_steps=None):
+def fixed_phase(cf, t, y, t_stop, h, contact, event=None, max_steps=None, path=None):
     """RK4 with step ``h`` (s) through the torque switches until ``event(y, cf)`` falls
     through 0, ``t_stop``, or ``max_steps`` steps (angle layout).
 
     Returns ``(t, y, hit, evaluations)``; an event is located on the step's
     :func:`hermite` interpolant (Brent's method, to rounding), whose end derivative costs
-    one evaluation more.
+    one evaluation more.  ``path``, a list, gets the start of every step taken, ``(t,
+    y, contact)``: a run of this function from one of them to a time before the next
+    ends where a run from ``(t, y)`` given here would, bit for bit (the same steps).
     """
     ensure_compiled("rk4", exercise_rk4)
     evals = steps = 0
@@ -98,6 +100,8 @@ def fixed_phase(cf, t, y, t_stop, h, contact, event=None, max_steps=None):
             y_new = rk4_step(fun, t, y, step)
             evals += 4
             steps += 1
+            if path is not None:
+                path.append((t, y, contact))
             if event is not None:
                 g0, g1 = event(y, cf), event(y_new, cf)
                 if g0 > 0.0 >= g1:
@@ -124,7 +128,12 @@ def contact_missed(cf, t: float, y: np.ndarray, h: float, t_stop: float):
 
 
 def fixed_step_stroke(
-    theta0_deg: float, delta0_deg: float, params: Mapping[str, object], h: float, t_max: float = 1.0
+    theta0_deg: float,
+    delta0_deg: float,
+    params: Mapping[str, object],
+    h: float,
+    t_max: float = 1.0,
+    path: list | None = None,
 ) -> dict[str, float]:
     """One stroke with fixed-step RK4 (step ``h``, s): ``status`` (a code of
     :data:`FIXED_STATUS_NAMES`: ``OK``, ``MISSED_CONTACT``, ``NO_PHI_ZERO``,
@@ -136,23 +145,30 @@ def fixed_step_stroke(
     step of the remaining size.  The cheap rungs of the model ladder (``contact_model``
     other than ``spring``) meet the ball at ``phi = 0`` in no time
     (:func:`~tennis_stroke.model.impact.instant_contact`), as on the other paths.
+
+    ``path``, a list, gets the starts of the steps the stroke follows
+    (:func:`fixed_phase`'s): the swing to the contact start, then the contact to
+    separation.
     """
     initial_angles(theta0_deg, delta0_deg)
     cf = coefficients(resolve_params(params), theta0_deg, delta0_deg)[0]
     out = {"status": OK, "v_out_kmh": math.nan, "rhs_evals": 0}
     out |= dict.fromkeys(("t_phi0", "t_contact_start", "t_separation"), math.nan)
     y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
-    t0, y, hit, evals = fixed_phase(cf, 0.0, y0, t_max, h, False, swing_event_angles)
+    instant = cf[CF_CONTACT_MODEL] != 0.0
+    swing_path = path if instant else None  # a spring contact's swing: the run to t_c
+    t0, y, hit, evals = fixed_phase(
+        cf, 0.0, y0, t_max, h, False, swing_event_angles, path=swing_path
+    )
     out["rhs_evals"] += evals
     if not hit:
         out["status"] = NO_PHI_ZERO if np.all(np.isfinite(y)) else STEP_FAILURE
         return out
     out["t_phi0"] = t0
-    instant = cf[CF_CONTACT_MODEL] != 0.0
     t_c = t0 if instant else t0 - cf[CF_LEAD]
     yc = y
     if not instant:
-        _, yc, _, evals = fixed_phase(cf, 0.0, y0, t_c, h, False)
+        _, yc, _, evals = fixed_phase(cf, 0.0, y0, t_c, h, False, path=path)
         out["rhs_evals"] += evals
     out["t_contact_start"] = t_c
     st, sp = math.sin(yc[A_THETA]), math.sin(yc[A_PHI])
@@ -171,7 +187,7 @@ def fixed_step_stroke(
         out["status"] = MISSED_CONTACT
         out["rhs_evals"] += evals
         return out
-    t_s, y, hit, evals = fixed_phase(cf, t_c, y, t_max, h, True, compression_angles)
+    t_s, y, hit, evals = fixed_phase(cf, t_c, y, t_max, h, True, compression_angles, path=path)
     out["rhs_evals"] += evals
     if not hit or not np.all(np.isfinite(y)):
         out["status"] = STEP_FAILURE if not np.all(np.isfinite(y)) else NO_RELEASE
