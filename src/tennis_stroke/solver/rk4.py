@@ -12,6 +12,7 @@ paths.
 
 from __future__ import annotations
 
+import bisect
 import math
 from collections.abc import Callable, Mapping
 
@@ -142,8 +143,9 @@ def fixed_step_stroke(
     (s) and ``rhs_evals``.
 
     The contact state at ``t_c`` is the RK4 state of the step before, advanced by one
-    step of the remaining size.  The cheap rungs of the model ladder (``contact_model``
-    other than ``spring``) meet the ball at ``phi = 0`` in no time
+    step of the remaining size: the swing is stepped once, to ``phi = 0``.
+    The cheap rungs of the model ladder (``contact_model`` other than ``spring``) meet
+    the ball at ``phi = 0`` in no time
     (:func:`~tennis_stroke.model.impact.instant_contact`), as on the other paths.
 
     ``path``, a list, gets the starts of the steps the stroke follows
@@ -156,10 +158,8 @@ def fixed_step_stroke(
     out |= dict.fromkeys(("t_phi0", "t_contact_start", "t_separation"), math.nan)
     y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
     instant = cf[CF_CONTACT_MODEL] != 0.0
-    swing_path = path if instant else None  # a spring contact's swing: the run to t_c
-    t0, y, hit, evals = fixed_phase(
-        cf, 0.0, y0, t_max, h, False, swing_event_angles, path=swing_path
-    )
+    swing: list = []
+    t0, y, hit, evals = fixed_phase(cf, 0.0, y0, t_max, h, False, swing_event_angles, path=swing)
     out["rhs_evals"] += evals
     if not hit:
         out["status"] = NO_PHI_ZERO if np.all(np.isfinite(y)) else STEP_FAILURE
@@ -167,9 +167,15 @@ def fixed_step_stroke(
     out["t_phi0"] = t0
     t_c = t0 if instant else t0 - cf[CF_LEAD]
     yc = y
-    if not instant:
-        _, yc, _, evals = fixed_phase(cf, 0.0, y0, t_c, h, False, path=path)
-        out["rhs_evals"] += evals
+    if not instant:  # the swing's last step before t_c, cut short there
+        swing = swing[: bisect.bisect_left([start[0] for start in swing], t_c)]
+        if swing:
+            _, yc, _, evals = fixed_phase(cf, *swing[-1][:2], t_c, h, False)
+            out["rhs_evals"] += evals
+        else:  # t_c <= 0
+            yc = y0
+    if path is not None:
+        path.extend(swing)
     out["t_contact_start"] = t_c
     st, sp = math.sin(yc[A_THETA]), math.sin(yc[A_PHI])
     ct, cp = math.cos(yc[A_THETA]), math.cos(yc[A_PHI])
