@@ -1,7 +1,8 @@
 """What the work-precision study computes, counted, not timed: per scene of the shipped
-config, the right-hand-side evaluations that run in Python (scipy's methods, fixed-step
-RK4, the reference and the RK4 state probe's steps: every call of
-``tennis_stroke.model.dynamics.angle_rhs``'s function) and the calls of ``solve_ivp``
+config, the right-hand-side evaluations that run in Python (scipy's methods, the
+reference, and the two at each event of fixed-step RK4, whose steps are compiled: every
+call of ``tennis_stroke.model.dynamics.angle_rhs``'s function), those of RK4's strokes
+(its ``rhs_evals``, compiled), and the calls of ``solve_ivp``
 (one per phase between torque switches of a solve), with scipy and RK4 stopping at
 their first setting that meets the requirement (the study's rule,
 ``studies.work_precision.UNTIL_MET``) and, with ``--every-setting``, running all of them
@@ -79,11 +80,12 @@ def main() -> None:
         )
         ours = [m for m in ds["method"].values if str(m).startswith("tennis_stroke.")]
         strokes = float(np.nansum(ds["rhs_evals"].sel({"method": ours}).values))
+        fixed = float(np.nansum(ds["rhs_evals"].sel({"method": "fixed.RK4"}).values))
         ran = int(ds["failed"].notnull().sum())
         total += CALLS[0]
         print(
             f"{scene}: {CALLS[0]} Python evaluations, {SOLVES[0]} solve_ivp calls; "
-            f"{ran} (method, setting) runs; "
+            f"{ran} (method, setting) runs; RK4's strokes: {math.trunc(fixed)}; "
             f"compiled: {math.trunc(strokes)} in the strokes, "
             f"{math.trunc(strokes * reps)} in their timing"
         )

@@ -84,16 +84,21 @@ def path_omegas(path: Sequence, cf: np.ndarray, h: float, times: np.ndarray) -> 
     """``omega1, omega2`` (rad/s) at ``times`` (s, increasing), shape ``(len(times), 2)``,
     of fixed-step RK4's stroke (step ``h``, s; coefficients ``cf``): each the end of a run
     of its own from the last step of ``path`` that starts before it (the step starts
-    :func:`~tennis_stroke.solver.rk4.fixed_step_stroke` records), which is the end of a
-    run from the phase's start, bit for bit.  Its few steps (one, before the method's
-    separation) are the probe's evaluations, not the stroke's.  NaN where the state is
-    not finite."""
+    :func:`~tennis_stroke.solver.rk4.fixed_step_stroke` records, phase by phase), which
+    is the end of a run from the phase's start, bit for bit.  Its few steps (one, before
+    the method's separation) are the probe's evaluations, not the stroke's.  NaN where
+    the state is not finite."""
     times = np.asarray(times, dtype=float)
-    which = np.searchsorted([start[0] for start in path], times, side="left") - 1
+    starts = np.concatenate([phase[0] for phase in path])
+    which = np.searchsorted(starts, times, side="left") - 1
+    first = np.cumsum([0] + [phase[0].size for phase in path])  # each phase's first step
     out = np.full((times.size, 2), np.nan)
     for i in np.flatnonzero(which >= 0):
-        t, y, contact = path[which[i]]
-        out[i] = fixed_phase(cf, t, y, times[i], h, contact)[1][[A_OMEGA1, A_OMEGA2]]
+        k = int(np.searchsorted(first, which[i], side="right")) - 1
+        step_times, states, contact = path[k]
+        row = which[i] - first[k]
+        at = fixed_phase(cf, step_times[row], states[row], times[i], h, contact)[1]
+        out[i] = at[[A_OMEGA1, A_OMEGA2]]
     out[~np.isfinite(out).all(axis=1)] = np.nan
     return out
 
