@@ -1,7 +1,9 @@
 """What the work-precision study computes, counted, not timed: per scene of the shipped
-config, the right-hand-side evaluations that run in Python (scipy's methods, fixed-step
-RK4, the reference and the state probes: every call of
-``tennis_stroke.model.dynamics.angle_rhs``'s function), with scipy and RK4 stopping at
+config, the right-hand-side evaluations that run in Python (scipy's methods, the
+reference, and the two at each event of fixed-step RK4, whose steps are compiled: every
+call of ``tennis_stroke.model.dynamics.angle_rhs``'s function), those of RK4's strokes
+(its ``rhs_evals``, compiled), and the calls of ``solve_ivp``
+(one per phase between torque switches of a solve), with scipy and RK4 stopping at
 their first setting that meets the requirement (the study's rule,
 ``studies.work_precision.UNTIL_MET``) and, with ``--every-setting``, running all of them
 (the study before 2026-12-06); and the compiled evaluations of the compiled methods'
@@ -20,6 +22,7 @@ import math
 
 import numpy as np
 import yaml
+from scipy.integrate import solve_ivp
 
 import tennis_stroke.solver.reference as reference
 import tennis_stroke.solver.rk4 as rk4
@@ -27,6 +30,7 @@ import tennis_stroke.studies.work_precision as wp
 from tennis_stroke.model.dynamics import angle_rhs
 
 CALLS = [0]
+SOLVES = [0]
 
 
 def counted(*args):
@@ -40,6 +44,12 @@ def counted(*args):
     return f
 
 
+def solve_ivp_counted(*args, **kwargs):
+    """``solve_ivp``, its calls counted in :data:`SOLVES`."""
+    SOLVES[0] += 1
+    return solve_ivp(*args, **kwargs)
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--every-setting", action="store_true", help="scipy and RK4 run all")
@@ -47,13 +57,14 @@ def main() -> None:
     if args.every_setting:
         wp.UNTIL_MET = ()
     reference.angle_rhs = rk4.angle_rhs = counted
+    reference.solve_ivp = solve_ivp_counted
     study = yaml.safe_load(open("config/config.yaml"))["solver_study"]
     scenes = dict(sorted(study["scenes"].items()))
     n = int(study["scene_strokes"])
     reps = max(1, wp.TIMING_BATCH // n) * int(study["repeats"])
     total = 0
     for i, scene in enumerate(scenes):
-        CALLS[0] = 0
+        CALLS[0] = SOLVES[0] = 0
         ds = wp.work_precision_study(
             scenes,
             n,
@@ -69,10 +80,12 @@ def main() -> None:
         )
         ours = [m for m in ds["method"].values if str(m).startswith("tennis_stroke.")]
         strokes = float(np.nansum(ds["rhs_evals"].sel({"method": ours}).values))
+        fixed = float(np.nansum(ds["rhs_evals"].sel({"method": "fixed.RK4"}).values))
         ran = int(ds["failed"].notnull().sum())
         total += CALLS[0]
         print(
-            f"{scene}: {CALLS[0]} Python evaluations; {ran} (method, setting) runs; "
+            f"{scene}: {CALLS[0]} Python evaluations, {SOLVES[0]} solve_ivp calls; "
+            f"{ran} (method, setting) runs; RK4's strokes: {math.trunc(fixed)}; "
             f"compiled: {math.trunc(strokes)} in the strokes, "
             f"{math.trunc(strokes * reps)} in their timing"
         )

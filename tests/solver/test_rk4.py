@@ -50,3 +50,32 @@ def test_fixed_step_rk4_takes_the_rule_of_the_initial_angles():
 
     with pytest.raises(ParameterError, match="theta0 \\+ delta0 must be < 360 degree"):
         fixed_step_stroke(300.0, 80.0, {}, 1e-4)
+
+
+@pytest.mark.parametrize("contact", [False, True])
+def test_the_compiled_steps_are_rk4_step_on_the_models_rhs_bit_for_bit(contact):
+    """fixed_phase steps compiled: the same bits as :func:`rk4_step` of ``angle_rhs``
+    stepped from Python, through a torque switch (``tau``) and a short last step."""
+    from tennis_stroke.model.dynamics import (
+        angle_rhs,
+        coefficients,
+        next_switch,
+        wrist_torque,
+    )
+    from tennis_stroke.model.params import resolve_params
+    from tennis_stroke.solver.rk4 import fixed_phase, rk4_step
+
+    cf = coefficients(resolve_params({"tau": 0.0123}), 120.0, 81.5)[0]
+    y = np.array([2.0, 1.0, -3.0, 5.0, 0.01, 4.0][: 6 if contact else 4])
+    t, t_stop, h = 0.0, 0.0305, 1e-3
+    while t < t_stop:
+        t_seg = next_switch(t, cf, t_stop)
+        fun = angle_rhs(cf, wrist_torque(t, t_seg, cf), contact)
+        while t < t_seg:
+            step = min(h, t_seg - t)
+            t, y = t + step, rk4_step(fun, t, y, step)
+    start = np.array([2.0, 1.0, -3.0, 5.0, 0.01, 4.0][: 6 if contact else 4])
+    t_end, y_end, hit, evals = fixed_phase(cf, 0.0, start, t_stop, h, contact)
+    # 13 steps to tau, 19 after it, the last of each short
+    assert (t_end, hit, evals) == (t, False, 4 * 32)
+    np.testing.assert_array_equal(y_end, y)

@@ -44,7 +44,7 @@ ENV = "TENNIS_STROKE_WARMUP"
 #: Groups of entry points compiled together: the stroke batch and the contact phase
 #: alone, each per method (a run of DOP853 compiles no DP54), the strokes' curves
 #: (:mod:`tennis_stroke.solver.curves`, DOP853 only), the scipy reference path's
-#: right-hand sides, and the model functions that fixed-step RK4
+#: right-hand sides, and fixed-step RK4's compiled steps and the model functions it
 #: (:mod:`tennis_stroke.solver.rk4`, the solver studies' baseline) calls from Python.
 GROUPS = (
     "batch:DOP853",

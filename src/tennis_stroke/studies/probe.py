@@ -1,22 +1,34 @@
 """The state along a stroke at fixed times, by every family of integrators: the "state"
 error of the work-precision study, an L2 over fixed times (DiffEqDevTools' ``:L2``).
 
-Every method follows the stroke in the same two pieces: the swing from rest to the
-reference's contact start ``t_c``, then (the spring contact only) the contact from the
-method's own state there, the ball put at the hitting point, to the last time.  The
-event times are measured on their own (:mod:`tennis_stroke.studies.work_precision`), so
-this error is the integration's alone, not a shifted event's.  scipy's methods are read
-on their dense output.  The compiled integrators give none to Python: each time is the
-end of a run of its own from its phase's start (stopping one run at every time would
+The state at a time is that of the method's own stroke, the one whose ``v_out`` and
+event times the study measures: the swing until the method's own contact start ``t_c``,
+then (the spring contact) the contact from there, the ball put at the hitting point.
+scipy's methods and fixed-step RK4 are read on the solve that gave the stroke's result,
+so the state costs no second solve.  scipy's methods are read on their dense output
+(:func:`segment_omegas`; a time after the method's own separation, the reference's last
+where the method separated first, on its last step's interpolant carried on).  The
+other families give none: each time is the end of a run of its own from its phase's
+start (the swing from rest, the contact from the method's state at its own ``t_c``),
+so no stop shortens the steps before another time (stopping one run at every time would
 cap its steps at the times' spacing and flatter a loose tolerance).  Fixed-step RK4
-stops at each time (its steps do not grow; only the one before a time is shortened).
-The state is the rods' angular velocities ``omega1, omega2`` (rad/s): the angles are
-their integrals, and ``v_out`` is made from them.
+starts that run from the stroke's last step before the time, where a run from the
+phase's start would be (:func:`path_omegas`: one step, not a solve); the compiled
+integrators run each from the phase's start (:func:`compiled_omegas`).  The state is
+the rods' angular velocities ``omega1, omega2`` (rad/s): the angles are their
+integrals, and ``v_out`` is made from them.
+
+The contact starts at the method's own ``t_c``, so the error of its contact start
+enters the state error too.  Until 2026-12-07 every stroke was solved a second time for
+its state, its contact from the reference's ``t_c`` and each phase ended at the
+reference's (a last step cut short there); reading the one solve moved the medians over
+the strokes by a factor 0.91-1.35 (scipy), 0.99-1.07 (compiled) and 1.00-1.02 (RK4), the
+worst strokes by at most 2 (``docs/changes.md``, 2026-12-07).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
+from collections.abc import Mapping, Sequence
 from functools import partial
 
 import numpy as np
@@ -43,11 +55,9 @@ from ..model.params import resolve_params
 from ..solver._kernels import coefficient_tuple
 from ..solver.compiled import ensure_compiled
 from ..solver.integrate import HISTORY_COLS, N_STATS, PHASE_FAIL, specialised
-from ..solver.reference import dense_phase
 from ..solver.rk4 import fixed_phase
 from ..solver.settings import METHOD_IDS, SolverSettings
 from ..solver.stroke import exercise_contact, run_phases
-from .methods import parse_method
 
 
 def probe_times(t_end: float, n: int) -> np.ndarray:
@@ -55,25 +65,61 @@ def probe_times(t_end: float, n: int) -> np.ndarray:
     return t_end * np.arange(1, n + 1) / n
 
 
-def omegas_at(
-    method: str,
-    setting: float,
+def segment_omegas(segments: Sequence, times: np.ndarray) -> np.ndarray:
+    """``omega1, omega2`` (rad/s) at ``times`` (s, increasing), shape ``(len(times), 2)``,
+    of scipy's stroke (``segments``: those of a
+    :class:`~tennis_stroke.solver.reference.ReferenceStroke`): each time on the dense
+    output of the last segment that starts by then (at a phase boundary the later
+    phase's, as :meth:`~tennis_stroke.solver.reference.ReferenceStroke.states`)."""
+    times = np.asarray(times, dtype=float)
+    which = np.searchsorted([seg.t0 for seg in segments], times, side="right") - 1
+    out = np.full((times.size, 2), np.nan)
+    for k in np.unique(which[which >= 0]):
+        at = which == k
+        out[at] = segments[k].sol(times[at])[[A_OMEGA1, A_OMEGA2]].T
+    return out
+
+
+def path_omegas(path: Sequence, cf: np.ndarray, h: float, times: np.ndarray) -> np.ndarray:
+    """``omega1, omega2`` (rad/s) at ``times`` (s, increasing), shape ``(len(times), 2)``,
+    of fixed-step RK4's stroke (step ``h``, s; coefficients ``cf``): each the end of a run
+    of its own from the last step of ``path`` that starts before it (the step starts
+    :func:`~tennis_stroke.solver.rk4.fixed_step_stroke` records, phase by phase), which
+    is the end of a run from the phase's start, bit for bit.  Its few steps (one, before
+    the method's separation) are the probe's evaluations, not the stroke's.  NaN where
+    the state is not finite."""
+    times = np.asarray(times, dtype=float)
+    starts = np.concatenate([phase[0] for phase in path])
+    which = np.searchsorted(starts, times, side="left") - 1
+    first = np.cumsum([0] + [phase[0].size for phase in path])  # each phase's first step
+    out = np.full((times.size, 2), np.nan)
+    for i in np.flatnonzero(which >= 0):
+        k = int(np.searchsorted(first, which[i], side="right")) - 1
+        step_times, states, contact = path[k]
+        row = which[i] - first[k]
+        at = fixed_phase(cf, step_times[row], states[row], times[i], h, contact)[1]
+        out[i] = at[[A_OMEGA1, A_OMEGA2]]
+    out[~np.isfinite(out).all(axis=1)] = np.nan
+    return out
+
+
+def compiled_omegas(
+    name: str,
+    tol: float,
     stroke: tuple[float, float, Mapping[str, object]],
     t_contact: float,
     times: np.ndarray,
     spring: bool = True,
 ) -> np.ndarray:
     """``omega1, omega2`` (rad/s) of ``stroke = (theta0, delta0, params)`` at ``times``
-    (s, increasing), shape ``(len(times), 2)``, by ``method`` (``family.NAME``) at its
-    tolerance or step ``setting``: the swing to ``t_contact`` (s), then, with ``spring``,
-    the contact from there.  NaN where the method failed."""
-    family, name = parse_method(method)
+    (s, increasing), shape ``(len(times), 2)``, by the compiled method ``name`` at
+    rtol = atol = ``tol``: the swing until ``t_contact`` (s, the method's own contact
+    start), then, with ``spring``, the contact from there.  NaN where the method failed."""
     theta0, delta0, params = stroke
     cf = coefficients(resolve_params(params), theta0, delta0)[0]
     times = np.asarray(times, dtype=float)
     split = int(np.searchsorted(times, t_contact, side="right")) if spring else times.size
-    run = {"tennis_stroke": _compiled, "scipy": _scipy, "fixed": _rk4}[family]
-    return run(name, setting, cf, t_contact, times[:split], times[split:])
+    return _compiled(name, tol, cf, t_contact, times[:split], times[split:])
 
 
 def _ball_on(cf, t_c: float, y: np.ndarray) -> tuple[np.ndarray, float]:
@@ -83,42 +129,6 @@ def _ball_on(cf, t_c: float, y: np.ndarray) -> tuple[np.ndarray, float]:
     s, w = incoming_ball(t_c, trig[SIN_TH], trig[SIN_PH], cf)
     cap = contact_duration(trig[SIN_TH], trig[COS_TH], trig[SIN_PH], trig[COS_PH], cf)
     return np.array([*y[:4], s, w]), cap / SolverSettings.contact_min_steps
-
-
-def _scipy(name, rtol, cf, t_c, swing_t, contact_t) -> np.ndarray:
-    out = np.full((swing_t.size + contact_t.size, 2), np.nan)
-    y0 = np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
-    end = t_c if contact_t.size else swing_t[-1]
-    dense, y, ok = dense_phase(cf, 0.0, y0, end, False, name, rtol, rtol)
-    if not ok:
-        return out
-    sampled = dense.sample(swing_t)
-    out[: swing_t.size] = np.column_stack([sampled["omega1"], sampled["omega2"]])
-    if contact_t.size:
-        y, cap = _ball_on(cf, t_c, y)
-        dense, _, ok = dense_phase(cf, t_c, y, contact_t[-1], True, name, rtol, rtol, cap)
-        if ok:
-            sampled = dense.sample(contact_t)
-            out[swing_t.size :] = np.column_stack([sampled["omega1"], sampled["omega2"]])
-    return out
-
-
-def _rk4(_, h, cf, t_c, swing_t, contact_t) -> np.ndarray:
-    out = []
-    t, y = 0.0, np.array([cf[CF_THETA0], cf[CF_PHI0], 0.0, 0.0])
-    for time in swing_t:
-        t, y, _, _ = fixed_phase(cf, t, y, time, h, False)
-        out.append(y[[A_OMEGA1, A_OMEGA2]])
-    if contact_t.size:
-        if t < t_c:
-            t, y, _, _ = fixed_phase(cf, t, y, t_c, h, False)
-        y, _ = _ball_on(cf, t_c, y)
-        for time in contact_t:
-            t, y, _, _ = fixed_phase(cf, t, y, time, h, True)
-            out.append(y[[A_OMEGA1, A_OMEGA2]])
-    out = np.array(out, dtype=float).reshape(-1, 2)
-    out[~np.isfinite(out).all(axis=1)] = np.nan
-    return out
 
 
 def _compiled(name, tol, cf, t_c, swing_t, contact_t) -> np.ndarray:

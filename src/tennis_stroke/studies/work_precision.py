@@ -8,8 +8,9 @@ scipy's :data:`REFERENCE_METHOD` at rtol = atol = :data:`REFERENCE_TOL` on the
 independent path (:mod:`tennis_stroke.solver.reference`: the model, not the compiled
 code under test).  Per stroke, three errors: ``v_out`` (km/h); the event times (s), the
 largest error of :data:`EVENTS`; the state along the stroke (rad/s), the RMS over
-``state_times`` fixed times of the error of ``(omega1, omega2)``
-(:mod:`tennis_stroke.studies.probe`).  The cost of record is the right-hand-side
+``state_times`` fixed times of the error of ``(omega1, omega2)``, each stroke's read on
+the solve that gave its result, the reference's too (:mod:`tennis_stroke.studies.probe`:
+one solve per stroke and setting for scipy and RK4).  The cost of record is the right-hand-side
 evaluations per stroke, the same on every machine; beside it the wall time per stroke
 on the machine that ran it (compiled: ``repeats`` timed batches, the median and the
 fastest and slowest; scipy and RK4: each stroke timed once, the median and quartiles
@@ -19,7 +20,8 @@ over the strokes).
 from __future__ import annotations
 
 import time
-from collections.abc import Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
+from functools import partial
 
 import numpy as np
 import xarray as xr
@@ -27,13 +29,14 @@ import xarray as xr
 from ..experiments.grids import select_rows
 from ..io.netcdf import provenance
 from ..io.units import cf_attrs
+from ..model.dynamics import coefficients
 from ..model.params import resolve_params
 from ..solver.reference import solve_stroke
 from ..solver.results import OK
 from ..solver.rk4 import fixed_step_stroke
 from ..solver.settings import SolverSettings
 from .methods import parse_method
-from .probe import omegas_at, probe_times
+from .probe import compiled_omegas, path_omegas, probe_times, segment_omegas
 from .sampling import REFERENCE, sample_scene
 from .tables import ERRORS, meets, rule_table
 from .timing import TIMING, compiled_costs
@@ -63,12 +66,18 @@ def _methods(scipy_methods: Sequence[str]) -> list[str]:
     ]
 
 
-def _one(method: str, setting: float, stroke) -> dict[str, float]:
-    """One stroke ``(theta0, delta0, params)`` by a scipy method or fixed-step RK4."""
+def _one(method: str, setting: float, stroke) -> tuple[dict[str, float], Callable]:
+    """One stroke ``(theta0, delta0, params)`` by a scipy method or fixed-step RK4: its
+    result, and its ``omega1, omega2`` at given times read on the same solve
+    (:mod:`tennis_stroke.studies.probe`)."""
     family, name = parse_method(method)
     if family == "scipy":
-        return solve_stroke(*stroke, method=name, rtol=setting, atol=setting).result
-    return fixed_step_stroke(*stroke, setting)
+        solved = solve_stroke(*stroke, method=name, rtol=setting, atol=setting)
+        return solved.result, partial(segment_omegas, solved.segments)
+    path: list = []
+    result = fixed_step_stroke(*stroke, setting, path=path)
+    cf = coefficients(resolve_params(stroke[2]), stroke[0], stroke[1])[0]
+    return result, partial(path_omegas, path, cf, setting)
 
 
 def _strokes(strokes: Mapping[str, np.ndarray], params: Mapping[str, object]) -> list:
@@ -88,26 +97,36 @@ def _strokes(strokes: Mapping[str, np.ndarray], params: Mapping[str, object]) ->
     ]
 
 
-def _run(method, setting, strokes, params, repeats) -> dict[str, np.ndarray]:
+def _run(method, setting, strokes, params, repeats, spring) -> dict[str, object]:
     """Every stroke by ``method`` at ``setting``: ``v_out``, the event times (n, 3),
-    ``ok``, ``rhs_evals`` and the wall time per stroke ``us`` (median, low, high)."""
+    ``ok``, ``rhs_evals``, the wall time per stroke ``us`` (median, low, high), and per
+    stroke ``omegas``, its ``omega1, omega2`` at given times (a function of the times:
+    the stroke's own, with a ``spring`` contact or without; :mod:`.probe`)."""
     family, name = parse_method(method)
+    each = _strokes(strokes, params)
     if family == "tennis_stroke":
         th, de = strokes["theta0"], strokes["delta0"]
         st = SolverSettings(method=name, rtol=setting, atol=setting)
         us, res = compiled_costs(th, de, params, st, repeats, TIMING_BATCH)
+        t_c = res["t_contact_start"]
         return {
             "v_out": res["v_out_kmh"],
             "events": np.column_stack([res[e] for e in EVENTS]),
             "ok": res["status"] == OK,
             "rhs_evals": res["rhs_evals"].astype(float),
             "us": np.array([np.median(us), us.min(), us.max()]),
+            "omegas": [
+                partial(compiled_omegas, name, setting, stroke, t_c[i], spring=spring)
+                for i, stroke in enumerate(each)
+            ],
         }
-    rows, per = [], []
-    for stroke in _strokes(strokes, params):
+    rows, per, omegas = [], [], []
+    for stroke in each:
         start = time.perf_counter()
-        rows.append(_one(method, setting, stroke))
+        row, at = _one(method, setting, stroke)
         per.append(time.perf_counter() - start)
+        rows.append(row)
+        omegas.append(at)
     per = np.array(per) * 1e6
     return {
         "v_out": np.array([r["v_out_kmh"] for r in rows], dtype=float),
@@ -115,42 +134,39 @@ def _run(method, setting, strokes, params, repeats) -> dict[str, np.ndarray]:
         "ok": np.array([r["status"] == OK for r in rows]),
         "rhs_evals": np.array([r["rhs_evals"] for r in rows], dtype=float),
         "us": np.array([np.median(per), *np.quantile(per, [0.25, 0.75])]),
+        "omegas": omegas,
     }
 
 
 def _reference(strokes, params, state_times: int) -> dict[str, object]:
     """The reference of every stroke: ``v_out``, event times, ``ok`` and the probe's
-    times and ``omega1, omega2`` there (:mod:`tennis_stroke.studies.probe`)."""
-    method = f"scipy.{REFERENCE_METHOD}"
-    ref = _run(method, REFERENCE_TOL, strokes, params, 1)
+    times and ``omega1, omega2`` there (:mod:`tennis_stroke.studies.probe`), read on the
+    reference's own solve."""
     spring = params.get("contact_model", "spring") == "spring"
-    ref["times"], ref["omegas"] = [], []
-    for i, stroke in enumerate(_strokes(strokes, params)):
-        t_c, t_end = ref["events"][i, 1], ref["events"][i, 2]
-        if not ref["ok"][i]:  # not compared: no probe
-            ref["times"].append(None)
-            ref["omegas"].append(None)
-            continue
-        times = probe_times(t_end, state_times)
-        ref["times"].append(times)
-        ref["omegas"].append(omegas_at(method, REFERENCE_TOL, stroke, t_c, times, spring))
+    ref = _run(f"scipy.{REFERENCE_METHOD}", REFERENCE_TOL, strokes, params, 1, spring)
+    ref["times"] = [
+        probe_times(ref["events"][i, 2], state_times) if ok else None  # not ok: no probe
+        for i, ok in enumerate(ref["ok"])
+    ]
+    ref["omegas"] = [
+        at(times) if times is not None else None
+        for at, times in zip(ref["omegas"], ref["times"], strict=True)
+    ]
     ref["spring"] = spring
     return ref
 
 
 def _errors(method, setting, strokes, params, ref) -> tuple[np.ndarray, ...]:
     """Per stroke: the three :data:`ERRORS`, the evaluations, and the timing."""
-    run = _run(method, setting, strokes, params, ref["repeats"])
+    run = _run(method, setting, strokes, params, ref["repeats"], ref["spring"])
     ok = run["ok"] & ref["ok"]
     v_err = np.where(ok, np.abs(run["v_out"] - ref["v_out"]), np.nan)
     ev = np.abs(run["events"] - ref["events"])
     ev_err = np.where(ok, np.max(np.where(ok[:, None], ev, 0.0), axis=1), np.nan)
     state = np.full(v_err.shape, np.nan)
-    for i, stroke in enumerate(_strokes(strokes, params)):
-        if ok[i]:
-            t_c = ref["events"][i, 1]
-            om = omegas_at(method, setting, stroke, t_c, ref["times"][i], ref["spring"])
-            state[i] = np.sqrt(np.mean(np.sum((om - ref["omegas"][i]) ** 2, axis=1)))
+    for i in np.flatnonzero(ok):
+        om = run["omegas"][i](ref["times"][i])
+        state[i] = np.sqrt(np.mean(np.sum((om - ref["omegas"][i]) ** 2, axis=1)))
     failed = float(np.sum(~run["ok"] & ref["ok"]))
     evals = np.where(run["ok"], run["rhs_evals"], np.nan)
     return v_err, ev_err, state, evals, run["us"], failed
