@@ -88,7 +88,9 @@ def _row(row: Mapping) -> dict:
         "paper": _with_unit(row["paper"], unit),
         "ours": _with_unit(row["ours"], unit),
         "tolerance": row["tolerance"].strip(),
-        "verdict": row["word"],
+        "verdict": f"{row['word']} ({row['optimum_short']})"
+        if row["optimum_short"]
+        else row["word"],
     }
 
 

@@ -34,6 +34,8 @@ from markupsafe import Markup
 from .._version import __version__
 from ..experiments.specs import PAPER_RESULTS
 from ..inference.claims import load_claims
+from ..inference.optimum_claims import note as optimum_note
+from ..inference.optimum_claims import short_note as optimum_short
 from ..inference.paper_config import PaperConfigError, departure_lines, read_record
 from ..io.config_files import load_yaml
 from ..io.environment import environment_table
@@ -108,6 +110,8 @@ def claim_row(claim: Mapping) -> dict:
         "fit_set": claim.get("fit_set", ""),
         "across": across,
         "deciding": f"deciding: {claim['deciding']}" if claim.get("deciding") else "",
+        "optimum": optimum_note(claim),
+        "optimum_short": optimum_short(claim),
         "cause": cause_of(claim),
         "reason": claim.get("reason", ""),
     }

@@ -20,7 +20,6 @@ import pandas as pd
 import xarray as xr
 
 from ..inference.reading_space import CLAIM_LEVEL, ReadingSpace
-from ..solver.results import OK
 
 #: Robustness classes with their meaning, in the order of config/readings.yaml.
 ROBUSTNESS_MEANING = {
@@ -67,7 +66,6 @@ COLUMNS = (
     "best_value",
     "best_residual",
     "evidence",
-    "objective_gap",
 )
 
 
@@ -271,45 +269,35 @@ def classify(ds: xr.Dataset, space: ReadingSpace, claims: Sequence[Mapping]) -> 
     return pd.DataFrame(rows)
 
 
-def objective_gap(spec: Mapping[str, str], argument: float, files: Mapping[str, xr.Dataset]):
-    """How far (km/h) the objective ``v_out`` of the file lies below its optimum at the
-    paper's ``argument`` of coordinate ``coord`` (nearest grid point; the other
-    coordinates at their best)."""
-    v = files[spec["file"]]["v_out"].where(files[spec["file"]]["status"] == OK)
-    at = v.sel({spec["coord"]: argument}, method="nearest")
-    return float(v.max()) - float(at.max())
+def _is_flat(row: Mapping) -> bool:
+    """Whether a claims table's row locates an optimum on a flat objective (its ``flat``
+    column: :mod:`tennis_stroke.inference.optimum_claims`, the one rule of flatness)."""
+    return str(row.get("flat", "")) in ("True", "true", "1", "1.0")
 
 
-def evidence(
-    table: pd.DataFrame,
-    ds: xr.Dataset,
-    space: ReadingSpace,
-    files: Mapping[str, xr.Dataset],
-) -> pd.DataFrame:
+def evidence(table: pd.DataFrame, ds: xr.Dataset) -> pd.DataFrame:
     """Evidence class of every deviation of the default reading (status ``fail`` or
-    ``known_deviation`` in ``table``) and, for the argmax claims of
-    ``evidence.objective``, the objective's gap at the paper's argument."""
-    rule = space.raw["evidence"]
+    ``known_deviation`` in ``table``): ``ill_conditioned`` for a claim that locates an
+    optimum on a flat objective (``flat``, the rule every optimum claim is judged by:
+    :mod:`tennis_stroke.inference.optimum_claims`), else by the readings it passes
+    under."""
     passing = [i for i, s in enumerate(table["status"]) if s == "pass"]
     ids = list(ds["claim"].values)
     held = ds["within"].values[:, :, [ids.index(table["id"].iloc[i]) for i in passing]]
     all_default = held.all(axis=-1) if held.size else np.ones(ds["within"].shape[:2], bool)
     rows = []
     for _, row in table.iterrows():
-        cls, gap = "", float("nan")
+        cls = ""
         if row["status"] in ("fail", "known_deviation"):
             j = ids.index(row["id"])
             ok = ds["within"].values[:, :, j].astype(bool)
-            spec = rule["objective"].get(row["id"])
-            if spec is not None:
-                gap = objective_gap(spec, float(row["paper_value"]), files)
-            if spec is not None and gap <= float(rule["flat_gap"]):
+            if _is_flat(row):
                 cls = "ill_conditioned"
             elif ok.any():
                 cls = "reading_dependent" if (ok & all_default).any() else "paper_inconsistency"
             else:
                 cls = "irreducible"
-        rows.append({"id": row["id"], "evidence": cls, "objective_gap": gap})
+        rows.append({"id": row["id"], "evidence": cls})
     return pd.DataFrame(rows)
 
 
@@ -318,8 +306,7 @@ def annotate(
     ds: xr.Dataset,
     space: ReadingSpace,
     claims: Sequence[Mapping],
-    files: Mapping[str, xr.Dataset],
 ) -> pd.DataFrame:
     """The claims table with the robustness and evidence columns (:data:`COLUMNS`)."""
     out = table.merge(classify(ds, space, claims), on="id", how="left")
-    return out.merge(evidence(table, ds, space, files), on="id", how="left")
+    return out.merge(evidence(table, ds), on="id", how="left")
