@@ -122,7 +122,7 @@ def test_evidence_classes_of_the_deviations(space):
     ds = synthetic(space, within)
     table = default_table(["pass", "known_deviation", "fail"])
     out = rb.evidence(table, ds).set_index("id")
-    assert list(out["evidence"]) == ["", "reading_dependent", "irreducible"]
+    assert list(out["evidence"]) == ["", "reading_choice", "irreducible"]
     within[0, 0, 0] = False  # now the reading that passes b fails a default pass
     out = rb.evidence(table, synthetic(space, within)).set_index("id")
     assert out.loc["b", "evidence"] == "paper_inconsistency"

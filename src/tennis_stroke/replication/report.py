@@ -62,7 +62,7 @@ from .claims import (
 from .formats import ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
 from .registry import FIGURES, LIVE, UNIT_SHORT, claim_figure
-from .robustness import EVIDENCE_MEANING, across_text
+from .robustness import EVIDENCE_MEANING, across_text, class_words
 
 #: The page template, rendered with autoescape.
 ENVIRONMENT = jinja2.Environment(
@@ -231,7 +231,7 @@ def paper_sections(
 #: Each cause of a claim outside its tolerance (:func:`~.claims.cause_of`): its title
 #: on the page and its meaning.
 CAUSES = {
-    **{k: (k.replace("_", " ").capitalize(), m) for k, m in EVIDENCE_MEANING.items()},
+    **{k: (class_words(k).capitalize(), m) for k, m in EVIDENCE_MEANING.items()},
     "fail": (
         "Not yet explained",
         "does not reproduce, and config/claims.yaml expected it to: a regression or a "
@@ -256,7 +256,7 @@ def _deviation_groups(rows: list[dict]) -> list[dict]:
 def _cause(key: str) -> tuple[str, str]:
     """A cause's title and meaning (:data:`CAUSES`; an evidence class it does not know
     is still shown, by its name)."""
-    return CAUSES.get(key, (key.replace("_", " ").capitalize(), "an evidence class"))
+    return CAUSES.get(key, (class_words(key).capitalize(), "an evidence class"))
 
 
 def _failures(results: Sequence[str]) -> pd.DataFrame:

@@ -38,16 +38,38 @@ ROBUSTNESS_WORDS = {
     "not_reproduced": "not reproduced under any reading",
 }
 #: Evidence classes of a deviation (a claim that does not pass under the default
-#: reading) with their meaning, in the order of config/readings.yaml.
+#: reading) with their meaning, in the order of config/readings.yaml.  No evidence class
+#: shares a name or a word with a robustness class (:func:`class_words`): a deviation
+#: the default reading's choice explains is ``reading_choice``, a claim that passes under
+#: some readings and fails under others is ``reading_dependent``.
 EVIDENCE_MEANING = {
     "ill_conditioned": "an optimum's location whose objective at the paper's value lies "
     "within the speed tolerance of the optimum: the paper's argument is as good as ours",
-    "reading_dependent": "passes under some consistent readings (the deciding unknown is named)",
+    "reading_choice": "the default reading's choice: passes under some other consistent "
+    "reading that also passes every claim the default passes (the deciding unknown is "
+    "named)",
     "paper_inconsistency": "passes under some consistent readings, but none of them also "
     "passes every claim the default passes",
-    "irreducible": "fails under every consistent reading (the best value reached is shown)",
+    "irreducible": "fails under every consistent reading declared before the results (the "
+    "best value reached is shown); a reading found after the results does not count: "
+    "chosen after seeing them, it would fit the claim it is to test",
 }
 EVIDENCE = tuple(EVIDENCE_MEANING)
+#: Each evidence class in the words every reader sees (the report, the article).
+EVIDENCE_WORDS = {
+    "ill_conditioned": "ill conditioned",
+    "reading_choice": "reading choice",
+    "paper_inconsistency": "paper inconsistency",
+    "irreducible": "irreducible",
+}
+
+
+def class_words(key: str) -> str:
+    """A robustness class or an evidence class in the words every reader sees
+    (:data:`ROBUSTNESS_WORDS`, :data:`EVIDENCE_WORDS`; a key of neither: its name with
+    spaces).  The two sets share no name and no word, so a term on a page names one
+    thing."""
+    return {**ROBUSTNESS_WORDS, **EVIDENCE_WORDS}.get(key, key.replace("_", " "))
 #: The confidence of every interval and bound on a pass share, and the share below which
 #: a claim counts as passing (or failing) under practically no consistent reading.
 #: Declared 2026-12-06 (issue 55) before any interval was computed.
@@ -294,7 +316,7 @@ def evidence(table: pd.DataFrame, ds: xr.Dataset) -> pd.DataFrame:
             if _is_flat(row):
                 cls = "ill_conditioned"
             elif ok.any():
-                cls = "reading_dependent" if (ok & all_default).any() else "paper_inconsistency"
+                cls = "reading_choice" if (ok & all_default).any() else "paper_inconsistency"
             else:
                 cls = "irreducible"
         rows.append({"id": row["id"], "evidence": cls})
