@@ -74,6 +74,9 @@ def declared_table(robustness: bool = True) -> pd.DataFrame:
             "map_value": str(float(c["paper_value"])),
             "map_difference": "0.0",
             "map_cause": "agrees",
+            "objective_gap": "",
+            "flat": "",
+            "edge": "",
         }
         if robustness:
             row |= {
@@ -83,7 +86,6 @@ def declared_table(robustness: bool = True) -> pd.DataFrame:
                 "best_value": "",
                 "best_residual": "",
                 "evidence": "",
-                "objective_gap": "",
             }
         rows.append(row)
     return pd.DataFrame(rows)

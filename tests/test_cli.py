@@ -537,9 +537,10 @@ _MEASURE = _cell(_TIME)
 def test_claims_command_exits_1_on_a_failed_claim(tmp_path, capsys):
     table = tmp_path / "claims.csv"
     record_configuration(tmp_path)
-    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,{measure},,{value},0,agrees\n"
+    row = "x,s,q,s,1.0,{value},0.1,{status},reproduce,,{measure},,{value},0,agrees,,,\n"
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause\n"
+    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause,"
+    header += "objective_gap,flat,edge\n"
     declared = tmp_path / "claims.yaml"  # the one claim the table holds
     claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
     claim.update(tolerance=0.1, expectation="reproduce")
@@ -559,14 +560,15 @@ def test_claims_command_exits_1_when_a_search_and_its_map_differ_without_cause(t
     table = tmp_path / "claims.csv"
     record_configuration(tmp_path)
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause\n"
+    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause,"
+    header += "objective_gap,flat,edge\n"
     declared = tmp_path / "claims.yaml"
     claim = {"id": "x", "source": "s", "quantity": "q", "unit": "s", "paper_value": 1.0}
     claim.update(tolerance=0.1, expectation="reproduce")
     claim["measure"] = {"file": "fig9", "var": "best_tau"}
     declared.write_text(json.dumps({"claims": [claim]}))
     table.write_text(
-        header + f"x,s,q,s,1.0,1.05,0.1,pass,reproduce,,{_MEASURE},,1.0,0.5,unexplained\n"
+        header + f"x,s,q,s,1.0,1.05,0.1,pass,reproduce,,{_MEASURE},,1.0,0.5,unexplained,,,\n"
     )
     assert main(["claims", str(table), "--claims", str(declared)]) == 1
     assert "UNEXPLAINED x (default reading)" in capsys.readouterr().out
@@ -885,12 +887,13 @@ def test_claims_prints_every_claim_as_a_table_then_the_counts(tmp_path, capsys):
     table = tmp_path / "claims.csv"
     record_configuration(tmp_path)
     header = "id,source,quantity,unit,paper_value,reproduced_value,tolerance,status,"
-    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause\n"
+    header += "expectation,reason,measure,fit_set,map_value,map_difference,map_cause,"
+    header += "objective_gap,flat,edge\n"
     speed, angle = {"file": "fig9", "var": "best_v_out"}, {"file": "fig2", "var": "best_delta0"}
     rows = [
-        f"speed,s,q,km/h,150.0,151.234567,2.0,pass,reproduce,,{_cell(speed)},,151.2,0,agrees\n",
+        f"speed,s,q,km/h,150.0,151.234567,2.0,pass,reproduce,,{_cell(speed)},,151.2,0,agrees,,,\n",
         f"angle,s,q,degree,76.0,232.4,5.0,known_deviation,known_deviation,r,{_cell(angle)},,"
-        "232.4,0,agrees\n",
+        "232.4,0,agrees,,,\n",
     ]
     declared = tmp_path / "claims.yaml"
     claims = [

@@ -27,10 +27,11 @@ with logged(snakemake.log[0]):
     maps = {k: load_result(v) for k, v in p.files.items()}
     config = {**p.experiments, "model": p.common["model"]}
     found = searched_files(config, p.common["model"], settings(p.common), None, snakemake.threads)
-    table = evaluate(claims, {**maps, **found}, space.fit_of_claim(), maps)
+    flat_gap = space.raw["evidence"]["flat_gap"]
+    table = evaluate(claims, {**maps, **found}, space.fit_of_claim(), maps, flat_gap)
     if "robustness" in snakemake.input.keys():
         robustness = load_result(snakemake.input.robustness)
-        table = annotate(table, robustness, space, claims, maps)
+        table = annotate(table, robustness, space, claims)
     table.to_csv(snakemake.output.claims, index=False)
     inputs = load_paper_inputs(snakemake.input.claims)
     write_record(configuration_record(config, inputs, p.scenario), snakemake.output.configuration)

@@ -265,7 +265,6 @@ def _check_claims(raw: dict, fits: Mapping[str, FitSet], known: set[str]) -> Non
             for u, s in raw["continuous"].items()
             for c in s.get("claims", [])
         ),
-        *(("evidence.objective", c) for c in raw["evidence"]["objective"]),
     ]
     for where, claim in named:
         _check(claim in known, f"readings key {where!r}: unknown claim {claim!r}")

@@ -51,7 +51,7 @@ from .formats import ReportInputError, _timings
 from .registry import FIGURES
 from .report import check_image, claim_row, paper_sections
 from .rescience import ORIGINAL, byline, metadata, metadata_text, read_citation, title, verdict
-from .robustness import CONFIDENCE, EVIDENCE_MEANING, across_short
+from .robustness import CONFIDENCE, EVIDENCE_MEANING, across_short, class_words
 
 #: The article's template (Typst), beside the report's templates, and a scenario's.
 TEMPLATE = Path(__file__).parent / "templates" / "article.typ"
@@ -88,7 +88,9 @@ def _row(row: Mapping) -> dict:
         "paper": _with_unit(row["paper"], unit),
         "ours": _with_unit(row["ours"], unit),
         "tolerance": row["tolerance"].strip(),
-        "verdict": row["word"],
+        "verdict": f"{row['word']} ({row['optimum_short']})"
+        if row["optimum_short"]
+        else row["word"],
     }
 
 
@@ -146,7 +148,7 @@ def _counts(table: pd.DataFrame) -> dict:
     def parts(name: str) -> list[dict]:
         found = t[name].parts if name in t else ()
         return [
-            {"class": "not classified" if k == "other" else k.replace("_", " "), "n": n}
+            {"class": "not classified" if k == "other" else class_words(k), "n": n}
             for k, n in found
         ]
 
@@ -217,7 +219,7 @@ def discussion(table: pd.DataFrame, rows: Sequence[Mapping]) -> dict:
         if members:
             groups.append(
                 {
-                    "class": key.replace("_", " ") or "not classified",
+                    "class": class_words(key) if key else "not classified",
                     "meaning": meaning,
                     "claims": [
                         {**shown[c["id"]], "reason": str(c.get("reason") or "")} for c in members

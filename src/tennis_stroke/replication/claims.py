@@ -14,6 +14,7 @@ import pandas as pd
 import xarray as xr
 
 from ..inference.claims import cause, difference, grid_half_step, measure, within
+from ..inference.optimum_claims import judged
 from ..io.netcdf import load_result
 from .robustness import EVIDENCE, ROBUSTNESS
 
@@ -33,6 +34,9 @@ COLUMNS = [
     "map_value",
     "map_difference",
     "map_cause",
+    "objective_gap",
+    "flat",
+    "edge",
 ]
 
 
@@ -61,6 +65,7 @@ def evaluate(
     files: Mapping[str, str | Path | xr.Dataset],
     fit_of_claim: Mapping[str, str] | None = None,
     maps: Mapping[str, str | Path | xr.Dataset] | None = None,
+    flat_gap: float | None = None,
 ) -> pd.DataFrame:
     """Evaluate every claim against the result files (``files``: key -> path or dataset).
 
@@ -71,7 +76,11 @@ def evaluate(
     (:func:`tennis_stroke.inference.targeted.targeted_files`): the same measurement on
     them is ``map_value``, and ``map_difference`` its distance from the reproduced value
     in tolerances (:func:`tennis_stroke.inference.validation.difference`), ``map_cause``
-    why they differ (:func:`~tennis_stroke.inference.validation.cause`).
+    why they differ (:func:`~tennis_stroke.inference.validation.cause`).  A claim that
+    locates an optimum gets the two rules of
+    :mod:`tennis_stroke.inference.optimum_claims`: ``objective_gap`` and ``flat`` (with
+    ``flat_gap``, km/h: ``config/readings.yaml``'s ``evidence``) and ``edge``, read on
+    the full maps (``maps``, else ``files``).
     """
     datasets = _datasets(files)
     on_maps = _datasets(maps) if maps is not None else None
@@ -108,6 +117,14 @@ def evaluate(
                 )
                 if on_maps is not None
                 else "agrees",
+                **judged(
+                    c["measure"],
+                    value,
+                    c["paper_value"],
+                    datasets,
+                    on_maps if on_maps is not None else datasets,
+                    flat_gap,
+                ),
             }
         )
     return pd.DataFrame(rows, columns=COLUMNS)

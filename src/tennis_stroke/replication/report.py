@@ -34,6 +34,8 @@ from markupsafe import Markup
 from .._version import __version__
 from ..experiments.specs import PAPER_RESULTS
 from ..inference.claims import load_claims
+from ..inference.optimum_claims import note as optimum_note
+from ..inference.optimum_claims import short_note as optimum_short
 from ..inference.paper_config import PaperConfigError, departure_lines, read_record
 from ..io.config_files import load_yaml
 from ..io.environment import environment_table
@@ -60,7 +62,7 @@ from .claims import (
 from .formats import ReportInputError, _number, _safe, _table, _timings
 from .marks import mark_values
 from .registry import FIGURES, LIVE, UNIT_SHORT, claim_figure
-from .robustness import EVIDENCE_MEANING, across_text
+from .robustness import EVIDENCE_MEANING, across_text, class_words
 
 #: The page template, rendered with autoescape.
 ENVIRONMENT = jinja2.Environment(
@@ -108,6 +110,8 @@ def claim_row(claim: Mapping) -> dict:
         "fit_set": claim.get("fit_set", ""),
         "across": across,
         "deciding": f"deciding: {claim['deciding']}" if claim.get("deciding") else "",
+        "optimum": optimum_note(claim),
+        "optimum_short": optimum_short(claim),
         "cause": cause_of(claim),
         "reason": claim.get("reason", ""),
     }
@@ -227,7 +231,7 @@ def paper_sections(
 #: Each cause of a claim outside its tolerance (:func:`~.claims.cause_of`): its title
 #: on the page and its meaning.
 CAUSES = {
-    **{k: (k.replace("_", " ").capitalize(), m) for k, m in EVIDENCE_MEANING.items()},
+    **{k: (class_words(k).capitalize(), m) for k, m in EVIDENCE_MEANING.items()},
     "fail": (
         "Not yet explained",
         "does not reproduce, and config/claims.yaml expected it to: a regression or a "
@@ -252,7 +256,7 @@ def _deviation_groups(rows: list[dict]) -> list[dict]:
 def _cause(key: str) -> tuple[str, str]:
     """A cause's title and meaning (:data:`CAUSES`; an evidence class it does not know
     is still shown, by its name)."""
-    return CAUSES.get(key, (key.replace("_", " ").capitalize(), "an evidence class"))
+    return CAUSES.get(key, (class_words(key).capitalize(), "an evidence class"))
 
 
 def _failures(results: Sequence[str]) -> pd.DataFrame:

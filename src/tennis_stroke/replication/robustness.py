@@ -20,7 +20,6 @@ import pandas as pd
 import xarray as xr
 
 from ..inference.reading_space import CLAIM_LEVEL, ReadingSpace
-from ..solver.results import OK
 
 #: Robustness classes with their meaning, in the order of config/readings.yaml.
 ROBUSTNESS_MEANING = {
@@ -39,16 +38,38 @@ ROBUSTNESS_WORDS = {
     "not_reproduced": "not reproduced under any reading",
 }
 #: Evidence classes of a deviation (a claim that does not pass under the default
-#: reading) with their meaning, in the order of config/readings.yaml.
+#: reading) with their meaning, in the order of config/readings.yaml.  No evidence class
+#: shares a name or a word with a robustness class (:func:`class_words`): a deviation
+#: the default reading's choice explains is ``reading_choice``, a claim that passes under
+#: some readings and fails under others is ``reading_dependent``.
 EVIDENCE_MEANING = {
     "ill_conditioned": "an optimum's location whose objective at the paper's value lies "
     "within the speed tolerance of the optimum: the paper's argument is as good as ours",
-    "reading_dependent": "passes under some consistent readings (the deciding unknown is named)",
+    "reading_choice": "the default reading's choice: passes under some other consistent "
+    "reading that also passes every claim the default passes (the deciding unknown is "
+    "named)",
     "paper_inconsistency": "passes under some consistent readings, but none of them also "
     "passes every claim the default passes",
-    "irreducible": "fails under every consistent reading (the best value reached is shown)",
+    "irreducible": "fails under every consistent reading declared before the results (the "
+    "best value reached is shown); a reading found after the results does not count: "
+    "chosen after seeing them, it would fit the claim it is to test",
 }
 EVIDENCE = tuple(EVIDENCE_MEANING)
+#: Each evidence class in the words every reader sees (the report, the article).
+EVIDENCE_WORDS = {
+    "ill_conditioned": "ill conditioned",
+    "reading_choice": "reading choice",
+    "paper_inconsistency": "paper inconsistency",
+    "irreducible": "irreducible",
+}
+
+
+def class_words(key: str) -> str:
+    """A robustness class or an evidence class in the words every reader sees
+    (:data:`ROBUSTNESS_WORDS`, :data:`EVIDENCE_WORDS`; a key of neither: its name with
+    spaces).  The two sets share no name and no word, so a term on a page names one
+    thing."""
+    return {**ROBUSTNESS_WORDS, **EVIDENCE_WORDS}.get(key, key.replace("_", " "))
 #: The confidence of every interval and bound on a pass share, and the share below which
 #: a claim counts as passing (or failing) under practically no consistent reading.
 #: Declared 2026-12-06 (issue 55) before any interval was computed.
@@ -67,7 +88,6 @@ COLUMNS = (
     "best_value",
     "best_residual",
     "evidence",
-    "objective_gap",
 )
 
 
@@ -271,45 +291,35 @@ def classify(ds: xr.Dataset, space: ReadingSpace, claims: Sequence[Mapping]) -> 
     return pd.DataFrame(rows)
 
 
-def objective_gap(spec: Mapping[str, str], argument: float, files: Mapping[str, xr.Dataset]):
-    """How far (km/h) the objective ``v_out`` of the file lies below its optimum at the
-    paper's ``argument`` of coordinate ``coord`` (nearest grid point; the other
-    coordinates at their best)."""
-    v = files[spec["file"]]["v_out"].where(files[spec["file"]]["status"] == OK)
-    at = v.sel({spec["coord"]: argument}, method="nearest")
-    return float(v.max()) - float(at.max())
+def _is_flat(row: Mapping) -> bool:
+    """Whether a claims table's row locates an optimum on a flat objective (its ``flat``
+    column: :mod:`tennis_stroke.inference.optimum_claims`, the one rule of flatness)."""
+    return str(row.get("flat", "")) in ("True", "true", "1", "1.0")
 
 
-def evidence(
-    table: pd.DataFrame,
-    ds: xr.Dataset,
-    space: ReadingSpace,
-    files: Mapping[str, xr.Dataset],
-) -> pd.DataFrame:
+def evidence(table: pd.DataFrame, ds: xr.Dataset) -> pd.DataFrame:
     """Evidence class of every deviation of the default reading (status ``fail`` or
-    ``known_deviation`` in ``table``) and, for the argmax claims of
-    ``evidence.objective``, the objective's gap at the paper's argument."""
-    rule = space.raw["evidence"]
+    ``known_deviation`` in ``table``): ``ill_conditioned`` for a claim that locates an
+    optimum on a flat objective (``flat``, the rule every optimum claim is judged by:
+    :mod:`tennis_stroke.inference.optimum_claims`), else by the readings it passes
+    under."""
     passing = [i for i, s in enumerate(table["status"]) if s == "pass"]
     ids = list(ds["claim"].values)
     held = ds["within"].values[:, :, [ids.index(table["id"].iloc[i]) for i in passing]]
     all_default = held.all(axis=-1) if held.size else np.ones(ds["within"].shape[:2], bool)
     rows = []
     for _, row in table.iterrows():
-        cls, gap = "", float("nan")
+        cls = ""
         if row["status"] in ("fail", "known_deviation"):
             j = ids.index(row["id"])
             ok = ds["within"].values[:, :, j].astype(bool)
-            spec = rule["objective"].get(row["id"])
-            if spec is not None:
-                gap = objective_gap(spec, float(row["paper_value"]), files)
-            if spec is not None and gap <= float(rule["flat_gap"]):
+            if _is_flat(row):
                 cls = "ill_conditioned"
             elif ok.any():
-                cls = "reading_dependent" if (ok & all_default).any() else "paper_inconsistency"
+                cls = "reading_choice" if (ok & all_default).any() else "paper_inconsistency"
             else:
                 cls = "irreducible"
-        rows.append({"id": row["id"], "evidence": cls, "objective_gap": gap})
+        rows.append({"id": row["id"], "evidence": cls})
     return pd.DataFrame(rows)
 
 
@@ -318,8 +328,7 @@ def annotate(
     ds: xr.Dataset,
     space: ReadingSpace,
     claims: Sequence[Mapping],
-    files: Mapping[str, xr.Dataset],
 ) -> pd.DataFrame:
     """The claims table with the robustness and evidence columns (:data:`COLUMNS`)."""
     out = table.merge(classify(ds, space, claims), on="id", how="left")
-    return out.merge(evidence(table, ds, space, files), on="id", how="left")
+    return out.merge(evidence(table, ds), on="id", how="left")
