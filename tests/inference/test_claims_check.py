@@ -322,3 +322,14 @@ def test_the_axis_is_the_config_s_grid_of_the_file():
         in (_axis_errors("fig5_heavy_racket_trend", m2=0.6)[0])
     )
     assert _axis_errors("fig5_heavy_racket_trend", m2=0.5) == []
+
+
+def test_the_angles_of_a_trend_claim_are_checked_against_its_file_s_axis():
+    """Fig. 2's 'best delta0 decreases from 60 to 120 deg' read 60, 90 and 120 deg fixed in
+    the measurement, where no check saw them: on a map from 70 deg it failed in the
+    claims job. They are now the claim's arguments, checked at planning."""
+    config = copy.deepcopy(PAPER_CONFIG)
+    config["angle_maps"]["theta0"]["start"] = 70.0
+    (error,) = _axis_errors("fig2_best_delta0_decreases", config)
+    assert "claim 'fig2_best_delta0_decreases': low = 60 lies off the theta0 axis" in error
+    assert _axis_errors("fig2_best_delta0_decreases", config, low=75.0) == []

@@ -313,9 +313,17 @@ def measure_best_delta0(ds: Stack, theta0: Annotated[float, OnAxis("theta0")]) -
 
 @gives(QUALITATIVE_UNIT)
 @one_or_many
-def measure_best_delta0_decreases(ds: Stack) -> np.ndarray:
-    """Figs. 2-3: 1 if the best delta0 falls from theta0 = 60 to 90 to 120 degrees."""
-    b = [measure_best_delta0(ds, t) for t in (60.0, 90.0, 120.0)]
+def measure_best_delta0_decreases(
+    ds: Stack,
+    low: Annotated[float, OnAxis("theta0")],
+    middle: Annotated[float, OnAxis("theta0")],
+    high: Annotated[float, OnAxis("theta0")],
+) -> np.ndarray:
+    """Figs. 2-3: 1 if the best delta0 falls from theta0 = ``low`` to ``middle`` to
+    ``high`` (degree; values of the file's axis, checked at planning as every
+    :class:`OnAxis` argument is: they were fixed here, 60, 90 and 120, where no check
+    saw them)."""
+    b = [measure_best_delta0(ds, t) for t in (low, middle, high)]
     return ((b[0] > b[1]) & (b[1] > b[2])).astype(float)
 
 
