@@ -10,6 +10,7 @@ from tennis_stroke.io.config_files import ConfigFileError, load_yaml
 from tennis_stroke.pipeline.config_check import (
     canonical,
     config_errors,
+    key_table,
     load_schema,
     numbers_from_strings,
     points_errors,
@@ -434,3 +435,43 @@ def test_canonical_keeps_integers_booleans_and_sorts_free_keys():
     assert out["solver_study"]["stability"]["cases"][0][1] == float(
         shipped["solver_study"]["stability"]["cases"][0][1]
     )
+
+
+def test_config_readme_is_the_key_table_of_config_yaml():
+    """config/README.md is `tennis-stroke config keys`: every leaf key of config.yaml has
+    its row, with the value the file gives."""
+    text = (ROOT / "config" / "README.md").read_text()
+    assert text == key_table(load_schema(SCHEMA), load_yaml(ROOT / "config" / "config.yaml")) + "\n"
+    assert "| `torque_delay.base_stroke.C2` | number | `5.0` | Wrist torque (N m). |" in text
+    assert "| `chunks.angle_map` | integer, >= 1 | `1` |" in text
+
+
+#: The JSON Schema keywords the config schema may use (a key of a schema entry not among
+#: them is a typo or a YAML slip that jsonschema ignores without a word).
+KEYWORDS = {
+    "$schema", "$defs", "$ref", "description", "type", "additionalProperties", "required",
+    "properties", "items", "prefixItems", "minItems", "maxItems", "uniqueItems", "minimum",
+    "maximum", "exclusiveMinimum", "exclusiveMaximum", "enum", "default", "allOf", "anyOf",
+    "oneOf", "const", "minLength", "pattern", "propertyNames", "minProperties", "not",
+}  # fmt: skip
+
+
+def test_every_schema_entry_uses_json_schema_keywords_only():
+    """A flow-style `description: (theta0, delta0) pairs` split at its comma into a
+    description '(theta0' and a key 'delta0) pairs (degree).' (three entries)."""
+
+    def entries(node):
+        if isinstance(node, dict):
+            yield node
+            for key, child in node.items():
+                if key in ("properties", "$defs"):
+                    for grand in child.values():
+                        yield from entries(grand)
+                elif key not in ("default", "enum", "const", "required"):
+                    yield from entries(child)
+        elif isinstance(node, list):
+            for child in node:
+                yield from entries(child)
+
+    odd = {key for entry in entries(load_yaml(SCHEMA)) for key in entry} - KEYWORDS
+    assert not odd

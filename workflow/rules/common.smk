@@ -44,7 +44,10 @@ from tennis_stroke.pipeline.resources import asked
 from tennis_stroke.pipeline.targets import targets
 from tennis_stroke.replication.registry import FIGURES
 
-SCHEMA = Path(workflow.basedir) / "workflow/schemas/config.schema.yaml"
+# This checkout: the folder of workflow/ (workflow.basedir is the importing workflow's
+# when another one imports this as a module; current_basedir is this file's folder).
+CHECKOUT = Path(workflow.current_basedir).parents[1]
+SCHEMA = CHECKOUT / "workflow/schemas/config.schema.yaml"
 try:
     # the claims, the reading space and the config (its defaults filled in, checked
     # against its schema and bounds, one spelling per value): once per start
@@ -53,7 +56,7 @@ try:
     # the paper's configuration is; a bad one is a warning line, never a stop
     RUNS = Runs.declared(config, READING_SPACE, _adhoc, SCHEMA)
     # no damaged result file, and the checkout's code is the code the jobs import
-    guard_checkout(Path(workflow.basedir), sys.argv[1:])
+    guard_checkout(CHECKOUT, sys.argv[1:])
 except PlanningError as _exc:
     sys.stderr.write(_exc.line() + "\n")
     sys.exit(1)
@@ -64,7 +67,7 @@ sys.executable = shell_safe(sys.executable)
 # Each job stops when this Snakemake process ends (killed, say) instead of computing on
 # and writing after it (tennis_stroke.io.interrupts.stop_with_snakemake).
 os.environ[PARENT_ENV] = process_identity(os.getpid())
-CODE = CodeInputs(workflow.basedir)
+CODE = CodeInputs(CHECKOUT)
 # What a job without points asks of the scheduler (tennis_stroke.pipeline.resources).
 LIGHT = asked(0)
 # The earlier file of each output a job is about to replace, kept beside it until the

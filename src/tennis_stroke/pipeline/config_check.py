@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import copy
 import functools
+import json
 from collections.abc import Iterator, Mapping
 from decimal import Decimal
 from pathlib import Path
@@ -502,3 +503,69 @@ def config_errors(config: Mapping, schema_path: str | Path, readings: int = 1) -
     schema = load_schema(schema_path)
     errors = schema_errors(config, schema, "config")
     return errors or list(_semantic_errors(config)) or list(points_errors(config, readings))
+
+
+def _kind(spec: Mapping) -> str:
+    """A schema entry's type and bounds in words (``number > 0, <= 60``)."""
+    ref = spec.get("$ref") or next((p["$ref"] for p in spec.get("allOf", ()) if "$ref" in p), "")
+    kinds = spec.get("type", ref.rpartition("/")[2] or "any")
+    words = "|".join(kinds) if isinstance(kinds, list) else kinds
+    if "enum" in spec:
+        words = " or ".join(map(str, spec["enum"]))
+    marks = {"exclusiveMinimum": ">", "minimum": ">=", "exclusiveMaximum": "<", "maximum": "<="}
+    bounds = [f"{mark} {spec[key]:g}" for key, mark in marks.items() if key in spec]
+    return ", ".join([words, *bounds])
+
+
+def key_table(schema: Mapping, config: Mapping) -> str:
+    """Every key of the config ``schema`` (:func:`load_schema`) as a Markdown table: its
+    dotted name, type and bounds, its value in ``config`` (the config file as written)
+    or else its default, and its description (``config/README.md``, written by
+    ``tennis-stroke config keys``)."""
+    rows = [
+        KEYS_HEAD,
+        "| key | type | value | description |",
+        "|---|---|---|---|",
+    ]
+
+    def walk_schema(spec: Mapping, path: tuple[str, ...], given) -> None:
+        properties = spec.get("properties")
+        text = spec.get("description") or _resolved(spec, schema).get("description", "")
+        text = " ".join(str(text).split()).replace("|", "\\|")
+        if properties and spec.get("type") == "object" and "$ref" not in spec:
+            if path:
+                rows.append(f"| `{'.'.join(path)}` | section | | {text} |")
+            for key, child in properties.items():
+                inner = given.get(key, _MISSING) if isinstance(given, Mapping) else _MISSING
+                walk_schema(child, (*path, key), inner)
+            return
+        if given is not _MISSING:
+            value = json.dumps(given)
+            value = f"`{value}`" if len(value) <= 80 else "(a list: see config.yaml)"
+        else:
+            value = f"default `{json.dumps(spec['default'])}`" if "default" in spec else ""
+        rows.append(f"| `{'.'.join(path)}` | {_kind(spec)} | {value} | {text} |")
+
+    walk_schema(schema, (), config)
+    return "\n".join(rows)
+
+
+_MISSING = object()
+#: What config/README.md says before the table.
+KEYS_HEAD = """\
+# The configuration
+
+This folder is the workflow's configuration, copied whole by `snakedeploy
+deploy-workflow` into a workflow that imports this one:
+
+* `config.yaml`: the workflow's keys (below), the paper's values;
+* `claims.yaml`: the paper's numbers, each a claim with its tolerance and source;
+* `readings.yaml`: the readings of the paper's unstated assumptions, their fit sets and
+  the robustness analysis;
+* `scenarios.yaml`: declared what-if scenarios (docs/scenarios.md).
+
+Every key of `config.yaml`, from the schema `workflow/schemas/config.schema.yaml`
+(`tennis-stroke config keys` writes this page; a test keeps it current; what each key
+drives: docs/config_keys.md). A value the schema or the package refuses stops the run
+before any job, in one line naming the key.
+"""
