@@ -1,7 +1,7 @@
 """The package installs anywhere (issue 65): a wheel built from the files git tracks (a
 clean checkout), and one built from its sdist, hold every file of the package and
-nothing else; installed non-editable into an empty folder and run from another, the
-wheel gives the README's ``strike`` example.
+nothing else; installed non-editable into a fresh venv with the lock's pins of its dependencies and
+run from another folder, the wheel gives the README's ``strike`` example.
 
 The installed copy lives at a new path, so numba compiles the solver for it (its cache
 is keyed by the source files' paths): a cold compile, hence the ``compile`` kind.  The
@@ -105,27 +105,65 @@ def test_the_wheel_holds_every_file_of_the_package_and_its_sdist_the_same(wheels
     assert members(from_sdist) == files
 
 
+def _name(text: str) -> str:
+    """A distribution's name as the lock and the metadata compare it (PEP 503)."""
+    return re.sub(r"[-_.]+", "-", text).lower()
+
+
+def runtime_lock(wheel: Path, lock: Path = ROOT / "requirements.lock") -> str:
+    """The entries of ``lock`` (hashes with them) that the wheel's requirements need,
+    without its extras: its ``Requires-Dist`` and theirs, as the project's environment's
+    installed metadata gives them (the lock pins each; ``pip check`` in the fresh venv
+    then proves none is missing)."""
+    from importlib.metadata import distribution
+
+    from packaging.requirements import Requirement
+
+    meta = members(wheel)[next(n for n in members(wheel) if n.endswith(".dist-info/METADATA"))]
+    todo = [line.split(":", 1)[1] for line in meta.decode().splitlines()
+            if line.startswith("Requires-Dist:")]  # fmt: skip
+    needed: set[str] = set()
+    while todo:
+        req = Requirement(todo.pop())
+        if (req.marker and not req.marker.evaluate({"extra": ""})) or _name(req.name) in needed:
+            continue
+        needed.add(_name(req.name))
+        todo += distribution(req.name).requires or []
+    entries = re.split(r"\n(?=[A-Za-z0-9])", lock.read_text())
+    return "\n".join(e for e in entries if _name(e.split("==")[0]) in needed) + "\n"
+
+
 @pytest.mark.compile
-def test_the_wheel_installed_elsewhere_runs_the_readme_example(wheels, tmp_path):
+def test_the_wheel_in_a_fresh_venv_with_the_locks_dependencies_runs_the_readme_example(
+    wheels, tmp_path
+):
+    """A venv of its own (no pip in it: the project's pip installs into it, its
+    byte-compilation off, about 18 s), the lock's pins of what the wheel requires, then
+    the wheel; run from another folder as a user runs it."""
     wheel, _ = wheels
-    target, elsewhere = tmp_path / "site", tmp_path / "elsewhere"
+    venv, elsewhere = tmp_path / "venv", tmp_path / "elsewhere"
     elsewhere.mkdir()
-    _run(sys.executable, "-m", "pip", "install", "--quiet", "--no-deps", "--no-index",
-         "--target", target, wheel)  # fmt: skip
-    # the installed copy, not the checkout (the venv's editable install comes after
-    # PYTHONPATH); its caches in the test's folder, not the user's
-    env = {**os.environ, "PYTHONPATH": str(target), "XDG_CACHE_HOME": str(tmp_path / "cache")}
-    env.pop("NUMBA_CACHE_DIR", None)
+    (tmp_path / "runtime.lock").write_text(runtime_lock(wheel))
+    _run(sys.executable, "-m", "venv", "--without-pip", venv)
+    python = venv / "bin" / "python"
+    pip = (sys.executable, "-m", "pip", "--python", python)
+    _run(*pip, "install", "--quiet", "--no-compile", "--require-hashes", "--no-deps",
+         "-r", tmp_path / "runtime.lock")  # fmt: skip
+    _run(*pip, "install", "--quiet", "--no-compile", "--no-deps", "--no-index", wheel)
+    _run(*pip, "check")  # every requirement of every installed distribution is there
+    # its caches in the test's folder, not the user's
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "NUMBA_CACHE_DIR")}
+    env["XDG_CACHE_HOME"] = str(tmp_path / "cache")
     where = _run(
-        sys.executable, "-c",
+        python, "-c",
         "import tennis_stroke as t; from tennis_stroke.inference.reading_space import SCHEMA;"
         " print(t.__file__, t.__version__, SCHEMA.is_file())",
         cwd=elsewhere, env=env,
     ).stdout.split()  # fmt: skip
-    assert Path(where[0]).is_relative_to(target), where
+    assert Path(where[0]).is_relative_to(venv), where
     assert where[1:] == [wheel.name.split("-")[1], "True"], where
     # the console script pip wrote, as a user runs it
-    out = _run(target / "bin" / "tennis-stroke", *STRIKE, cwd=elsewhere, env=env).stdout
+    out = _run(venv / "bin" / "tennis-stroke", *STRIKE, cwd=elsewhere, env=env).stdout
     assert out.startswith("stroke theta0 = 120 deg, delta0 = 81.5 deg: ok\n"), out
     assert V_OUT.search(out), out
     assert list(elsewhere.iterdir()) == []  # nothing written where it ran
