@@ -9,6 +9,7 @@ import shutil
 import subprocess
 import sys
 
+import pytest
 from conftest import CHECKOUT, ROOT, file_states, workdir
 from tiny import TINY, TINY_READINGS
 
@@ -23,6 +24,7 @@ use rule * from tennis as tennis_*
 """
 
 
+@pytest.mark.workflow
 def test_a_consumer_workflow_imports_it_and_writes_only_its_own_folder(tmp_path):
     """Before: the import stopped with a traceback at common.smk, looking for the schema
     in the importing folder (workflow.basedir is the importing workflow's)."""
