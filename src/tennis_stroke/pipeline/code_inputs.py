@@ -43,6 +43,7 @@ class CodeInputs:
         #: The registry of figures: not a code input of the figure jobs, each of which
         #: gets its entry as a param.
         self.registry = self.package / "replication" / "registry.py"
+        self._paths: dict[Path, str] = {}
         #: The modules of the paper experiments' functions (the robustness analysis
         #: runs them).
         self.paper_modules = sorted(
@@ -55,11 +56,16 @@ class CodeInputs:
         through others, as sorted paths relative to the working directory; less
         ``leave_out`` (paths), and less the units table unless the job writes its
         ``labels``."""
-        paths = closure(files=[self.scripts / script], modules=modules)
-        # the same modules in this checkout (a moved or copied checkout reruns nothing)
-        paths = {self.package / p.relative_to(INSTALLED) for p in paths}
-        paths -= {*leave_out, *([] if labels else [self.units])}
-        return sorted(checkout_path(p) for p in paths)
+        left_out = {checkout_path(p) for p in (*leave_out, *([] if labels else [self.units]))}
+        paths = (self._in_checkout(p) for p in closure([self.scripts / script], modules))
+        return sorted({p for p in paths if p not in left_out})
+
+    def _in_checkout(self, installed: Path) -> str:
+        """The input path of an installed module's file: the same module in this
+        checkout (a moved or copied checkout reruns nothing), once per file."""
+        if installed not in self._paths:
+            self._paths[installed] = checkout_path(self.package / installed.relative_to(INSTALLED))
+        return self._paths[installed]
 
     def simulation(self, experiment: Experiment) -> list[str]:
         """The code inputs of a row's jobs: the generic script and the module of the
