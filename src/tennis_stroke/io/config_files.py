@@ -12,6 +12,8 @@ One rule of every file: each number is finite (:func:`non_finite_numbers`); YAML
 
 from __future__ import annotations
 
+import copy
+import functools
 import math
 import re
 from collections.abc import Iterator, Mapping
@@ -100,6 +102,13 @@ def _bounded(data: object, path: str | Path) -> object:
     return data
 
 
+@functools.lru_cache(maxsize=16)
+def _parsed(text: str, path: str) -> object:
+    """``text`` parsed, once per text in a process (a Snakemake start reads the claims
+    three times); callers get a copy."""
+    return _bounded(yaml.load(text, Loader=_FastLoader), path)  # noqa: S506 (SafeLoader)
+
+
 def load_yaml(path: str | Path) -> object:
     """The contents of the YAML file ``path``.
 
@@ -118,7 +127,7 @@ def load_yaml(path: str | Path) -> object:
     except OSError as exc:
         raise ConfigFileError(f"cannot read {str(path)!r}: {exc.strerror}") from None
     try:
-        return _bounded(yaml.load(text, Loader=_FastLoader), path)  # noqa: S506 (SafeLoader)
+        return copy.deepcopy(_parsed(text, str(path)))
     except yaml.YAMLError:
         pass  # said below, as the pure-Python parser says it
     try:
