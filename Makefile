@@ -75,7 +75,7 @@ lint: install
 	$(BIN)/check-jsonschema --builtin-schema vendor.github-workflows .github/workflows/replication.yml
 	$(BIN)/python tools/citation_check.py
 	$(BIN)/ruff check src tests tools benchmarks examples workflow/scripts
-	$(BIN)/snakefmt --check Snakefile workflow/Snakefile workflow/rules
+	$(BIN)/snakefmt --check workflow/Snakefile workflow/rules
 	$(BIN)/python tools/generate_kernels.py --check
 
 ## The API reference of the public modules, from their docstrings (pdoc), into

@@ -136,7 +136,7 @@ def by_entry(dispatcher):
 ROOT = Path(__file__).resolve().parents[1]
 #: What a checkout needs to run the workflow (the package is imported from the
 #: environment; its sources are the simulations' inputs).
-CHECKOUT = ("Snakefile", "workflow", "src", "docs")
+CHECKOUT = ("workflow", "src", "docs")
 
 
 def snakemake_command(targets, workdir, *options) -> list[str]:
@@ -149,7 +149,7 @@ def snakemake_command(targets, workdir, *options) -> list[str]:
         str(snakemake),
         *targets,
         "-s",
-        str(ROOT / "Snakefile"),
+        str(ROOT / "workflow" / "Snakefile"),
         "--directory",
         str(workdir),
         *options,

@@ -289,7 +289,7 @@ def test_the_readme_scenario_commands_plan_what_they_say(tmp_path):
     ]
     work = tmp_path / "work"
     shutil.copytree(ROOT / "config", work / "config")
-    for linked in ("Snakefile", "workflow", "src"):
+    for linked in ("workflow", "src"):
         (work / linked).symlink_to(ROOT / linked)
     bin_ = ROOT / ".venv" / "bin"
     planned = []

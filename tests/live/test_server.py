@@ -41,7 +41,7 @@ def project(folder):
     (folder / "workflow" / "schemas").mkdir(parents=True)
     shutil.copytree(ROOT / "config", folder / "config")
     shutil.copy(ROOT / "workflow/schemas/config.schema.yaml", folder / "workflow/schemas")
-    shutil.copy(ROOT / "Snakefile", folder)
+    shutil.copy(ROOT / "workflow/Snakefile", folder / "workflow")
     return folder
 
 
@@ -282,7 +282,8 @@ def test_outside_a_checkout_the_explorer_says_where_to_run_it(tmp_path):
     done = subprocess.run([*EXPLORE], cwd=tmp_path, capture_output=True, text=True, timeout=60)
     assert done.returncode == 2
     assert done.stderr.strip() == (
-        f"tennis-stroke: error: no Snakefile in {tmp_path}: run explore from the project's folder"
+        f"tennis-stroke: error: no workflow/Snakefile in {tmp_path}: "
+        "run explore from the project's folder"
     )
 
 

@@ -454,7 +454,7 @@ def test_a_figure_is_found_by_its_number():
 def test_whatif_refuses_in_one_line(tmp_path, monkeypatch, capsys):
     """Outside the project's folder, an undeclared scenario without overrides, an unknown
     figure and a bad --set are each one line and exit status 2, before Snakemake runs."""
-    cases = [(["whatif", "x", "--set", "M2=0.4"], "no Snakefile in")]
+    cases = [(["whatif", "x", "--set", "M2=0.4"], "no workflow/Snakefile in")]
     cases_root = [
         (["whatif", "nosuch"], "scenario 'nosuch' is not declared in config/scenarios.yaml"),
         (["whatif", "x", "--set", "M2=0.4", "--figure", "fig99"], "no figure 'fig99'"),
@@ -529,7 +529,6 @@ def test_whatif_prints_a_figure_s_claims_and_the_inputs_they_were_computed_at(
 
     for name in ("config", "workflow"):
         (tmp_path / name).symlink_to(ROOT / name)
-    (tmp_path / "Snakefile").touch()
     monkeypatch.chdir(tmp_path)
     row = EXPERIMENTS[key]
     path = tmp_path / "results/scenarios/myracket" / row.path.removeprefix("results/")

@@ -175,7 +175,7 @@ def moved(tiny_run, tmp_path_factory):
 
     def snakemake(root, *options):
         command = snakemake_command("report", root / work, *options)
-        command[command.index("-s") + 1] = str(root / code / "Snakefile")
+        command[command.index("-s") + 1] = str(root / code / "workflow" / "Snakefile")
         return subprocess.run(command, capture_output=True, text=True, timeout=600)
 
     touched = snakemake(here, "--touch", "--cores", "1")
@@ -186,7 +186,7 @@ def moved(tiny_run, tmp_path_factory):
     def run(*options):
         return snakemake(elsewhere, *options)
 
-    run.snakefile, run.work = elsewhere / code / "Snakefile", elsewhere / work
+    run.snakefile, run.work = elsewhere / code / "workflow" / "Snakefile", elsewhere / work
     return run
 
 
@@ -277,7 +277,7 @@ def test_a_figure_no_rule_makes_or_no_folder_takes_is_one_line_naming_it(tmp_pat
     runs = [{"target": f"results/figures/{name}.png"} for name in names]
     blocked = {"files": {"results/figures": "not a folder\n"}, "execute": True}
     runs.append({"target": "results/figures/fig09_v_tau.png", **blocked})
-    *refused, known, stopped = dry_runs(ROOT / "Snakefile", work, runs=runs)
+    *refused, known, stopped = dry_runs(ROOT / "workflow" / "Snakefile", work, runs=runs)
     lines = [x for x in stopped["stderr"].splitlines() if "error" in x or "Traceback" in x]
     assert stopped["exit"] == 1 and len(lines) == 1, stopped["output"][-3000:]
     assert lines[0].startswith("tennis-stroke error: 'results/figures' is not a folder: "), lines
@@ -376,7 +376,7 @@ def test_a_bad_scenario_is_one_line_before_any_job(tmp_path):
     for scenarios, target, _ in BAD_SCENARIOS:
         files = {"config/scenarios.yaml": scenarios}
         runs += [{"target": target, "files": files}, {"target": "report", "files": files}]
-    done = dry_runs(ROOT / "Snakefile", work, runs=runs)
+    done = dry_runs(ROOT / "workflow" / "Snakefile", work, runs=runs)
     pairs = zip(BAD_SCENARIOS, done[::2], done[1::2], strict=True)
     for (scenarios, target, line), asked, paper in pairs:
         assert asked["exit"] == 1, (target, asked["output"][-2000:])
@@ -607,7 +607,7 @@ def test_a_checkout_under_a_folder_with_a_space_runs_its_jobs(tmp_path):
         "-f",
         "results/strokes/fig4.nc",
         "-s",
-        str(odd / "tennis" / "Snakefile"),
+        str(odd / "tennis" / "workflow" / "Snakefile"),
         "--directory",
         str(work),
         "--cores",

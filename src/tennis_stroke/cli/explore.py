@@ -31,8 +31,10 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from pathlib import Path
 
-    if not Path("Snakefile").is_file() or not Path("config/config.yaml").is_file():
-        raise ValueError(f"no Snakefile in {Path.cwd()}: run explore from the project's folder")
+    if not Path("workflow/Snakefile").is_file() or not Path("config/config.yaml").is_file():
+        raise ValueError(
+            f"no workflow/Snakefile in {Path.cwd()}: run explore from the project's folder"
+        )
     if args.port is not None and not 0 < args.port < 65536:
         raise ValueError(f"--port {args.port}: a port is 1 to 65535")
     if args.threads is not None and args.threads < 1:

@@ -49,8 +49,10 @@ def run(args: argparse.Namespace) -> int:
     set_items(args.set)  # each key once
     if args.cores < 1:
         raise ValueError(f"-j/--cores must be >= 1, got {args.cores}")
-    if not Path("Snakefile").is_file():
-        raise ValueError(f"no Snakefile in {Path.cwd()}: run whatif from the project's folder")
+    if not Path("workflow/Snakefile").is_file():
+        raise ValueError(
+            f"no workflow/Snakefile in {Path.cwd()}: run whatif from the project's folder"
+        )
     problem = cache_problem()  # Snakemake's own message is a long traceback
     if problem:
         raise ValueError(problem)

@@ -64,7 +64,6 @@ def installed_version(package: str) -> str:
 JOB_INPUTS = (
     "src",
     "workflow",
-    "Snakefile",
     "config/config.yaml",
     "config/claims.yaml",
     "config/readings.yaml",
