@@ -465,7 +465,7 @@ INFERENCE_RULES = {
 def planned_after_edit(moved, module: str, old: str | None = None, new: str = "") -> set:
     """The rules a dry run plans after editing package ``module`` of the moved checkout
     (``old`` replaced by ``new``, else a comment appended); the file is restored."""
-    path = moved.snakefile.parent / "src" / "tennis_stroke" / module
+    path = moved.snakefile.parents[1] / "src" / "tennis_stroke" / module
     text, stat = path.read_text(), path.stat()
     path.write_text(text.replace(old, new) if old else text + "# edited\n")
     try:
