@@ -119,7 +119,8 @@ def runtime_lock(wheel: Path, lock: Path = ROOT / "requirements.lock") -> str:
 
     from packaging.requirements import Requirement
 
-    meta = members(wheel)[next(n for n in members(wheel) if n.endswith(".dist-info/METADATA"))]
+    files = members(wheel)
+    meta = files[next(n for n in files if n.endswith(".dist-info/METADATA"))]
     todo = [line.split(":", 1)[1] for line in meta.decode().splitlines()
             if line.startswith("Requires-Dist:")]  # fmt: skip
     needed: set[str] = set()
