@@ -206,6 +206,30 @@ MUTANTS = (
         marker="",
     ),
     Mutant(
+        "cache_damage_raised",
+        "_load: a cache file numba cannot read raised, not cleared and compiled again "
+        "(a traceback on every call)",
+        "solver/compiled.py",
+        "        if not _cache_trouble(exc):\n            raise\n",
+        "        if True:\n            raise\n",
+        (
+            "tests/solver/test_warmup.py::test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line",
+        ),
+        marker="",
+    ),
+    Mutant(
+        "cache_compile_in_place_allowed",
+        "_load: numba let compile in place where the cache lacks an entry point (the bits "
+        "of a compile in place, said nowhere)",
+        "solver/compiled.py",
+        "    try:\n        with refusing_compiles():\n            exercise()\n        return\n",
+        "    try:\n        exercise()\n        return\n",
+        (
+            "tests/solver/test_warmup.py::test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line",
+        ),
+        marker="",
+    ),
+    Mutant(
         "locate_event_step_end",
         "locate_event: the step's end, not the root",
         "solver/integrate.py",
