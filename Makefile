@@ -66,8 +66,9 @@ report: install
 test: install
 	$(BIN)/python -m pytest -n $(JOBS) --maxschedchunk 1 --durations=25
 
-## The fast tier while editing: every test that needs no workflow run, no browser, no
-## SLURM and no cold compile (pytest -m "not slow"), on every core.
+## The fast tier while editing: every test that runs in the test's own process (no
+## workflow run, browser, SLURM, cold compile, signal or process of its own: pytest -m
+## "not slow"), on every core.
 check: install
 	$(BIN)/python -m pytest -n $(JOBS) --maxschedchunk 1 --durations=10 -m "not slow"
 

@@ -57,13 +57,13 @@ def require_browser() -> None:
 WORKFLOW_FIXTURES = ("tiny_run", "moved", "report_plan")
 #: The kinds of test that ``make check`` leaves out, by their markers (pyproject.toml), in
 #: the order a test's kind is named by (docs/testing.md, "Where the time goes").
-SLOW_KINDS = ("slurm", "browser", "compile", "workflow")
+SLOW_KINDS = ("slurm", "browser", "compile", "workflow", "signals", "process")
 #: The order the kinds run in: the longest first (the first workflow test builds the
 #: shared tiny run at once; the browser tests read it, so they come later).  The compile
 #: tests beside the tiny run's build instead made the run slower, not faster (676 s
 #: against 642 s at 53821cb, the CPU 1239 s against 1142 s: both cores were busy already,
 #: the build's jobs run two at a time).
-RUN_ORDER = ("workflow", "slurm", "compile", "browser", "signals", "unit")
+RUN_ORDER = ("workflow", "slurm", "compile", "browser", "signals", "process", "unit")
 
 
 def pytest_collection_modifyitems(items):
@@ -78,8 +78,6 @@ def pytest_collection_modifyitems(items):
         kinds = [k for k in SLOW_KINDS if item.get_closest_marker(k)]
         if kinds:
             item.add_marker(pytest.mark.slow)
-        elif item.get_closest_marker("signals"):
-            kinds = ["signals"]
         item.user_properties.append(("kind", kinds[0] if kinds else "unit"))
     # the long kinds first (a stable sort: each kind in its files' order), so the longest
     # tests start early on their worker and the short ones fill in at the end, instead of

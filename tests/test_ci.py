@@ -9,6 +9,7 @@ import yaml
 from conftest import REQUIRE_BROWSER, ROOT
 
 
+@pytest.mark.process
 def test_a_required_browser_that_is_missing_fails_the_run_in_one_line(tmp_path):
     env = {**os.environ, REQUIRE_BROWSER: "1", "PATH": str(tmp_path)}  # no chromium here
     done = subprocess.run(

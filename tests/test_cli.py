@@ -509,6 +509,7 @@ def test_unwritable_directory_leaves_nothing(tmp_path, capsys):
         locked.chmod(0o700)
 
 
+@pytest.mark.process
 def test_console_script_runs_as_a_process(tmp_path):
     exe = os.path.join(os.path.dirname(sys.executable), "tennis-stroke")
     done = subprocess.run(

@@ -81,6 +81,7 @@ def test_a_range_of_huge_angles_is_one_line_without_warnings(tmp_path, capsys):
     assert code == 2 and "'theta0' must be <= 360 degree" in _one_error_line(err)
 
 
+@pytest.mark.process
 def test_a_cache_folder_that_is_a_file_is_one_line(tmp_path):
     (tmp_path / "cache").write_text("a file")
     env = {"PATH": "/usr/bin:/bin", "XDG_CACHE_HOME": str(tmp_path / "cache")}
@@ -111,6 +112,7 @@ def test_a_cache_variable_that_names_no_usable_folder_is_named(tmp_path, variabl
     assert ("is not writable" if below else "is not a folder") in problem
 
 
+@pytest.mark.process
 def test_whatif_with_a_home_that_is_a_file_is_one_line(tmp_path):
     """HOME=/etc/hostname: `tennis-stroke whatif ... -n` and `make report` printed 29-44
     lines of Snakemake's traceback (NotADirectoryError .../.cache), before the Snakefile
@@ -309,6 +311,7 @@ def test_a_closed_stderr_still_gives_the_exit_status(monkeypatch):
     assert main(["params"]) == 1
 
 
+@pytest.mark.process
 def test_a_full_or_closed_stdout_in_a_process_exits_with_one_line():
     """What only a process shows: Python's own flush at exit adds no second message
     (nor exit status 120), and a shell's ``>&-`` closes the descriptor itself."""

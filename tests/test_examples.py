@@ -25,6 +25,7 @@ def _run(*args, cwd):
     )
 
 
+@pytest.mark.process
 def test_stroke_speeds_draws_the_stroke_and_prints_the_compiled_rebound_speed(tmp_path):
     out = tmp_path / "speeds.png"
     done = _run(out, cwd=tmp_path)
@@ -39,11 +40,13 @@ def test_stroke_speeds_draws_the_stroke_and_prints_the_compiled_rebound_speed(tm
     assert 20.0 < racket < v_out / 3.6  # the ball leaves faster than the racket came
 
 
+@pytest.mark.process
 def test_stroke_speeds_writes_its_default_file_where_it_runs(tmp_path):
     assert _run("--theta0", 75, "--delta0", 39, cwd=tmp_path).returncode == 0
     assert (tmp_path / "stroke_speeds.png").read_bytes().startswith(PNG_SIGNATURE)
 
 
+@pytest.mark.process
 @pytest.mark.parametrize(
     "setting, code, fragment",
     [

@@ -58,6 +58,7 @@ def test_a_difference_from_the_lock_is_named(tmp_path):
     assert any(d.startswith("numpy ") and d.endswith("(locked 0.0.1+x)") for d in differ)
 
 
+@pytest.mark.process
 def test_an_edit_of_the_dependencies_without_make_lock_stops_make_install_in_one_line(
     tmp_path,
 ):
@@ -142,6 +143,7 @@ def test_make_install_checks_the_environment_not_only_its_stamp(tmp_path, case):
     assert "make install: installing the lock again" in done.stdout
 
 
+@pytest.mark.process
 def test_the_check_of_the_environment_names_what_differs(tmp_path):
     """tools/lock_check.py --installed: 0 for this environment (the lock), 1 and one line
     naming the distribution for a lock it is not."""

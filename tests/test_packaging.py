@@ -89,6 +89,7 @@ def package_files(names) -> set[str]:
     return {n for n in names if n.startswith(f"{PACKAGE}/") and "__pycache__" not in n}
 
 
+@pytest.mark.process
 def test_the_wheel_holds_every_file_of_the_package_and_its_sdist_the_same(wheels):
     wheel, from_sdist = wheels
     files = members(wheel)

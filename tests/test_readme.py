@@ -52,6 +52,7 @@ def _run(*args):
     )
 
 
+@pytest.mark.process
 def test_the_block_is_written_and_then_checks_clean(tmp_path):
     claims = _claims(tmp_path / "claims.csv")
     readme = tmp_path / "README.md"
@@ -88,6 +89,7 @@ def test_the_block_speaks_the_reports_words(tmp_path):
     assert "The 1 claim that deviates and 1 claim that fails under the default reading" in text
 
 
+@pytest.mark.process
 def test_a_changed_result_makes_the_readme_stale(tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text("<!-- results:begin -->\n<!-- results:end -->\n")
@@ -96,6 +98,7 @@ def test_a_changed_result_makes_the_readme_stale(tmp_path):
     assert done.returncode == 1 and "stale" in done.stderr
 
 
+@pytest.mark.process
 def test_a_readme_without_markers_is_refused_in_one_line(tmp_path):
     readme = tmp_path / "README.md"
     readme.write_text("no markers\n")
@@ -123,6 +126,7 @@ def _held_out_run(folder: Path, fail: bool = False) -> Path:
     return folder / "claims.csv"
 
 
+@pytest.mark.process
 def test_a_docs_block_is_written_and_then_checks_clean(tmp_path):
     """A docs page's block (docs/inference.md's held-out claims) by the README's
     mechanism: stale before, written between its markers only, clean after; a changed
@@ -142,6 +146,7 @@ def test_a_docs_block_is_written_and_then_checks_clean(tmp_path):
     assert done.returncode == 1 and f"{page}'s results are stale" in done.stderr
 
 
+@pytest.mark.process
 def test_a_broken_block_is_refused_naming_its_page(tmp_path):
     page = tmp_path / "inference.md"
     page.write_text("<!-- held-out:begin -->\nno end\n")
@@ -401,6 +406,7 @@ def test_the_readme_declares_every_command_it_does_not_run():
     assert any(c.startswith("tennis-stroke params") for c in commands)
 
 
+@pytest.mark.process
 def test_the_readme_commands_run_as_written_from_a_fresh_shell(tmp_path):
     """Each quick command of the README, word for word, in a new shell with a clean
     environment, in a folder that holds the checkout's files (links, so a written file

@@ -1,6 +1,6 @@
 """Where a test run's time goes, by kind of test: the durations of a JUnit report summed
 per kind (the ``kind`` property tests/conftest.py gives every test from its markers:
-workflow, browser, compile, slurm, signals, unit).
+workflow, browser, compile, slurm, signals, process, unit).
 
 Usage::
 
@@ -23,7 +23,7 @@ from collections import defaultdict
 from pathlib import Path
 
 #: The kinds in the order of the table (tests/conftest.py, SLOW_KINDS, then the others).
-KINDS = ("workflow", "compile", "browser", "slurm", "signals", "unit")
+KINDS = ("workflow", "compile", "browser", "slurm", "signals", "process", "unit")
 
 
 def durations(report: Path) -> list[tuple[str, str, float]]:

@@ -169,6 +169,7 @@ def websocket_status(port, origin) -> int:
     return status
 
 
+@pytest.mark.process
 def test_a_websocket_from_another_origin_is_refused(server):
     _, port = server
     assert websocket_status(port, "http://evil.example") == 403
@@ -190,6 +191,7 @@ def test_a_signal_stops_the_server_with_one_line(tmp_path, signum, code, name):
     assert "Traceback" not in err
 
 
+@pytest.mark.process
 @pytest.mark.parametrize(
     ("options", "message"),
     [
@@ -219,6 +221,7 @@ EXPLORE_LOADED = [
 ]
 
 
+@pytest.mark.process
 def test_an_address_it_cannot_listen_at_is_one_line_before_anything_loads(tmp_path):
     """A port another server listens on, a host that is no address, an address of
     another machine: one line, exit 2, before any compiled code loads (a bound in seconds
@@ -246,6 +249,7 @@ def test_an_address_it_cannot_listen_at_is_one_line_before_anything_loads(tmp_pa
             assert loaded.read_text() == "", f"loaded before refusing: {loaded.read_text()}"
 
 
+@pytest.mark.process
 @pytest.mark.parametrize(
     ("old", "new", "message"),
     [
@@ -278,6 +282,7 @@ def test_on_every_interface_the_machine_s_own_addresses_may_open_the_websocket()
     assert "0.0.0.0:5006" not in allowed  # no browser's page has that origin
 
 
+@pytest.mark.process
 def test_outside_a_checkout_the_explorer_says_where_to_run_it(tmp_path):
     done = subprocess.run([*EXPLORE], cwd=tmp_path, capture_output=True, text=True, timeout=60)
     assert done.returncode == 2

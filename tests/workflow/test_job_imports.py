@@ -97,11 +97,13 @@ def test_every_script_is_a_kind_of_job():
     assert {p.name for p in SCRIPTS.glob("*.py")} == set(ABSENT)
 
 
+@pytest.mark.process
 @pytest.mark.parametrize("script", sorted(ABSENT))
 def test_a_job_imports_only_what_it_runs(script, loaded_by_script):
     assert loaded_by_script[script] == []
 
 
+@pytest.mark.process
 def test_the_workflow_s_plan_loads_no_search_and_no_solver():
     """What the Snakefile imports to plan the jobs (every snakemake call, a dry run too):
     numba comes with the memory estimate's layout constants (and numba brings scipy's

@@ -50,6 +50,7 @@ def test_save_marks_a_chunk_with_its_position(tmp_path):
         assert out.attrs["chunk_dim"] == "theta0"
 
 
+@pytest.mark.process
 def test_a_job_log_ends_with_where_its_time_went(tmp_path):
     """logged() ends a job's log with its time split, and the benchmark that sums the
     splits per job kind reads it back: a job that writes a file has writing > 0, a job

@@ -258,6 +258,7 @@ def test_a_scenario_table_is_checked_and_not_graded(tmp_path, capsys):
     assert "model.M2 = 0.35 kg" in out
 
 
+@pytest.mark.process
 def test_the_readme_is_never_written_from_a_scenario_or_a_departure(tmp_path):
     import subprocess
     import sys
