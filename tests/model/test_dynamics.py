@@ -168,19 +168,27 @@ def _paper_eq6(collision):
 
 
 def _vanishes(expr, samples=6, digits=40):
-    """Whether ``expr`` is identically zero: evaluated at random points with 40 digits.
+    """Whether ``expr`` is identically zero: evaluated at random points (rationals) in
+    mpmath with 50 digits, below ``10**-(digits - 10)`` at each.
 
-    (A non-zero analytic expression vanishes at random points with probability 0.)
+    (A non-zero analytic expression vanishes at random points with probability 0; mpmath
+    through ``lambdify`` rather than ``subs`` then ``N``: the same numbers, about ten
+    times faster on these expressions.)
     """
+    import mpmath
+
     rng = np.random.default_rng(7)
     symbols = sorted(expr.free_symbols, key=str)
+    f = sp.lambdify(symbols, expr, "mpmath")
     values = []
-    for _ in range(samples):
-        point = {
-            s: sp.Rational(int(rng.integers(1, 10**6)), 10**6) + sp.Rational(1, 10) for s in symbols
-        }
-        values.append(abs(sp.N(expr.subs(point), digits)))
-    return max(values) < sp.Float(10) ** (-(digits - 10))
+    with mpmath.workdps(digits + 10):
+        for _ in range(samples):
+            point = [
+                mpmath.mpf(int(rng.integers(1, 10**6))) / 10**6 + mpmath.mpf(1) / 10
+                for _ in symbols
+            ]
+            values.append(abs(f(*point)))
+    return max(values) < mpmath.mpf(10) ** (-(digits - 10))
 
 
 def test_paper_eqs_6_7_without_ball_agree_term_by_term(lagrangian):
