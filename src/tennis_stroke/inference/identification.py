@@ -22,7 +22,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
-from scipy.optimize import least_squares
 
 from ..experiments.strokes import table1_cases
 from ..io.netcdf import labelled, provenance
@@ -185,6 +184,10 @@ class _Problem:
 
         def fun(u):
             return self.evaluate({**pinned, **self.values(u, free)}, keep)[1]
+
+        # about 0.5 s to import: only a fit loads it (the claims and robustness jobs that
+        # import this module for its measures do not fit)
+        from scipy.optimize import least_squares
 
         best = None
         for x0 in starts:
