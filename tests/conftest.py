@@ -59,10 +59,8 @@ WORKFLOW_FIXTURES = ("tiny_run", "moved", "report_plan")
 #: the order a test's kind is named by (docs/testing.md, "Where the time goes").
 SLOW_KINDS = ("slurm", "browser", "compile", "workflow", "signals", "process")
 #: The order the kinds run in: the longest first (the first workflow test builds the
-#: shared tiny run at once; the browser tests read it, so they come later).  The compile
-#: tests beside the tiny run's build instead made the run slower, not faster (676 s
-#: against 642 s at 53821cb, the CPU 1239 s against 1142 s: both cores were busy already,
-#: the build's jobs run two at a time).
+#: shared tiny run at once; the browser tests read it, so they come later; the tiny run's
+#: build keeps both cores busy, docs/changes.md 2026-12-07).
 RUN_ORDER = ("workflow", "slurm", "compile", "browser", "signals", "process", "unit")
 
 

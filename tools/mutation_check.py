@@ -65,6 +65,10 @@ SOLVER_TESTS = (
 )
 #: The config's checks: every bad case in-process, and the one Snakemake process that
 #: shows a refusal reaching the user (slow: the mutants that name it run the slow tier).
+#: The test of a damaged compile cache (a real process: it heals in a compile of its own).
+DAMAGED_CACHE_TEST = (
+    "tests/solver/test_warmup.py::test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line"
+)
 CONFIG_TESTS = ("tests/workflow/test_config_check.py", "tests/workflow/test_scenarios.py")
 
 
@@ -212,9 +216,7 @@ MUTANTS = (
         "solver/compiled.py",
         "        if not _cache_trouble(exc):\n            raise\n",
         "        if True:\n            raise\n",
-        (
-            "tests/solver/test_warmup.py::test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line",
-        ),
+        (DAMAGED_CACHE_TEST,),
         marker="",
     ),
     Mutant(
@@ -224,9 +226,7 @@ MUTANTS = (
         "solver/compiled.py",
         "    try:\n        with refusing_compiles():\n            exercise()\n        return\n",
         "    try:\n        exercise()\n        return\n",
-        (
-            "tests/solver/test_warmup.py::test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line",
-        ),
+        (DAMAGED_CACHE_TEST,),
         marker="",
     ),
     Mutant(

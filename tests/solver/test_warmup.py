@@ -22,14 +22,19 @@ print(r["v_out_kmh"].tobytes().hex(), r["omega2_phi0"].tobytes().hex())
 """
 
 
-def _run(cache, **env):
-    done = subprocess.run(
-        [sys.executable, "-c", SCRIPT],
-        env={**os.environ, "NUMBA_CACHE_DIR": str(cache), **env},
+def _python(code, cache) -> subprocess.CompletedProcess:
+    """``code`` run by a Python process of its own with numba's cache in ``cache``."""
+    return subprocess.run(
+        [sys.executable, "-c", code],
+        env={**os.environ, "NUMBA_CACHE_DIR": str(cache)},
         capture_output=True,
         text=True,
         timeout=900,
     )
+
+
+def _run(cache):
+    done = _python(SCRIPT, cache)
     assert done.returncode == 0, done.stderr[-2000:]
     return done.stdout
 
@@ -83,16 +88,6 @@ REFERENCE = (
 )
 
 
-def _reference(cache):
-    return subprocess.run(
-        [sys.executable, "-c", REFERENCE],
-        env={**os.environ, "NUMBA_CACHE_DIR": str(cache)},
-        capture_output=True,
-        text=True,
-        timeout=900,
-    )
-
-
 def _entry(cache, suffix):
     """The cache file of one of the group's compiled functions (the model's right-hand
     side ``dynamics.rhs_angles``)."""
@@ -116,18 +111,18 @@ def test_a_damaged_cache_is_cleared_and_compiled_again_in_one_line(tmp_path):
     file made the process compile in place.  Each is now one line on stderr, the same
     number, and a healthy cache for the next process (on the cheapest group: the
     mechanism is the same for every group, :func:`tennis_stroke.solver.compiled._load`)."""
-    first = _reference(tmp_path)
+    first = _python(REFERENCE, tmp_path)
     assert first.returncode == 0 and "tennis-stroke" not in first.stderr, first.stderr[-2000:]
     assert any(p.name.startswith("compiled-reference-") for p in tmp_path.iterdir())
     for what, damage in DAMAGES.items():
         damage(tmp_path)
-        healed = _reference(tmp_path)
+        healed = _python(REFERENCE, tmp_path)
         assert healed.returncode == 0, (what, healed.stderr[-2000:])
         assert healed.stdout == first.stdout, what
         lines = [line for line in healed.stderr.splitlines() if line.strip()]
         assert len(lines) == 1 and "cleared and compiled again" in lines[0], (what, lines)
         assert "Traceback" not in healed.stderr
-        after = _reference(tmp_path)
+        after = _python(REFERENCE, tmp_path)
         assert after.stdout == first.stdout and after.stderr == "", (what, after.stderr)
 
 
@@ -161,16 +156,7 @@ def test_the_studies_rk4_compiles_in_the_warm_up_not_in_the_job(tmp_path):
     """RK4 runs model functions from Python: the warm-up's ``rk4`` group compiles them in
     its own process, so a study job only loads them (it compiled them in place before,
     and two such jobs could compile the same functions at once); twice the same bits."""
-    runs = [
-        subprocess.run(
-            [sys.executable, "-c", RK4],
-            env={**os.environ, "NUMBA_CACHE_DIR": str(tmp_path)},
-            capture_output=True,
-            text=True,
-            timeout=900,
-        )
-        for _ in range(2)
-    ]
+    runs = [_python(RK4, tmp_path) for _ in range(2)]
     for done in runs:
         assert done.returncode == 0, done.stderr[-2000:]
     assert any(p.name.startswith("compiled-rk4-") for p in tmp_path.iterdir())
