@@ -13,7 +13,9 @@
 # The robustness analysis is the report's longest chain of jobs (identification ->
 # screen -> chunks -> claims), so its jobs go first when they are ready, and the
 # validation jobs after them; the other jobs fill the cores around them.  A priority
-# orders ready jobs only: it changes no result.
+# orders ready jobs only: it changes no result.  Every job takes one thread: a job of
+# two waits for both cores of a 2-core machine to be free at once, which the jobs
+# around it seldom leave (the screen, at two threads, started 60 s after its input).
 
 CHAIN_PRIORITY = 20
 
@@ -149,7 +151,7 @@ rule robustness_screen:
     benchmark:
         "logs/benchmarks/robustness_screen.tsv"
     priority: CHAIN_PRIORITY
-    threads: 2
+    threads: 1
     resources:
         mem_mb=RUNS.search_resources("mem_mb", lockstep=True),
         runtime=RUNS.search_resources("runtime", lockstep=True),
