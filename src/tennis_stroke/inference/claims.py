@@ -27,9 +27,9 @@ import math
 import typing
 from collections.abc import Collection, Iterator, Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from ..experiments.specs import EXPERIMENTS, PAPER_RESULTS
 from ..io.config_files import (
@@ -52,6 +52,9 @@ from .measures import (
     pick,
 )
 
+if TYPE_CHECKING:  # its annotations only: the planning checks the claims without xarray
+    import xarray as xr
+
 EXPECTATIONS = ("reproduce", "known_deviation")
 #: The fields every claim has.
 REQUIRED = (
@@ -68,6 +71,9 @@ REQUIRED = (
 OPTIONAL = ("reason",)
 #: The keys of a measure that reads one variable of a file (no ``function``).
 VARIABLE_MEASURE = ("file", "var", "sel", "abs")
+
+if TYPE_CHECKING:  # only its annotations: the planning checks claims without xarray
+    import xarray as xr
 
 
 class ClaimError(ValueError):

@@ -22,10 +22,12 @@ import functools
 import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
-from typing import Annotated, Literal
+from typing import TYPE_CHECKING, Annotated, Literal
 
 import numpy as np
-import xarray as xr
+
+if TYPE_CHECKING:  # imported where a dataset is read: planning checks claims without it
+    import xarray as xr
 
 from ..io.units import unit_of
 from ..solver.results import OK
@@ -151,6 +153,8 @@ def one_or_many(fn: Callable[..., np.ndarray]) -> Callable:
 
     @functools.wraps(fn)
     def measurement(*args, **kwargs):
+        import xarray as xr
+
         if any(isinstance(a, xr.Dataset) for a in args):
             stacks = (Stack([a]) if isinstance(a, xr.Dataset) else a for a in args)
             return float(fn(*stacks, **kwargs)[0])

@@ -19,7 +19,6 @@ from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
-import yaml
 
 from ..experiments.specs import merged
 from ..io.config_files import (
@@ -162,7 +161,7 @@ def load_reading_space(
         raw = load_yaml(path)
     except ConfigFileError as exc:
         raise ReadingSpaceError(str(exc)) from None
-    errors = schema_errors(raw, yaml.safe_load(Path(schema).read_text()), "readings")
+    errors = schema_errors(raw, load_yaml(schema), "readings")
     if errors:
         raise ReadingSpaceError(errors[0])
     for parts, value in non_finite_numbers(raw):

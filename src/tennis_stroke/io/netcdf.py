@@ -26,9 +26,9 @@ from datetime import UTC, datetime
 from functools import cache
 from importlib.metadata import version
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import xarray as xr
 
 from .._version import __version__
 from ..model.params import MODEL_OPTIONS, PARAMETERS, READINGS, scalar_params
@@ -38,6 +38,9 @@ from .environment import environment_attrs
 from .errors import OutputError, ProvenanceError, ResultError
 from .interrupts import deferred_signals
 from .units import VARIABLES, cf_attrs
+
+if TYPE_CHECKING:  # imported where a dataset is made or read: the planning needs none
+    import xarray as xr
 
 #: Global attributes that differ between two runs of the same job, and only those: when
 #: the file was written, and wall-clock timings (of the job, of a map's chunks, of the
@@ -151,6 +154,8 @@ def provenance(
     """Global attributes: parameters (``param_*`` with units), readings, solver, versions.
     ``settings``: the compiled solver's, or the options of another path as a mapping
     (:attr:`tennis_stroke.solver.reference.ReferenceStroke.solver`)."""
+    import xarray as xr
+
     attrs: dict[str, object] = {
         "Conventions": "CF-1.10",
         "title": "Youn double-pendulum tennis stroke with ball collision",
@@ -202,6 +207,8 @@ def result_dataset(
     extra_attrs : mapping, optional
         More global attributes (e.g. wall time).
     """
+    import xarray as xr
+
     dims = list(coords)
     coord_vars = {}
     for name, values in coords.items():
@@ -401,6 +408,7 @@ def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
       would otherwise be read as a wrong number, makes reading fail
       (:func:`load_result` names the file).
     """
+
     out = ds.copy(deep=False)
     for var in out.variables.values():
         if var.ndim > 0:
@@ -487,6 +495,8 @@ def load_result(path: str | os.PathLike) -> xr.Dataset:
     """The result file ``path`` read into memory (every array, so every checksum is
     verified); a missing, truncated, damaged or foreign file raises :class:`ResultError`
     naming it and the way out."""
+    import xarray as xr
+
     try:
         kind = "file" if Path(path).is_file() else "missing" if not Path(path).exists() else ""
     except OSError as exc:
