@@ -78,9 +78,10 @@ def drawn(
             ax = fig.axes[0]
             ax.set_title(ax.get_title() + "\n" + wrapped(note, 48))
     fig.tight_layout()
-    _titles_broken_to_fit(fig)
-    _room_for_titles(fig)
-    _legends_clear_of_points(fig)
+    # each step draws the canvas only where the one before changed it since its draw
+    drawn_as_is = _titles_broken_to_fit(fig)
+    drawn_as_is = _room_for_titles(fig, drawn_as_is)
+    _legends_clear_of_points(fig, drawn_as_is)
     return fig
 
 
@@ -89,10 +90,11 @@ def _titles(fig: plt.Figure) -> list:
     return [t for t in (*fig.texts, *(ax.title for ax in fig.axes)) if t.get_text()]
 
 
-def _titles_broken_to_fit(fig: plt.Figure) -> None:
+def _titles_broken_to_fit(fig: plt.Figure) -> bool:
     """Break each line of a title wider than the canvas (the inputs Fig. 13's strokes
     share) between words, at as many characters as the canvas holds; a no-break space
-    (inside ``theta0 = 90 deg``, inside a note's change) is no place to break."""
+    (inside ``theta0 = 90 deg``, inside a note's change) is no place to break.  Returns
+    whether the canvas is drawn as the figure now is."""
     fig.canvas.draw()
     broken = False
     for title in _titles(fig):
@@ -106,6 +108,7 @@ def _titles_broken_to_fit(fig: plt.Figure) -> None:
         broken = True
     if broken:
         fig.tight_layout()
+    return not broken
 
 
 #: Where a legend that covers a marked point moves inside its axes, in the order tried.
@@ -132,18 +135,21 @@ def _marked_points(ax, renderer) -> list:
     ]
 
 
-def _legends_clear_of_points(fig: plt.Figure) -> None:
+def _legends_clear_of_points(fig: plt.Figure, drawn_as_is: bool = False) -> None:
     """Move each legend that covers a marked point (:func:`_marked_points`, as drawn:
     ``loc="best"`` counts a point's centre, not its marker, and takes a place over a
     point when every place crosses a line) to the first of :data:`LEGEND_PLACES` that
-    covers none; a legend already clear stays where it is."""
+    covers none; a legend already clear stays where it is.  ``drawn_as_is``: the canvas
+    is drawn as the figure is (no draw is needed before the first legend)."""
     for ax in fig.axes:
         legend = ax.get_legend()
         if legend is None or not any(len(line.get_xdata()) == 1 for line in ax.lines):
             continue
-        fig.canvas.draw()
+        if not drawn_as_is:
+            fig.canvas.draw()
         renderer = fig.canvas.get_renderer()
         points = _marked_points(ax, renderer)
+        drawn_as_is = True
         for place in (None, *LEGEND_PLACES):
             if place is not None:
                 legend.set_loc(place)
@@ -153,16 +159,20 @@ def _legends_clear_of_points(fig: plt.Figure) -> None:
                 break
         else:  # no place is clear: where matplotlib would put it
             legend.set_loc("best")
+            drawn_as_is = False
 
 
-def _room_for_titles(fig: plt.Figure) -> None:
+def _room_for_titles(fig: plt.Figure, drawn_as_is: bool = False) -> bool:
     """Fit ``fig``'s titles on its canvas: a title wider than the canvas (a scenario
     note's unbreakable change over a narrow figure) gets a smaller font, down to 6 pt;
     then the figure grows by what the titles reach above it (over axes whose aspect
-    tight_layout cannot shrink), and is laid out again."""
+    tight_layout cannot shrink), and is laid out again.  ``drawn_as_is``: the canvas is
+    drawn as the figure is (the first check needs no draw); returns whether it still
+    is."""
     titles = _titles(fig)
-    for _ in range(16):  # the suptitle is one of the figure's texts
-        fig.canvas.draw()
+    for step in range(16):  # the suptitle is one of the figure's texts
+        if step or not drawn_as_is:
+            fig.canvas.draw()
         wide = [
             t
             for t in titles
@@ -178,6 +188,8 @@ def _room_for_titles(fig: plt.Figure) -> None:
     if over > 0:
         fig.set_figheight(fig.get_figheight() + (over + 4) / fig.dpi)
         fig.tight_layout()
+        return False
+    return not wide  # else the last smaller font is laid out, not drawn
 
 
 def wrapped(note: str, width: int) -> str:
