@@ -72,9 +72,6 @@ OPTIONAL = ("reason",)
 #: The keys of a measure that reads one variable of a file (no ``function``).
 VARIABLE_MEASURE = ("file", "var", "sel", "abs")
 
-if TYPE_CHECKING:  # only its annotations: the planning checks claims without xarray
-    import xarray as xr
-
 
 class ClaimError(ValueError):
     """A claim definition is malformed (message is one line)."""

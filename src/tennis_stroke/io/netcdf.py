@@ -408,7 +408,6 @@ def cf_encoded(ds: xr.Dataset) -> xr.Dataset:
       would otherwise be read as a wrong number, makes reading fail
       (:func:`load_result` names the file).
     """
-
     out = ds.copy(deep=False)
     for var in out.variables.values():
         if var.ndim > 0:
